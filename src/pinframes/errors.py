@@ -1,0 +1,129 @@
+"""Exceptions raised by pinframes.
+
+Every error carries, where known, the ``file`` it came from, the ``frame`` it concerns and the
+``field`` that is wrong, and puts them at the front of its message::
+
+    scene.yaml: frame 'torch': field 'pose.yaw': expected a number, got 'abc'
+
+Each class also subclasses the built-in exception a caller would naturally catch
+(``ValueError``, ``KeyError``, ``TypeError``, ``OSError``).
+"""
+
+from __future__ import annotations
+
+import os
+
+__all__ = [
+    "ExtrapolationError",
+    "FileFormatError",
+    "FrameExistsError",
+    "FrameNotFoundError",
+    "InvalidPoseError",
+    "InvalidTimeError",
+    "JointError",
+    "PinframesError",
+    "ReferenceTimeError",
+    "TreeStructureError",
+    "UnsupportedFeatureError",
+    "WriteError",
+]
+
+
+class PinframesError(Exception):
+    """Base class of every pinframes error.
+
+    Attributes
+    ----------
+    message : str
+        What is wrong, without the location prefix.
+    file : str or None
+        The file the bad input came from.
+    frame : str or None
+        The frame (or key, link, joint) concerned.
+    field : str or None
+        The field within that frame, dotted for nested fields (``pose.yaw``).
+    """
+
+    def __init__(
+        self,
+        message: str,
+        *,
+        file: str | os.PathLike[str] | None = None,
+        frame: str | None = None,
+        field: str | None = None,
+    ) -> None:
+        self.message = message
+        self.file = os.fspath(file) if file is not None else None
+        self.frame = frame
+        self.field = field
+        super().__init__(str(self))
+
+    def __str__(self) -> str:
+        parts = []
+        if self.file is not None:
+            parts.append(self.file)
+        if self.frame is not None:
+            parts.append(f"frame {self.frame!r}")
+        if self.field is not None:
+            parts.append(f"field {self.field!r}")
+        parts.append(self.message)
+        return ": ".join(parts)
+
+    def located(
+        self,
+        *,
+        file: str | os.PathLike[str] | None = None,
+        frame: str | None = None,
+        field: str | None = None,
+    ) -> PinframesError:
+        """Return a copy of this error with missing location parts filled in."""
+        return type(self)(
+            self.message,
+            file=self.file if self.file is not None else file,
+            frame=self.frame if self.frame is not None else frame,
+            field=self.field if self.field is not None else field,
+        )
+
+
+class FrameNotFoundError(PinframesError, KeyError):
+    """A frame (or joint) name that the tree does not hold."""
+
+
+class FrameExistsError(PinframesError, ValueError):
+    """A frame name that the tree already holds."""
+
+
+class TreeStructureError(PinframesError, ValueError):
+    """An operation that would break the tree: a cycle, removing the root, orphaned children."""
+
+
+class InvalidPoseError(PinframesError, ValueError):
+    """A pose that is not a rigid transform: wrong shape, non-finite, not a rotation."""
+
+
+class InvalidTimeError(PinframesError, ValueError):
+    """Times that cannot be read, are not strictly increasing or do not match the data."""
+
+
+class ReferenceTimeError(PinframesError, ValueError):
+    """Reference times that cannot be combined (weldx ``get_cs`` rules)."""
+
+
+class ExtrapolationError(PinframesError, ValueError):
+    """A query time outside a frame's keyframes under ``extrapolation="error"``."""
+
+
+class JointError(PinframesError, ValueError):
+    """A robot joint that is unknown, mis-specified or driven with bad values."""
+
+
+class FileFormatError(PinframesError, ValueError):
+    """A file whose content does not follow its format."""
+
+
+class UnsupportedFeatureError(PinframesError, ValueError):
+    """Valid input that pinframes deliberately does not handle (said in the message)."""
+
+
+class WriteError(PinframesError, OSError):
+    """A file that could not be written; any existing file at the path is left untouched."""
