@@ -14,19 +14,32 @@ from .errors import (
     UnsupportedFeatureError,
     WriteError,
 )
+from .joint import Joint, Mimic
+from .joint_track import JointTrack
+from .pinocchio_model import CompiledModel
+from .pose import Pose
+from .subsystem import Subsystem
+from .tree import FrameTree
 
 __version__ = "0.1.0"
 
 __all__ = [
+    "CompiledModel",
     "ExtrapolationError",
     "FileFormatError",
     "FrameExistsError",
     "FrameNotFoundError",
+    "FrameTree",
     "InvalidPoseError",
     "InvalidTimeError",
+    "Joint",
     "JointError",
+    "JointTrack",
+    "Mimic",
     "PinframesError",
+    "Pose",
     "ReferenceTimeError",
+    "Subsystem",
     "TreeStructureError",
     "UnsupportedFeatureError",
     "WriteError",

@@ -1,0 +1,260 @@
+"""Answering ``FrameTree.pose``: compile the query path once, then evaluate it per call.
+
+A query between two frames whose nearest joints coincide has nothing moving between them
+and is one cached static transform. Otherwise the frames between them and their lowest
+common ancestor are compiled into a :class:`~pinframes.pinocchio_model.CompiledModel`
+rooted at that ancestor, so the cost of a query depends on its path, not on the tree.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ._interpolation import Keyframes
+from ._se3 import Transform, compose, inverse
+from ._timeline import QueryTimeline, TimedSource, plan_query_timeline
+from .errors import ExtrapolationError, InvalidTimeError, JointError
+from .joint import Joint
+from .pinocchio_model import CompiledJoint, CompiledModel
+from .pose import Pose
+from .timeconv import TimeAxis, parse_time_axis
+
+if TYPE_CHECKING:
+    from .tree import FrameTree
+
+__all__ = ["Evaluation", "compile_model", "evaluate_pose"]
+
+_EXTRAPOLATION_POLICIES = ("clamp", "error")
+
+
+@dataclass(frozen=True)
+class Evaluation:
+    """A query path prepared for repeated evaluation.
+
+    Either ``static`` (the pose of the frame in the reference frame, when nothing between
+    them can move) or ``model`` with, per joint, the moving frame's keyframes with the
+    joint placement folded in (None for robot joints).
+    """
+
+    frame: str
+    relative_to: str
+    static: Transform | None
+    model: CompiledModel | None = None
+    placed_keyframes: tuple[Keyframes | None, ...] = ()
+
+
+def evaluate_pose(
+    tree: FrameTree, frame: str, relative_to: str, times: Any, time_ref: Any,
+    extrapolation: str,
+) -> Pose:
+    """``tree.pose(frame, relative_to, times, time_ref)``; arguments already checked."""
+    if extrapolation not in _EXTRAPOLATION_POLICIES:
+        raise ValueError(f"extrapolation must be one of {_EXTRAPOLATION_POLICIES}, "
+                         f"got {extrapolation!r}")
+    evaluation = _evaluation(tree, frame, relative_to)
+    sources = _sources(tree, evaluation)
+    timeline = plan_query_timeline(
+        sources, _requested_times(tree, times), time_ref, tree.reference_time,
+        tree._has_frame_references)
+    if extrapolation == "error" and timeline.evaluation_times is not None:
+        _check_within_keyframes(sources, timeline)
+    if evaluation.static is not None:
+        rotation, translation = evaluation.static
+    else:
+        rotation, translation = _evaluate_model(tree, evaluation, sources, timeline)
+    offsets = timeline.result_offsets
+    if offsets is None:
+        return Pose._trusted(translation, rotation)
+    count = offsets.shape[0]
+    if rotation.ndim == 2:
+        rotation = np.broadcast_to(rotation, (count, 3, 3)).copy()
+    if translation.ndim == 1:
+        translation = np.broadcast_to(translation, (count, 3)).copy()
+    return Pose._trusted(translation, rotation, offsets, timeline.reference)
+
+
+def compile_model(tree: FrameTree, root: str, frames: list[str]) -> CompiledModel:
+    """A Pinocchio model rooted at ``root`` holding ``frames`` and every joint above them.
+
+    Every frame in ``frames`` must be ``root`` or below it.
+    """
+    root_anchor, root_placement = tree._anchor(root)
+    root_depth = tree._depth[root]
+    from_root_anchor = inverse(root_placement)
+    joint_frames: set[str] = set()
+    for frame in frames:
+        anchor = tree._anchor(frame)[0]
+        while tree._depth[anchor] > root_depth and anchor not in joint_frames:
+            joint_frames.add(anchor)
+            anchor = tree._anchor(tree._parent[anchor])[0]
+    ordered = sorted(joint_frames, key=tree._depth.__getitem__)
+    index = {frame: position for position, frame in enumerate(ordered)}
+
+    def placed(anchor: str, placement: Transform) -> tuple[int, Transform]:
+        if anchor in index:
+            return index[anchor], placement
+        if anchor != root_anchor:
+            raise AssertionError(f"{anchor!r} is not below {root!r}")
+        return -1, compose(from_root_anchor, placement)
+
+    joints = []
+    for frame in ordered:
+        parent, placement = placed(*tree._anchor(tree._parent[frame]))
+        joint = tree._joints.get(frame)
+        if joint is not None:
+            origin = tree._local[frame]
+            placement = compose(placement, (origin.rotation, origin.translation))
+        joints.append(CompiledJoint(frame, parent, placement, joint))
+    placements = {frame: placed(*tree._anchor(frame)) for frame in frames}
+    return CompiledModel(root, joints, placements)
+
+
+def _evaluation(tree: FrameTree, frame: str, relative_to: str) -> Evaluation:
+    key = (frame, relative_to)
+    cached = tree._cached_evaluation(key)
+    if cached is not None:
+        return cached
+    anchor, placement = tree._anchor(frame)
+    reference_anchor, reference_placement = tree._anchor(relative_to)
+    if anchor == reference_anchor:
+        evaluation = Evaluation(frame, relative_to, compose(inverse(reference_placement),
+                                                            placement))
+    else:
+        up, _ = tree._paths_to_common_ancestor(frame, relative_to)
+        model = compile_model(tree, up[-1], [frame, relative_to])
+        keyframes = tuple(
+            None if joint.joint is not None else _placed_keyframes(
+                tree._local[joint.frame].keyframes, model.joint_placements[position])
+            for position, joint in enumerate(model.joints))
+        evaluation = Evaluation(frame, relative_to, None, model, keyframes)
+    tree._store_evaluation(key, evaluation)
+    return evaluation
+
+
+def _placed_keyframes(keyframes: Keyframes, placement: Transform) -> Keyframes:
+    """Keyframes of ``placement @ pose``: a static factor on the left commutes with
+    linear interpolation and SLERP, so it can be applied to the keyframes once."""
+    rotation, translation = placement
+    if not translation.any() and np.array_equal(rotation, np.eye(3)):
+        return keyframes
+    rotations, translations = compose(placement, (keyframes.rotations, keyframes.translations))
+    return Keyframes(keyframes.times, translations, rotations)
+
+
+def _sources(tree: FrameTree, evaluation: Evaluation) -> list[TimedSource]:
+    """The moving frames and tracked joints whose values the query needs."""
+    if evaluation.model is None:
+        return []
+    sources: dict[str, TimedSource] = {}
+    for joint in evaluation.model.joints:
+        if joint.joint is None:
+            pose = tree._local[joint.frame]
+            reference = pose.reference_time if pose.reference_time is not None else (
+                tree.reference_time)
+            sources[joint.frame] = TimedSource(joint.frame, pose._times, reference)
+            continue
+        for name in _driving_joints(tree, joint.joint):
+            track = tree.joint_track(name)
+            if track is not None:
+                reference = track.reference if track.reference is not None else (
+                    tree.reference_time)
+                sources[name] = TimedSource(name, track.times, reference)
+    return list(sources.values())
+
+
+def _driving_joints(tree: FrameTree, joint: Joint) -> list[str]:
+    """``joint`` and, for a mimic joint, the chain of joints it follows."""
+    names = [joint.name]
+    while joint.mimic is not None:
+        if joint.mimic.joint in names:
+            raise JointError(f"mimic joints form a cycle: {' -> '.join(names)}",
+                             frame=joint.name, field="mimic")
+        names.append(joint.mimic.joint)
+        joint = tree.joints[joint.mimic.joint]
+    return names
+
+
+def _requested_times(tree: FrameTree, times: Any) -> TimeAxis | None:
+    if times is None:
+        return None
+    if isinstance(times, str) and times in tree:
+        if times == tree.root or not tree.is_moving(times):
+            raise InvalidTimeError(f"frame {times!r} does not move, so it has no times to "
+                                   "take", field="times")
+        pose = tree.local_pose(times)
+        reference = pose.reference_time if pose.reference_time is not None else (
+            tree.reference_time)
+        return TimeAxis(pose._times, reference)
+    return parse_time_axis(times, field="times")
+
+
+def _check_within_keyframes(sources: list[TimedSource], timeline: QueryTimeline) -> None:
+    requested = timeline.evaluation_times
+    first, last = requested.min(), requested.max()
+    for source in sources:
+        keyframes = source.on_basis(timeline.absolute)
+        if first < keyframes[0] or last > keyframes[-1]:
+            raise ExtrapolationError(
+                "requested times reach outside its keyframes (extrapolation='error')",
+                frame=source.name, field="times")
+
+
+def _evaluate_model(
+    tree: FrameTree, evaluation: Evaluation, sources: list[TimedSource],
+    timeline: QueryTimeline,
+) -> Transform:
+    """The pose of the query frame in the reference frame, batched over the timeline."""
+    model = evaluation.model
+    shifts = {s.name: _basis_shift(s, timeline) for s in sources}
+    times = timeline.evaluation_times
+    local: list[Transform] = []
+    values_cache: dict[str, NDArray[np.float64] | float] = {}
+    for position, joint in enumerate(model.joints):
+        keyframes = evaluation.placed_keyframes[position]
+        if keyframes is not None:
+            shift = shifts[joint.frame]
+            sampled = keyframes.sample(times - shift)
+            local.append((sampled[1], sampled[0]))
+            continue
+        values = _joint_values(tree, joint.joint, times, shifts, values_cache)
+        motion_rotation, motion_translation = joint.joint.motion(np.atleast_1d(values))
+        if np.ndim(values) == 0:
+            motion = (np.eye(3) if motion_rotation is None else motion_rotation[0],
+                      np.zeros(3) if motion_translation is None else motion_translation[0])
+        else:
+            motion = (np.eye(3) if motion_rotation is None else motion_rotation,
+                      np.zeros(3) if motion_translation is None else motion_translation)
+        local.append(compose(model.joint_placements[position], motion))
+    frame_pose, reference_pose = model.forward_kinematics(
+        local, [evaluation.frame, evaluation.relative_to])
+    return compose(inverse(reference_pose), frame_pose)
+
+
+def _basis_shift(source: TimedSource, timeline: QueryTimeline) -> int:
+    """What to subtract from timeline times to land on the source's own time basis."""
+    if timeline.absolute and source.reference is not None:
+        return int(source.reference.astype(np.int64))
+    return 0
+
+
+def _joint_values(
+    tree: FrameTree, joint: Joint, times: NDArray[np.int64] | None,
+    shifts: dict[str, int], cache: dict[str, NDArray[np.float64] | float],
+) -> NDArray[np.float64] | float:
+    """Values of ``joint`` at ``times``: its track, its mimic primary's, or 0."""
+    if joint.name in cache:
+        return cache[joint.name]
+    track = tree.joint_track(joint.name)
+    if joint.mimic is not None:
+        primary = _joint_values(tree, tree.joints[joint.mimic.joint], times, shifts, cache)
+        value = joint.mimic.multiplier * primary + joint.mimic.offset
+    elif track is not None:
+        value = track.sample(times - shifts[joint.name])
+    else:
+        value = 0.0
+    cache[joint.name] = value
+    return value

@@ -1,0 +1,125 @@
+"""Which times a query is evaluated at, and which reference time its result carries.
+
+Implements the weldx ``CoordinateSystemManager.get_cs`` rules (SPEC section 4). All times
+here are int64 nanoseconds: *offsets* relative to a reference, or *absolute* nanoseconds
+since the epoch when any reference time is involved.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .errors import ReferenceTimeError
+from .timeconv import TimeAxis, parse_timestamp
+
+__all__ = ["QueryTimeline", "TimedSource", "plan_query_timeline"]
+
+
+@dataclass(frozen=True)
+class TimedSource:
+    """Keyframe times of one moving thing on a query path (a moving frame or a joint).
+
+    ``reference`` is its own reference time, or the tree's for a source without one.
+    """
+
+    name: str
+    times: NDArray[np.int64]
+    reference: np.datetime64 | None
+
+    def on_basis(self, absolute: bool) -> NDArray[np.int64]:
+        """Keyframe times as absolute nanoseconds, or as plain offsets."""
+        if absolute and self.reference is not None:
+            return self.times + self.reference.astype(np.int64)
+        return self.times
+
+
+@dataclass(frozen=True)
+class QueryTimeline:
+    """The times a query is evaluated at.
+
+    Attributes
+    ----------
+    evaluation_times : ndarray of int64 or None
+        Times on the sources' basis (absolute ns if ``absolute``, else offsets); None for a
+        static result.
+    absolute : bool
+        Whether ``evaluation_times`` and the sources' times are absolute nanoseconds.
+    reference : numpy.datetime64 or None
+        Reference time of the result.
+    """
+
+    evaluation_times: NDArray[np.int64] | None
+    absolute: bool
+    reference: np.datetime64 | None
+
+    @property
+    def result_offsets(self) -> NDArray[np.int64] | None:
+        """Times of the result relative to :attr:`reference`."""
+        if self.evaluation_times is None or not self.absolute:
+            return self.evaluation_times
+        return self.evaluation_times - self.reference.astype(np.int64)
+
+
+def plan_query_timeline(
+    sources: list[TimedSource],
+    times: TimeAxis | None,
+    time_ref: Any,
+    tree_reference: np.datetime64 | None,
+    tree_has_frame_references: bool,
+) -> QueryTimeline:
+    """Apply the reference-time table of SPEC section 4 to one query.
+
+    Parameters
+    ----------
+    sources
+        The moving things on the query path.
+    times
+        The requested times, or None for the union of the sources' keyframes.
+    time_ref
+        The query's ``time_ref`` argument (ignored when ``times`` is None).
+    tree_reference
+        The tree's own reference time.
+    tree_has_frame_references
+        Whether the tree's moving frames carry reference times of their own.
+    """
+    source_references = [s.reference for s in sources if s.reference is not None]
+    lowest_source_reference = min(source_references) if source_references else None
+    if times is None:
+        if not sources:
+            return QueryTimeline(None, False, None)
+        absolute = lowest_source_reference is not None
+        union = np.unique(np.concatenate([s.on_basis(absolute) for s in sources]))
+        reference = tree_reference if tree_reference is not None else lowest_source_reference
+        return QueryTimeline(union, absolute, reference)
+
+    query_reference = None
+    if time_ref is not None:
+        query_reference = parse_timestamp(time_ref, field="time_ref")
+        if (tree_reference is None and not tree_has_frame_references
+                and not times.is_absolute):
+            raise ReferenceTimeError(
+                "a time_ref was given, but neither the tree nor its frames have a reference "
+                "time, so it is ambiguous; query without time_ref and set the reference time "
+                "of the result yourself", field="time_ref")
+    reference = next(
+        (r for r in (query_reference, tree_reference, lowest_source_reference, times.reference)
+         if r is not None),
+        None,
+    )
+    if times.is_absolute:
+        requested = times.offsets + times.reference.astype(np.int64)
+    elif reference is not None:
+        requested = times.offsets + reference.astype(np.int64)
+    else:
+        return QueryTimeline(times.offsets, False, None)
+    if sources and lowest_source_reference is None:
+        raise ReferenceTimeError(
+            "absolute times or a time_ref were given, but the moving frames on this path ("
+            + ", ".join(s.name for s in sources) + ") have no reference time",
+            field="times")
+    return QueryTimeline(requested, True, reference)
+

@@ -1,0 +1,110 @@
+"""`Joint`: a robot joint that moves a child link relative to its parent link.
+
+The pose of the child link in the parent link is ``origin @ motion(q)``, where ``origin`` is
+the URDF ``<origin>`` and ``motion`` rotates about (revolute, continuous) or slides along
+(prismatic) the unit ``axis``, written in the joint frame. Angles in radians, lengths in
+metres.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+from numpy.typing import NDArray
+
+from .errors import JointError
+from .rotations import matrix_from_axis_angle
+
+__all__ = ["JOINT_KINDS", "Joint", "Mimic"]
+
+JOINT_KINDS = ("revolute", "continuous", "prismatic")
+"""Joint kinds driven by one value each."""
+
+_AXIS_TOLERANCE = 1e-12
+
+
+@dataclass(frozen=True)
+class Mimic:
+    """A joint whose value is ``multiplier * value(joint) + offset``."""
+
+    joint: str
+    multiplier: float = 1.0
+    offset: float = 0.0
+
+
+@dataclass(frozen=True)
+class Joint:
+    """A one-degree-of-freedom robot joint.
+
+    Attributes
+    ----------
+    name : str
+        Joint name as held by the tree (with the robot's prefix).
+    kind : str
+        ``"revolute"``, ``"continuous"`` or ``"prismatic"``.
+    axis : tuple of float
+        Unit axis in the joint frame.
+    lower, upper : float or None
+        Position limits, radians or metres (None: unlimited).
+    velocity, effort : float or None
+        Limits as written in the URDF (kept for export).
+    mimic : Mimic or None
+        Set when this joint follows another one.
+    """
+
+    name: str
+    kind: str
+    axis: tuple[float, float, float] = (1.0, 0.0, 0.0)
+    lower: float | None = None
+    upper: float | None = None
+    velocity: float | None = None
+    effort: float | None = None
+    mimic: Mimic | None = None
+
+    def __post_init__(self) -> None:
+        if self.kind not in JOINT_KINDS:
+            raise JointError(f"unknown joint kind {self.kind!r}; expected one of {JOINT_KINDS}",
+                             frame=self.name, field="type")
+        axis = np.asarray(self.axis, dtype=float)
+        norm = float(np.linalg.norm(axis))
+        if axis.shape != (3,) or not np.isfinite(norm) or norm < 1e-9:
+            raise JointError(f"axis must be a non-zero 3-vector, got {self.axis!r}",
+                             frame=self.name, field="axis")
+        object.__setattr__(self, "axis", tuple(float(v) for v in axis / norm))
+
+    @property
+    def is_actuated(self) -> bool:
+        """True for joints driven by their own value (not mimic joints)."""
+        return self.mimic is None
+
+    def motion(
+        self, values: NDArray[np.float64]
+    ) -> tuple[NDArray[np.float64] | None, NDArray[np.float64] | None]:
+        """Rotations ``(N, 3, 3)`` or None, translations ``(N, 3)`` or None for ``values``."""
+        if self.kind == "prismatic":
+            return None, values[:, None] * np.asarray(self.axis)
+        return matrix_from_axis_angle(self.axis, values), None
+
+    def pinocchio_joint_model(self) -> pin.JointModel:
+        """The Pinocchio joint model of this joint (aligned axes get the specialised ones)."""
+        axis = np.asarray(self.axis)
+        aligned = {0: "X", 1: "Y", 2: "Z"}
+        index = int(np.argmax(np.abs(axis)))
+        is_aligned = abs(axis[index] - 1.0) < _AXIS_TOLERANCE
+        prefix = {"revolute": "R", "continuous": "RUB", "prismatic": "P"}[self.kind]
+        if is_aligned:
+            return getattr(pin, f"JointModel{prefix}{aligned[index]}")()
+        unaligned = {
+            "revolute": pin.JointModelRevoluteUnaligned,
+            "continuous": pin.JointModelRevoluteUnboundedUnaligned,
+            "prismatic": pin.JointModelPrismaticUnaligned,
+        }[self.kind]
+        return unaligned(axis)
+
+    def configuration(self, values: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Pinocchio configuration entries ``(N, nq)`` of this joint for ``values``."""
+        if self.kind == "continuous":
+            return np.stack([np.cos(values), np.sin(values)], axis=1)
+        return values[:, None]

@@ -1,0 +1,138 @@
+"""Batched rotation conversions.
+
+Every function takes stacks of rotations: arrays whose last axes are ``(4,)`` quaternions
+``(x, y, z, w)``, ``(3, 3)`` matrices or ``(3,)`` roll-pitch-yaw angles in radians, with any
+leading shape. Roll, pitch and yaw follow URDF: ``R = Rz(yaw) @ Ry(pitch) @ Rx(roll)``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+__all__ = [
+    "ROTATION_TOLERANCE",
+    "matrix_from_axis_angle",
+    "matrix_from_quaternion",
+    "matrix_from_rpy",
+    "quaternion_from_matrix",
+    "rotation_matrix_defects",
+    "rpy_from_matrix",
+]
+
+ROTATION_TOLERANCE = 1e-6
+"""Largest accepted deviation of ``R.T @ R`` from the identity, and of ``det(R)`` from 1."""
+
+FloatArray = NDArray[np.float64]
+
+
+def matrix_from_quaternion(quaternion: ArrayLike) -> FloatArray:
+    """Rotation matrices ``(..., 3, 3)`` from unit quaternions ``(..., 4)`` ``(x, y, z, w)``."""
+    q = np.asarray(quaternion, dtype=float)
+    x, y, z, w = q[..., 0], q[..., 1], q[..., 2], q[..., 3]
+    xx, yy, zz = x * x, y * y, z * z
+    xy, xz, yz = x * y, x * z, y * z
+    wx, wy, wz = w * x, w * y, w * z
+    out = np.empty((*q.shape[:-1], 3, 3))
+    out[..., 0, 0] = 1.0 - 2.0 * (yy + zz)
+    out[..., 0, 1] = 2.0 * (xy - wz)
+    out[..., 0, 2] = 2.0 * (xz + wy)
+    out[..., 1, 0] = 2.0 * (xy + wz)
+    out[..., 1, 1] = 1.0 - 2.0 * (xx + zz)
+    out[..., 1, 2] = 2.0 * (yz - wx)
+    out[..., 2, 0] = 2.0 * (xz - wy)
+    out[..., 2, 1] = 2.0 * (yz + wx)
+    out[..., 2, 2] = 1.0 - 2.0 * (xx + yy)
+    return out
+
+
+def quaternion_from_matrix(matrix: ArrayLike) -> FloatArray:
+    """Unit quaternions ``(..., 4)`` ``(x, y, z, w)`` with ``w >= 0`` from rotation matrices.
+
+    Uses the numerically stable branch per matrix (largest diagonal term).
+    """
+    m = np.asarray(matrix, dtype=float)
+    m00, m11, m22 = m[..., 0, 0], m[..., 1, 1], m[..., 2, 2]
+    trace = m00 + m11 + m22
+    # Four candidate solutions, each accurate where its leading component is large.
+    candidates = np.stack(
+        [
+            np.stack([1 + m00 - m11 - m22, m[..., 0, 1] + m[..., 1, 0],
+                      m[..., 0, 2] + m[..., 2, 0], m[..., 2, 1] - m[..., 1, 2]], axis=-1),
+            np.stack([m[..., 0, 1] + m[..., 1, 0], 1 - m00 + m11 - m22,
+                      m[..., 1, 2] + m[..., 2, 1], m[..., 0, 2] - m[..., 2, 0]], axis=-1),
+            np.stack([m[..., 0, 2] + m[..., 2, 0], m[..., 1, 2] + m[..., 2, 1],
+                      1 - m00 - m11 + m22, m[..., 1, 0] - m[..., 0, 1]], axis=-1),
+            np.stack([m[..., 2, 1] - m[..., 1, 2], m[..., 0, 2] - m[..., 2, 0],
+                      m[..., 1, 0] - m[..., 0, 1], 1 + trace], axis=-1),
+        ],
+        axis=-2,
+    )
+    choice = np.argmax(np.stack([m00, m11, m22, trace], axis=-1), axis=-1)
+    q = np.take_along_axis(candidates, choice[..., None, None], axis=-2)[..., 0, :]
+    q /= np.linalg.norm(q, axis=-1, keepdims=True)
+    return np.where(q[..., 3:4] < 0.0, -q, q)
+
+
+def matrix_from_rpy(rpy: ArrayLike) -> FloatArray:
+    """Rotation matrices ``(..., 3, 3)`` from ``(..., 3)`` roll, pitch, yaw in radians."""
+    angles = np.asarray(rpy, dtype=float)
+    cr, sr = np.cos(angles[..., 0]), np.sin(angles[..., 0])
+    cp, sp = np.cos(angles[..., 1]), np.sin(angles[..., 1])
+    cy, sy = np.cos(angles[..., 2]), np.sin(angles[..., 2])
+    out = np.empty((*angles.shape[:-1], 3, 3))
+    out[..., 0, 0] = cy * cp
+    out[..., 0, 1] = cy * sp * sr - sy * cr
+    out[..., 0, 2] = cy * sp * cr + sy * sr
+    out[..., 1, 0] = sy * cp
+    out[..., 1, 1] = sy * sp * sr + cy * cr
+    out[..., 1, 2] = sy * sp * cr - cy * sr
+    out[..., 2, 0] = -sp
+    out[..., 2, 1] = cp * sr
+    out[..., 2, 2] = cp * cr
+    return out
+
+
+def rpy_from_matrix(matrix: ArrayLike) -> FloatArray:
+    """Roll, pitch, yaw ``(..., 3)`` in radians from rotation matrices.
+
+    Pitch lies in ``[-pi/2, pi/2]``; at the gimbal lock (pitch = +-pi/2) roll is set to 0.
+    """
+    m = np.asarray(matrix, dtype=float)
+    pitch = np.arctan2(-m[..., 2, 0], np.hypot(m[..., 0, 0], m[..., 1, 0]))
+    locked = np.hypot(m[..., 0, 0], m[..., 1, 0]) < 1e-12
+    roll = np.where(locked, 0.0, np.arctan2(m[..., 2, 1], m[..., 2, 2]))
+    yaw = np.where(
+        locked,
+        np.arctan2(-m[..., 0, 1], m[..., 1, 1]),
+        np.arctan2(m[..., 1, 0], m[..., 0, 0]),
+    )
+    return np.stack([roll, pitch, yaw], axis=-1)
+
+
+def matrix_from_axis_angle(axis: ArrayLike, angle: ArrayLike) -> FloatArray:
+    """Rotation matrices ``(..., 3, 3)`` about a unit ``axis`` (3,) by ``angle`` (...) radians."""
+    ux, uy, uz = np.asarray(axis, dtype=float)
+    theta = np.asarray(angle, dtype=float)
+    c, s = np.cos(theta), np.sin(theta)
+    v = 1.0 - c
+    out = np.empty((*theta.shape, 3, 3))
+    out[..., 0, 0] = c + ux * ux * v
+    out[..., 0, 1] = ux * uy * v - uz * s
+    out[..., 0, 2] = ux * uz * v + uy * s
+    out[..., 1, 0] = uy * ux * v + uz * s
+    out[..., 1, 1] = c + uy * uy * v
+    out[..., 1, 2] = uy * uz * v - ux * s
+    out[..., 2, 0] = uz * ux * v - uy * s
+    out[..., 2, 1] = uz * uy * v + ux * s
+    out[..., 2, 2] = c + uz * uz * v
+    return out
+
+
+def rotation_matrix_defects(matrix: ArrayLike) -> tuple[float, float]:
+    """Worst ``|R.T @ R - I|`` entry and worst ``|det R - 1|`` over a stack of matrices."""
+    m = np.asarray(matrix, dtype=float)
+    gram = np.swapaxes(m, -1, -2) @ m
+    orthogonality = float(np.max(np.abs(gram - np.eye(3)), initial=0.0))
+    determinant = float(np.max(np.abs(np.linalg.det(m) - 1.0), initial=0.0))
+    return orthogonality, determinant
