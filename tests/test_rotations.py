@@ -50,7 +50,7 @@ def test_axis_angle_matches_pinocchio_exp(rng):
     axis /= np.linalg.norm(axis)
     angles = np.array([-2.0, 0.0, 0.4, 3.1])
     matrices = matrix_from_axis_angle(axis, angles)
-    for angle, matrix in zip(angles, matrices):
+    for angle, matrix in zip(angles, matrices, strict=True):
         np.testing.assert_allclose(matrix, pin.exp3(axis * angle), atol=1e-14)
 
 

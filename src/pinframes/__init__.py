@@ -16,7 +16,7 @@ from .errors import (
 )
 from .joint import Joint, Mimic
 from .joint_track import JointTrack
-from .pinocchio_model import CompiledModel
+from .pinocchio_tree import PinocchioTree
 from .pose import Pose
 from .subsystem import Subsystem
 from .tree import FrameTree
@@ -24,7 +24,6 @@ from .tree import FrameTree
 __version__ = "0.1.0"
 
 __all__ = [
-    "CompiledModel",
     "ExtrapolationError",
     "FileFormatError",
     "FrameExistsError",
@@ -37,6 +36,7 @@ __all__ = [
     "JointTrack",
     "Mimic",
     "PinframesError",
+    "PinocchioTree",
     "Pose",
     "ReferenceTimeError",
     "Subsystem",

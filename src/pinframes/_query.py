@@ -26,7 +26,16 @@ from .timeconv import TimeAxis, parse_time_axis
 if TYPE_CHECKING:
     from .tree import FrameTree
 
-__all__ = ["Evaluation", "compile_model", "evaluate_pose"]
+__all__ = [
+    "Evaluation",
+    "basis_shifts",
+    "compile_model",
+    "evaluate_pose",
+    "joint_motion",
+    "model_sources",
+    "plan_timeline",
+    "sample_joint_values",
+]
 
 _EXTRAPOLATION_POLICIES = ("clamp", "error")
 
@@ -56,10 +65,8 @@ def evaluate_pose(
         raise ValueError(f"extrapolation must be one of {_EXTRAPOLATION_POLICIES}, "
                          f"got {extrapolation!r}")
     evaluation = _evaluation(tree, frame, relative_to)
-    sources = _sources(tree, evaluation)
-    timeline = plan_query_timeline(
-        sources, _requested_times(tree, times), time_ref, tree.reference_time,
-        tree._has_frame_references)
+    sources = [] if evaluation.model is None else model_sources(tree, evaluation.model)
+    timeline = plan_timeline(tree, sources, times, time_ref)
     if extrapolation == "error" and timeline.evaluation_times is not None:
         _check_within_keyframes(sources, timeline)
     if evaluation.static is not None:
@@ -145,12 +152,18 @@ def _placed_keyframes(keyframes: Keyframes, placement: Transform) -> Keyframes:
     return Keyframes(keyframes.times, translations, rotations)
 
 
-def _sources(tree: FrameTree, evaluation: Evaluation) -> list[TimedSource]:
-    """The moving frames and tracked joints whose values the query needs."""
-    if evaluation.model is None:
-        return []
+def plan_timeline(
+    tree: FrameTree, sources: list[TimedSource], times: Any, time_ref: Any
+) -> QueryTimeline:
+    """The evaluation times of a query on ``sources`` (SPEC section 4)."""
+    return plan_query_timeline(sources, _requested_times(tree, times), time_ref,
+                               tree.reference_time, tree._has_frame_references)
+
+
+def model_sources(tree: FrameTree, model: CompiledModel) -> list[TimedSource]:
+    """The moving frames and tracked joints whose values a compiled model needs."""
     sources: dict[str, TimedSource] = {}
-    for joint in evaluation.model.joints:
+    for joint in model.joints:
         if joint.joint is None:
             pose = tree._local[joint.frame]
             reference = pose.reference_time if pose.reference_time is not None else (
@@ -209,7 +222,7 @@ def _evaluate_model(
 ) -> Transform:
     """The pose of the query frame in the reference frame, batched over the timeline."""
     model = evaluation.model
-    shifts = {s.name: _basis_shift(s, timeline) for s in sources}
+    shifts = basis_shifts(sources, timeline)
     times = timeline.evaluation_times
     local: list[Transform] = []
     values_cache: dict[str, NDArray[np.float64] | float] = {}
@@ -220,28 +233,33 @@ def _evaluate_model(
             sampled = keyframes.sample(times - shift)
             local.append((sampled[1], sampled[0]))
             continue
-        values = _joint_values(tree, joint.joint, times, shifts, values_cache)
-        motion_rotation, motion_translation = joint.joint.motion(np.atleast_1d(values))
-        if np.ndim(values) == 0:
-            motion = (np.eye(3) if motion_rotation is None else motion_rotation[0],
-                      np.zeros(3) if motion_translation is None else motion_translation[0])
-        else:
-            motion = (np.eye(3) if motion_rotation is None else motion_rotation,
-                      np.zeros(3) if motion_translation is None else motion_translation)
-        local.append(compose(model.joint_placements[position], motion))
+        values = sample_joint_values(tree, joint.joint, times, shifts, values_cache)
+        local.append(compose(model.joint_placements[position], joint_motion(joint.joint, values)))
     frame_pose, reference_pose = model.forward_kinematics(
         local, [evaluation.frame, evaluation.relative_to])
     return compose(inverse(reference_pose), frame_pose)
 
 
-def _basis_shift(source: TimedSource, timeline: QueryTimeline) -> int:
-    """What to subtract from timeline times to land on the source's own time basis."""
-    if timeline.absolute and source.reference is not None:
-        return int(source.reference.astype(np.int64))
-    return 0
+def basis_shifts(sources: list[TimedSource], timeline: QueryTimeline) -> dict[str, int]:
+    """Per source, what to subtract from timeline times to land on its own time basis."""
+    return {
+        s.name: int(s.reference.astype(np.int64))
+        if timeline.absolute and s.reference is not None else 0
+        for s in sources
+    }
 
 
-def _joint_values(
+def joint_motion(joint: Joint, values: NDArray[np.float64] | float) -> Transform:
+    """The motion transform of ``joint`` at ``values`` (static for a scalar value)."""
+    rotation, translation = joint.motion(np.atleast_1d(values))
+    if np.ndim(values) == 0:
+        return (np.eye(3) if rotation is None else rotation[0],
+                np.zeros(3) if translation is None else translation[0])
+    return (np.eye(3) if rotation is None else rotation,
+            np.zeros(3) if translation is None else translation)
+
+
+def sample_joint_values(
     tree: FrameTree, joint: Joint, times: NDArray[np.int64] | None,
     shifts: dict[str, int], cache: dict[str, NDArray[np.float64] | float],
 ) -> NDArray[np.float64] | float:
@@ -250,7 +268,8 @@ def _joint_values(
         return cache[joint.name]
     track = tree.joint_track(joint.name)
     if joint.mimic is not None:
-        primary = _joint_values(tree, tree.joints[joint.mimic.joint], times, shifts, cache)
+        primary = sample_joint_values(tree, tree.joints[joint.mimic.joint], times, shifts,
+                                      cache)
         value = joint.mimic.multiplier * primary + joint.mimic.offset
     elif track is not None:
         value = track.sample(times - shifts[joint.name])

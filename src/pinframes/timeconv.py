@@ -6,8 +6,9 @@ Relative times (offsets) are ``timedelta64[ns]``; absolute times are ``datetime6
 - float or int seconds, alone or in a sequence or array;
 - ``numpy.timedelta64`` / ``numpy.datetime64`` scalars and arrays;
 - ``datetime.timedelta`` / ``datetime.datetime`` (time-zone aware ones are converted to UTC);
-- strings: plain seconds ``"1.5"``, durations ``"2s"``, ``"500 ms"``, ``"1.5min"``, ISO 8601 ``"P0DT0H0M4.4S"`` and
-  ``"PT2S"``, and timestamps ``"2024-03-01T08:00:00"`` (``Z`` or ``+01:00`` accepted);
+- strings: plain seconds ``"1.5"``, durations ``"2s"``, ``"500 ms"``, ``"1.5min"``, ISO 8601
+  ``"P0DT0H0M4.4S"`` and ``"PT2S"``, and timestamps ``"2024-03-01T08:00:00"`` (``Z`` or
+  ``+01:00`` accepted);
 - pandas ``Timedelta``, ``TimedeltaIndex``, ``Timestamp``, ``DatetimeIndex`` and ``Series``
   (pandas is optional and never imported here).
 """

@@ -18,7 +18,7 @@ from .errors import (
 )
 from .joint import Joint
 from .joint_track import JointTrack
-from .pinocchio_model import CompiledModel
+from .pinocchio_tree import PinocchioTree
 from .pose import Pose
 from .subsystem import Subsystem
 from .timeconv import parse_timestamp
@@ -312,14 +312,13 @@ class FrameTree:
         self._require(relative_to)
         return _query.evaluate_pose(self, frame, relative_to, times, time_ref, extrapolation)
 
-    def to_pinocchio(self) -> CompiledModel:
-        """The whole tree as one Pinocchio model (``.model``) with its name mappings.
+    def to_pinocchio(self) -> PinocchioTree:
+        """The whole tree as one Pinocchio model, with name mappings and configurations.
 
-        ``.frame_ids`` maps frame names to Pinocchio frame ids, ``.joint_ids`` joint names
-        (moving frames' names for their free-flyers) to joint ids. Beware: Pinocchio's
-        ``createData`` grows with the cube of the number of joints (SPEC section 5).
+        Beware: Pinocchio's ``createData`` grows with the cube of the number of joints
+        (SPEC section 5); :meth:`pose` never builds such a model.
         """
-        return _query.compile_model(self, self._root, list(self._parent))
+        return PinocchioTree(self)
 
     # -- internals used by _query ----------------------------------------------------------
     def _anchor(self, name: str) -> tuple[str, Transform]:
