@@ -18,7 +18,10 @@ from .joint import Joint, Mimic
 from .joint_track import JointTrack
 from .pinocchio_tree import PinocchioTree
 from .pose import Pose
+from .scene import read_scene
+from .scene_writer import write_scene
 from .subsystem import Subsystem
+from .trajectory_io import read_joint_trajectory
 from .tree import FrameTree
 
 __version__ = "0.1.0"
@@ -44,4 +47,7 @@ __all__ = [
     "UnsupportedFeatureError",
     "WriteError",
     "__version__",
+    "read_joint_trajectory",
+    "read_scene",
+    "write_scene",
 ]

@@ -1,0 +1,66 @@
+"""The ``pinframes`` command line: ``pinframes SUBCOMMAND --help`` tells more.
+
+Data goes to standard output, messages to standard error. A user error (a pinframes error
+or a file that cannot be read or written) prints one line ``pinframes: error: ...`` and
+exits with status 1 (``--verbose`` adds the traceback); bad arguments exit with status 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import traceback
+from collections.abc import Sequence
+
+from .. import __version__
+from ..errors import PinframesError
+from . import convert, demo, info, plot, pose
+
+__all__ = ["main"]
+
+_SUBCOMMANDS = (demo, info, pose, convert, plot)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line with ``argv`` (default ``sys.argv[1:]``); return the exit status."""
+    parser = _parser()
+    args = parser.parse_args(argv)
+    try:
+        return args.run(args)
+    except BrokenPipeError:
+        # the reader of our output went away (``pinframes pose ... | head``): stop quietly
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 1
+    except (PinframesError, OSError) as exc:
+        if args.verbose:
+            traceback.print_exc()
+        print(f"pinframes: error: {_one_line(exc)}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("pinframes: interrupted", file=sys.stderr)
+        return 130
+
+
+def _parser() -> argparse.ArgumentParser:
+    verbose = argparse.ArgumentParser(add_help=False)
+    verbose.add_argument("-v", "--verbose", action="store_true", default=argparse.SUPPRESS,
+                         help="print the traceback of an error")
+    parser = argparse.ArgumentParser(
+        prog="pinframes", parents=[verbose],
+        description="Coordinate-frame trees that move in time: inspect, query, convert, plot.",
+        epilog="Run 'pinframes SUBCOMMAND --help' for the options of each subcommand.")
+    parser.add_argument("--version", action="version", version=f"pinframes {__version__}")
+    parser.set_defaults(verbose=False)
+    subparsers = parser.add_subparsers(title="subcommands", metavar="SUBCOMMAND", required=True)
+    for module in _SUBCOMMANDS:
+        module.add_parser(subparsers, [verbose])
+    return parser
+
+
+def _one_line(exc: BaseException) -> str:
+    if isinstance(exc, OSError) and not isinstance(exc, PinframesError) and exc.strerror:
+        text = f"{exc.filename}: {exc.strerror}" if exc.filename else exc.strerror
+    else:
+        text = str(exc)
+    return " ".join(text.split())

@@ -1,0 +1,5 @@
+"""``python -m pinframes.cli``: the same as the ``pinframes`` command."""
+
+from . import main
+
+raise SystemExit(main())

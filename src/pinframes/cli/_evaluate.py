@@ -1,0 +1,155 @@
+"""Evaluating pose queries for the command line: time options, chunks and a progress bar."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from typing import Any, TextIO
+
+import numpy as np
+
+from .._sample_times import sample_times
+from ..errors import InvalidTimeError
+from ..pose import Pose
+from ..timeconv import TimeAxis, parse_time_axis, parse_timedelta, parse_timestamp
+from ..tree import FrameTree
+
+__all__ = ["add_time_arguments", "evaluate_poses", "requested_times", "terminal_stderr"]
+
+CHUNK_SIZE = 20_000
+"""Times evaluated per call; the progress bar moves once per chunk."""
+
+_BAR_WIDTH = 30
+
+
+def add_time_arguments(parser: argparse.ArgumentParser) -> None:
+    """``--times`` or ``--start/--stop/--step``, and ``--time-ref``."""
+    group = parser.add_argument_group(
+        "times", "Times are seconds (1.5), durations (500ms, 2s, P0DT0H0M2S) or timestamps "
+        "(2024-03-01T08:00:00). Relative times count from --time-ref, else from the "
+        "tree's reference time. Default: every keyframe and joint sample on the path.")
+    group.add_argument("--times", nargs="+", metavar="T", help="these times")
+    group.add_argument("--start", metavar="T", help="first time of a grid (default: the first "
+                       "sample on the path)")
+    group.add_argument("--stop", metavar="T", help="last time of a grid, included when it "
+                       "falls on the grid (default: the last sample on the path)")
+    group.add_argument("--step", metavar="DT", help="grid step, a positive duration")
+    group.add_argument("--time-ref", metavar="TIMESTAMP",
+                       help="reference time that relative times count from")
+
+
+def requested_times(args: argparse.Namespace, tree: FrameTree, frame: str,
+                    relative_to: str) -> TimeAxis | None:
+    """The times asked for by the time options (None: every sample on the path)."""
+    grid = args.start is not None or args.stop is not None or args.step is not None
+    if args.times is not None and grid:
+        raise InvalidTimeError("give either --times or --start/--stop/--step, not both",
+                               field="--times")
+    if args.times is not None:
+        return parse_time_axis(args.times, field="--times")
+    if not grid:
+        return None
+    if args.step is None:
+        raise InvalidTimeError("--start and --stop need --step", field="--step")
+    step = int(parse_timedelta(args.step, field="--step").astype(np.int64))
+    if step <= 0:
+        raise InvalidTimeError(f"must be a positive duration, got {args.step!r}",
+                               field="--step")
+    samples = sample_times(tree, frame, relative_to)
+    if samples is None and (args.start is None or args.stop is None):
+        raise InvalidTimeError("nothing on this path moves, so give both --start and --stop",
+                               field="--step")
+    ends = [_grid_end(args.start, "--start", samples, 0),
+            _grid_end(args.stop, "--stop", samples, -1)]
+    if ends[0][0] != ends[1][0]:
+        base = (parse_timestamp(args.time_ref, field="--time-ref") if args.time_ref
+                else None if samples is None else samples.reference)
+        if base is None:
+            raise InvalidTimeError("--start and --stop must both be timestamps or both "
+                                   "relative times", field="--stop")
+        ends = [(True, value if absolute else value + int(base.astype(np.int64)))
+                for absolute, value in ends]
+    (absolute, first), (_, last) = ends
+    if last < first:
+        raise InvalidTimeError("--stop is before --start", field="--stop")
+    offsets = step * np.arange((last - first) // step + 1, dtype=np.int64)
+    if absolute:
+        return TimeAxis(offsets, np.datetime64(first, "ns"))
+    return TimeAxis(first + offsets, None)
+
+
+def _grid_end(value: str | None, field: str, samples: TimeAxis | None, index: int
+              ) -> tuple[bool, int]:
+    """One end of a grid: (is absolute, nanoseconds since the epoch or offset)."""
+    axis = (parse_time_axis([value], field=field) if value is not None
+            else TimeAxis(samples.offsets[[index]], samples.reference))
+    if axis.reference is None:
+        return False, int(axis.offsets[0])
+    return True, int(axis.offsets[0]) + int(axis.reference.astype(np.int64))
+
+
+def evaluate_poses(tree: FrameTree, frame: str, relative_to: str, times: TimeAxis | None,
+                   time_ref: Any = None, *, progress: TextIO | None = None) -> Pose:
+    """``tree.pose(frame, relative_to, times, time_ref)``, in chunks of :data:`CHUNK_SIZE`.
+
+    With ``progress`` (a terminal), a text bar on it shows how far the evaluation is.
+    """
+    if times is None:
+        times = sample_times(tree, frame, relative_to)
+        if times is None:
+            return tree.pose(frame, relative_to=relative_to)
+        time_ref = times.reference
+    values = _time_values(times)
+    count = values.shape[0]
+    bar = _ProgressBar(progress, count) if progress is not None and count > CHUNK_SIZE else None
+    parts = []
+    for start in range(0, count, CHUNK_SIZE):
+        parts.append(tree.pose(frame, relative_to=relative_to,
+                               times=values[start:start + CHUNK_SIZE], time_ref=time_ref))
+        if bar is not None:
+            bar.update(min(start + CHUNK_SIZE, count))
+    if bar is not None:
+        bar.close()
+    return parts[0] if len(parts) == 1 else _concatenate(parts)
+
+
+def _time_values(times: TimeAxis) -> np.ndarray:
+    offsets = times.offsets.astype("timedelta64[ns]")
+    return offsets if times.reference is None else times.reference + offsets
+
+
+def _concatenate(parts: list[Pose]) -> Pose:
+    """One pose from consecutive chunks, on the first chunk's reference time."""
+    reference = parts[0].reference_time
+    if reference is None:
+        times = np.concatenate([part.times for part in parts])
+    else:
+        times = np.concatenate([part.absolute_times for part in parts])
+    return Pose(np.concatenate([part.translation for part in parts]),
+                np.concatenate([part.rotation for part in parts]), times=times,
+                reference_time=reference)
+
+
+class _ProgressBar:
+    """``[#######.......]  45%  9000/20000 samples`` redrawn in place on a terminal."""
+
+    def __init__(self, stream: TextIO, total: int) -> None:
+        self._stream = stream
+        self._total = total
+        self.update(0)
+
+    def update(self, done: int) -> None:
+        filled = _BAR_WIDTH * done // self._total
+        percent = 100 * done // self._total
+        self._stream.write(f"\r[{'#' * filled}{'.' * (_BAR_WIDTH - filled)}] {percent:3d}%  "
+                           f"{done}/{self._total} samples")
+        self._stream.flush()
+
+    def close(self) -> None:
+        self._stream.write("\n")
+        self._stream.flush()
+
+
+def terminal_stderr() -> TextIO | None:
+    """Standard error when it is a terminal (where a progress bar belongs), else None."""
+    return sys.stderr if sys.stderr.isatty() else None

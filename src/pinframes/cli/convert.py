@@ -1,0 +1,39 @@
+"""``pinframes convert IN OUT``: between scene, frames.yaml, ASDF and URDF files."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from ._files import FORMATS, read_tree, write_tree
+
+__all__ = ["add_parser", "run"]
+
+
+def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
+    """Register the ``convert`` subcommand."""
+    parser = subparsers.add_parser(
+        "convert", parents=parents, help="convert between scene, frames.yaml, ASDF and URDF",
+        description="Read IN and write its tree to OUT; formats are told by the file names: "
+        ".asdf, .urdf, and .yaml, which is a scene (key 'pinframes_scene') or a frames.yaml "
+        "(key 'frames', or a name starting with 'frames'). A .yaml to be written is a "
+        "frames.yaml when its name starts with 'frames', else a scene. OUT is replaced "
+        "atomically.")
+    parser.add_argument("input", metavar="IN", help="file to read")
+    parser.add_argument("output", metavar="OUT", help="file to write")
+    parser.add_argument("--to", choices=FORMATS, help="format of OUT (default: from its name)")
+    parser.add_argument("--schema", choices=("1.0.0", "0.1.0"),
+                        help="ASDF schema version: 0.1.0 (weldx 0.6 and later) or 1.0.0 "
+                        "(legacy, weldx up to 0.4)")
+    parser.add_argument("--time", metavar="T",
+                        help="write every frame at its pose at time T (seconds, duration or "
+                        "timestamp); needed where OUT cannot hold motion")
+    parser.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Read, then write."""
+    tree = read_tree(args.input)
+    write_tree(tree, args.output, args.to, schema=args.schema, time=args.time)
+    print(f"pinframes: wrote {args.output} ({len(tree)} frames)", file=sys.stderr)
+    return 0

@@ -1,0 +1,148 @@
+"""``pinframes demo``: the torch path of the bundled welding cell, as numbers, CSV and PNG."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+
+from .. import read_scene
+from ..errors import FileFormatError
+from ..plotting import new_figure, plot_frames, save_figure
+from ..pose import Pose
+from ..tree import FrameTree
+from ._evaluate import evaluate_poses, terminal_stderr
+from ._output import write_poses
+
+__all__ = ["PathSummary", "add_parser", "bundled_scene", "run", "summarize"]
+
+POSES_FILE = "torch_poses.csv"
+PLOT_FILE = "torch_path.png"
+
+
+def bundled_scene() -> Path:
+    """The welding cell scene shipped inside the package (``pinframes/models``)."""
+    return Path(str(resources.files("pinframes") / "models" / "welding_cell" / "scene.yaml"))
+
+
+def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
+    """Register the ``demo`` subcommand."""
+    parser = subparsers.add_parser(
+        "demo", parents=parents, help="torch path of the bundled welding cell",
+        description="Load the bundled welding cell (robot, positioner, workpiece), compute "
+        "the pose of the torch tip relative to the workpiece at every sample of the motion, "
+        f"print a summary and write the poses ({POSES_FILE}) and a plot ({PLOT_FILE}).")
+    parser.add_argument("--out", metavar="DIR", default=".",
+                        help="folder for the CSV and PNG files (default: the current folder; "
+                        "created if missing)")
+    parser.add_argument("--scene", metavar="FILE",
+                        help="another scene file (default: the bundled welding cell)")
+    parser.add_argument("--tool", default="torch_tcp", metavar="FRAME",
+                        help="the tool frame (default: torch_tcp)")
+    parser.add_argument("--workpiece", default="workpiece", metavar="FRAME",
+                        help="the frame the tool poses are expressed in (default: workpiece)")
+    parser.set_defaults(run=run)
+
+
+@dataclass(frozen=True)
+class PathSummary:
+    """How the tool tip moved relative to the workpiece.
+
+    Attributes
+    ----------
+    samples : int
+        Number of poses.
+    start_s, end_s : float
+        First and last time, seconds after the reference time.
+    path_length_m : float
+        Length of the tip's path in the workpiece frame, metres (sum of straight steps).
+    mean_speed_m_s, max_speed_m_s : float
+        Path length over the time span, and the fastest step, metres per second.
+    """
+
+    samples: int
+    start_s: float
+    end_s: float
+    path_length_m: float
+    mean_speed_m_s: float
+    max_speed_m_s: float
+
+    def table(self) -> str:
+        """The summary as an aligned two-column text table."""
+        rows = [
+            ("samples", f"{self.samples}"),
+            ("time span", f"{self.start_s:.3f} s .. {self.end_s:.3f} s "
+                          f"({self.end_s - self.start_s:.3f} s)"),
+            ("seam length travelled", f"{1000 * self.path_length_m:.1f} mm"),
+            ("mean travel speed", f"{1000 * self.mean_speed_m_s:.2f} mm/s"),
+            ("max travel speed", f"{1000 * self.max_speed_m_s:.2f} mm/s"),
+        ]
+        width = max(len(name) for name, _ in rows)
+        return "\n".join(f"{name.ljust(width)}  {value}" for name, value in rows) + "\n"
+
+
+def summarize(pose: Pose) -> PathSummary:
+    """Travel of the origin of ``pose`` (a time-dependent pose) along its samples."""
+    seconds = pose.times.astype(np.int64) / 1e9
+    steps = np.linalg.norm(np.diff(pose.translation, axis=0), axis=1)
+    durations = np.diff(seconds)
+    length = float(steps.sum())
+    span = float(seconds[-1] - seconds[0])
+    return PathSummary(
+        samples=len(pose), start_s=float(seconds[0]), end_s=float(seconds[-1]),
+        path_length_m=length, mean_speed_m_s=length / span if span > 0 else 0.0,
+        max_speed_m_s=float(np.max(steps / durations)) if steps.size else 0.0)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Compute, print the summary, write the files."""
+    scene = Path(args.scene) if args.scene else bundled_scene()
+    tree = read_scene(scene)
+    pose = evaluate_poses(tree, args.tool, args.workpiece, None, progress=terminal_stderr())
+    if not pose.is_time_dependent or len(pose) < 2:
+        raise FileFormatError(f"{args.tool!r} does not move relative to {args.workpiece!r}",
+                              file=scene)
+    summary = summarize(pose)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    write_poses(pose, "csv", str(out / POSES_FILE), frame=args.tool,
+                relative_to=args.workpiece)
+    _plot(tree, pose, summary, args.tool, args.workpiece, out / PLOT_FILE)
+    print(f"{args.tool} relative to {args.workpiece} ({scene.name})")
+    sys.stdout.write(summary.table())
+    print(f"pinframes: wrote {out / POSES_FILE} and {out / PLOT_FILE}", file=sys.stderr)
+    return 0
+
+
+def _plot(tree: FrameTree, pose: Pose, summary: PathSummary, tool: str, workpiece: str,
+          path: Path) -> None:
+    figure = new_figure(13.0, 6.5)
+    grid = figure.add_gridspec(2, 2, width_ratios=(1.15, 1.0))
+    cell = figure.add_subplot(grid[:, 0], projection="3d")
+    named = [frame for frame in tree.frames if tree.joint_of(frame) is None]
+    plot_frames(tree, named, ax=cell)
+    cell.set_title(f"{tree.name or 'cell'}: frames at the start, paths of moving frames")
+    seconds = pose.times.astype(np.int64) / 1e9
+    millimetres = 1000 * pose.translation
+    tip = figure.add_subplot(grid[0, 1])
+    scatter = tip.scatter(millimetres[:, 0], millimetres[:, 1], c=seconds, s=4, cmap="viridis")
+    tip.plot(millimetres[:, 0], millimetres[:, 1], color="0.6", linewidth=0.6, zorder=0)
+    tip.set_aspect("equal", adjustable="datalim")
+    tip.set_xlabel(f"x in {workpiece} [mm]")
+    tip.set_ylabel(f"y in {workpiece} [mm]")
+    tip.set_title(f"{tool} path seen from above the {workpiece}")
+    figure.colorbar(scatter, ax=tip, label="time [s]")
+    speed = figure.add_subplot(grid[1, 1])
+    steps = np.linalg.norm(np.diff(pose.translation, axis=0), axis=1) / np.diff(seconds)
+    speed.step(seconds[1:], 1000 * steps, where="pre", color="tab:blue", linewidth=1.0)
+    speed.axhline(1000 * summary.mean_speed_m_s, color="tab:orange", linestyle="--",
+                  label=f"mean {1000 * summary.mean_speed_m_s:.1f} mm/s")
+    speed.set_xlabel("time [s]")
+    speed.set_ylabel("travel speed [mm/s]")
+    speed.set_title(f"{tool} speed relative to the {workpiece}")
+    speed.legend(loc="upper right")
+    save_figure(figure, path)

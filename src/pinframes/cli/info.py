@@ -1,0 +1,87 @@
+"""``pinframes info FILE``: the tree, with each frame's kind, time span and reference time."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+import numpy as np
+
+from ..tree import FrameTree
+from ._files import read_tree
+
+__all__ = ["add_parser", "describe", "run"]
+
+
+def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
+    """Register the ``info`` subcommand."""
+    parser = subparsers.add_parser(
+        "info", parents=parents, help="show the tree of frames",
+        description="Print the tree of frames in FILE with each frame's kind (static, "
+        "moving, robot joint), the time span of its keyframes or joint samples (seconds "
+        "after its reference time) and that reference time.")
+    parser.add_argument("file", metavar="FILE", help="scene, frames.yaml, ASDF or URDF file")
+    parser.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Print the description of the tree."""
+    sys.stdout.write(describe(read_tree(args.file)))
+    return 0
+
+
+def describe(tree: FrameTree) -> str:
+    """A text table of the tree: one line per frame, children indented under parents."""
+    reference = "none" if tree.reference_time is None else str(tree.reference_time)
+    header = (f"tree {tree.name or '(unnamed)'}: {len(tree)} frames, "
+              f"{sum(tree.is_moving(f) for f in tree.frames[1:])} moving, "
+              f"{len(tree.joints)} robot joints; reference time {reference}")
+    rows = [("FRAME", "KIND", "TIME SPAN", "REFERENCE TIME")]
+    for prefix, name in _walk(tree, tree.root, "", ""):
+        rows.append((prefix + name, *_frame_columns(tree, name)))
+    widths = [max(len(row[column]) for row in rows) for column in range(3)]
+    lines = [header]
+    for row in rows:
+        cells = [cell.ljust(width) for cell, width in zip(row[:3], widths, strict=True)]
+        lines.append("  ".join([*cells, row[3]]).rstrip())
+    return "\n".join(lines) + "\n"
+
+
+def _walk(tree: FrameTree, name: str, prefix: str, child_prefix: str):
+    yield prefix, name
+    children = tree.children(name)
+    for position, child in enumerate(children):
+        last = position == len(children) - 1
+        yield from _walk(tree, child, child_prefix + ("`-- " if last else "|-- "),
+                         child_prefix + ("    " if last else "|   "))
+
+
+def _frame_columns(tree: FrameTree, name: str) -> tuple[str, str, str]:
+    if name == tree.root:
+        return "root", "", ""
+    joint = tree.joint_of(name)
+    if joint is not None:
+        kind = f"robot joint {joint.name} ({joint.kind}"
+        kind += f", mimics {joint.mimic.joint})" if joint.mimic is not None else ")"
+        track = tree.joint_track(joint.name)
+        if track is None:
+            return kind, "mimic" if joint.mimic is not None else "no trajectory", ""
+        return kind, _span(track.times, "samples"), _reference(track.reference, tree)
+    pose = tree.local_pose(name)
+    if not pose.is_time_dependent:
+        return "static", "", ""
+    return ("moving", _span(pose.times.astype(np.int64), "keyframes"),
+            _reference(pose.reference_time, tree))
+
+
+def _span(nanoseconds: np.ndarray, what: str) -> str:
+    first, last = nanoseconds[0] / 1e9, nanoseconds[-1] / 1e9
+    return f"{first:g} s .. {last:g} s ({nanoseconds.shape[0]} {what})"
+
+
+def _reference(own: np.datetime64 | None, tree: FrameTree) -> str:
+    if own is not None:
+        return str(own)
+    if tree.reference_time is not None:
+        return f"{tree.reference_time} (tree)"
+    return "none"

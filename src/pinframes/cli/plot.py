@@ -1,0 +1,43 @@
+"""``pinframes plot FILE -o out.png``: frames with their axes and the paths of moving ones."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from ..plotting import new_figure, plot_frames, save_figure
+from ._files import read_tree
+
+__all__ = ["add_parser", "run"]
+
+
+def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
+    """Register the ``plot`` subcommand."""
+    parser = subparsers.add_parser(
+        "plot", parents=parents, help="3-D plot of the frames (PNG)",
+        description="Draw the frames of FILE in 3-D: each frame's x, y, z axes (red, green, "
+        "blue) at the first time, and the path of every frame that moves relative to "
+        "--relative-to. Needs matplotlib: pip install \"pinframes[plot]\".")
+    parser.add_argument("file", metavar="FILE", help="scene, frames.yaml, ASDF or URDF file")
+    parser.add_argument("--frames", nargs="+", metavar="FRAME",
+                        help="frames to draw (default: all)")
+    parser.add_argument("--relative-to", "-r", metavar="FRAME",
+                        help="frame the plot is drawn in (default: the root)")
+    parser.add_argument("--at", choices=("start", "end"), default="start",
+                        help="draw the axes at the start or the end of the motion")
+    parser.add_argument("-o", "--output", metavar="OUT.png", required=True,
+                        help="PNG file to write")
+    parser.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Draw and save."""
+    figure = new_figure()
+    tree = read_tree(args.file)
+    ax = figure.add_subplot(projection="3d")
+    plot_frames(tree, args.frames, args.relative_to, ax=ax,
+                time_index=0 if args.at == "start" else -1)
+    ax.set_title(f"{tree.name or args.file}: frames in {args.relative_to or tree.root}")
+    save_figure(figure, args.output)
+    print(f"pinframes: wrote {args.output}", file=sys.stderr)
+    return 0

@@ -1,0 +1,148 @@
+"""3-D plots of frame trees: each frame's axes at one time and the paths of moving frames.
+
+Needs matplotlib (``pip install "pinframes[plot]"``). Figures are made without pyplot, so
+plotting works the same without a display and never changes matplotlib's global state.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ._atomic import atomic_write
+from ._sample_times import sample_times
+from .errors import ReferenceTimeError, UnsupportedFeatureError
+from .timeconv import TimeAxis
+from .tree import FrameTree
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+__all__ = ["new_figure", "plot_frames", "save_figure"]
+
+_AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
+_PATH_SAMPLES = 400
+
+
+def new_figure(width: float = 8.0, height: float = 7.0) -> Figure:
+    """A matplotlib figure not tied to pyplot (raises a clear error without matplotlib)."""
+    try:
+        from matplotlib.figure import Figure
+        from mpl_toolkits import mplot3d  # noqa: F401  (registers the 3-D projection)
+    except ImportError:
+        raise UnsupportedFeatureError(
+            'plotting needs matplotlib: pip install "pinframes[plot]"') from None
+    return Figure(figsize=(width, height), layout="constrained")
+
+
+def save_figure(figure: Figure, path: str | os.PathLike[str], dpi: int = 120) -> None:
+    """Write ``figure`` as PNG to ``path``, atomically."""
+    with atomic_write(path, "wb") as handle:
+        figure.savefig(handle, format="png", dpi=dpi)
+
+
+def plot_frames(
+    tree: FrameTree,
+    frames: Sequence[str] | None = None,
+    relative_to: str | None = None,
+    *,
+    ax: Axes | None = None,
+    time_index: int = 0,
+    axis_length: float | None = None,
+    labels: bool = True,
+) -> Axes:
+    """Draw ``frames`` of ``tree`` in ``relative_to`` on a 3-D axes.
+
+    Each frame gets its x, y, z axes (red, green, blue) at one time and, when it moves
+    relative to ``relative_to``, its origin's path over the whole time span of the
+    selected frames (sampled finely, so that turning frames draw arcs, not chords).
+
+    Parameters
+    ----------
+    tree : FrameTree
+    frames : sequence of str, optional
+        Frames to draw (default: all).
+    relative_to : str, optional
+        The frame the plot is drawn in (default: the root); axes labelled in metres.
+    ax : matplotlib 3-D Axes, optional
+        Where to draw (default: a new figure).
+    time_index : int
+        Which of the finely sampled times the axes are drawn at (0: the first, -1: last).
+    axis_length : float, optional
+        Length of the drawn axes, metres (default: 8 % of the plot's extent).
+    labels : bool
+        Write frame names next to their origins.
+    """
+    relative_to = tree.root if relative_to is None else relative_to
+    frames = list(tree.frames if frames is None else frames)
+    for frame in frames:
+        tree.path(frame, relative_to)  # raises for unknown frames
+    if ax is None:
+        ax = new_figure().add_subplot(projection="3d")
+    from matplotlib.lines import Line2D
+
+    times = _common_times(tree, frames, relative_to)
+    poses = {frame: tree.pose(frame, relative_to=relative_to, times=times)
+             if times is not None else tree.pose(frame, relative_to=relative_to)
+             for frame in frames}
+    points = np.concatenate([np.atleast_2d(pose.translation) for pose in poses.values()])
+    extent = float(np.max(np.ptp(points, axis=0))) if points.shape[0] > 1 else 1.0
+    length = axis_length if axis_length is not None else max(0.08 * extent, 1e-3)
+    for frame, pose in poses.items():
+        translation = np.atleast_2d(pose.translation)
+        rotation = pose.rotation.reshape(-1, 3, 3)
+        moves = np.ptp(translation, axis=0).max() > 1e-9 if translation.shape[0] > 1 else False
+        if moves:
+            ax.plot(*translation.T, color="0.35", linewidth=1.0)
+        origin = translation[time_index if translation.shape[0] > 1 else 0]
+        axes = rotation[time_index if rotation.shape[0] > 1 else 0]
+        for column, colour in enumerate(_AXIS_COLOURS):
+            tip = origin + length * axes[:, column]
+            ax.plot(*np.stack([origin, tip]).T, color=colour, linewidth=1.5)
+        if labels:
+            ax.text(*origin, f" {frame}", fontsize=7, color="0.15")
+    _equal_axes(ax, points, length)
+    legend = [Line2D([], [], color=colour, label=f"{axis} axis")
+              for axis, colour in zip("xyz", _AXIS_COLOURS, strict=True)]
+    legend.append(Line2D([], [], color="0.35", linewidth=1.0, label="path of a moving frame"))
+    ax.legend(handles=legend, loc="upper left", fontsize=7)
+    ax.set_xlabel(f"x in {relative_to} [m]")
+    ax.set_ylabel(f"y in {relative_to} [m]")
+    ax.set_zlabel(f"z in {relative_to} [m]")
+    return ax
+
+
+def _common_times(tree: FrameTree, frames: list[str], relative_to: str) -> Any:
+    """Finely spaced times over the span of all moving things behind ``frames``."""
+    axes: list[TimeAxis] = [axis for frame in frames
+                            if (axis := sample_times(tree, frame, relative_to)) is not None]
+    if not axes:
+        return None
+    absolute = {axis.reference is not None for axis in axes}
+    if len(absolute) > 1:
+        raise ReferenceTimeError("some paths have reference times and some have none, so "
+                                 "their times cannot be drawn together")
+    ends = np.array([(_ns(axis, 0), _ns(axis, -1)) for axis in axes])
+    grid = np.unique(np.linspace(ends[:, 0].min(), ends[:, 1].max(), _PATH_SAMPLES)
+                     .round().astype(np.int64))
+    if absolute == {True}:
+        return grid.astype("datetime64[ns]")
+    return grid.astype("timedelta64[ns]")
+
+
+def _ns(axis: TimeAxis, index: int) -> int:
+    base = 0 if axis.reference is None else int(axis.reference.astype(np.int64))
+    return base + int(axis.offsets[index])
+
+
+def _equal_axes(ax: Axes, points: np.ndarray, margin: float) -> None:
+    """Same scale on x, y and z, so that frames and paths keep their shapes."""
+    low, high = points.min(axis=0) - margin, points.max(axis=0) + margin
+    centre, half = (low + high) / 2, float(np.max(high - low)) / 2
+    for setter, middle in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), centre, strict=True):
+        setter(middle - half, middle + half)
+    ax.set_box_aspect((1.0, 1.0, 1.0))
