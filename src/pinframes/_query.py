@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ._interpolation import Keyframes
-from ._se3 import Transform, compose, inverse
+from ._se3 import IDENTITY, Transform, compose, inverse
 from ._timeline import QueryTimeline, TimedSource, plan_query_timeline
 from .errors import ExtrapolationError, InvalidTimeError, JointError
 from .joint import Joint
@@ -145,8 +145,7 @@ def _evaluation(tree: FrameTree, frame: str, relative_to: str) -> Evaluation:
 def _placed_keyframes(keyframes: Keyframes, placement: Transform) -> Keyframes:
     """Keyframes of ``placement @ pose``: a static factor on the left commutes with
     linear interpolation and SLERP, so it can be applied to the keyframes once."""
-    rotation, translation = placement
-    if not translation.any() and np.array_equal(rotation, np.eye(3)):
+    if placement is IDENTITY:
         return keyframes
     rotations, translations = compose(placement, (keyframes.rotations, keyframes.translations))
     return Keyframes(keyframes.times, translations, rotations)
