@@ -55,6 +55,7 @@ class Evaluation:
     static: Transform | None
     model: CompiledModel | None = None
     placed_keyframes: tuple[Keyframes | None, ...] = ()
+    sources: tuple[TimedSource, ...] = ()
 
 
 def evaluate_pose(
@@ -66,7 +67,7 @@ def evaluate_pose(
         raise ValueError(f"extrapolation must be one of {_EXTRAPOLATION_POLICIES}, "
                          f"got {extrapolation!r}")
     evaluation = _evaluation(tree, frame, relative_to)
-    sources = [] if evaluation.model is None else model_sources(tree, evaluation.model)
+    sources = list(evaluation.sources)
     timeline = plan_timeline(tree, sources, times, time_ref)
     if extrapolation == "error" and timeline.evaluation_times is not None:
         _check_within_keyframes(sources, timeline)
@@ -138,7 +139,8 @@ def _evaluation(tree: FrameTree, frame: str, relative_to: str) -> Evaluation:
             None if joint.joint is not None else _placed_keyframes(
                 tree._local[joint.frame].keyframes, model.joint_placements[position])
             for position, joint in enumerate(model.joints))
-        evaluation = Evaluation(frame, relative_to, None, model, keyframes)
+        evaluation = Evaluation(frame, relative_to, None, model, keyframes,
+                                tuple(model_sources(tree, model)))
     tree._store_evaluation(key, evaluation)
     return evaluation
 

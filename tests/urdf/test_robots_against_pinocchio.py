@@ -89,3 +89,22 @@ def test_link_poses_on_a_moving_mount_match_pinocchio(relative_path, rng):
             expected = mount @ data.oMf[model.getFrameId(link[len(prefix):])].homogeneous
             np.testing.assert_allclose(results[link][row], expected, atol=1e-12,
                                        err_msg=f"{relative_path}: {link} at t={t}")
+
+
+def test_whole_tree_configurations_drive_pinocchio_like_the_queries(rng):
+    """to_pinocchio(): free-flyers from moving frames, continuous joints as (cos, sin)."""
+    tree = FrameTree()
+    tree.add("mount", "world", Pose(rng.normal(size=(2, 3)),
+                                    [pin.exp3(rng.normal(size=3)) for _ in range(2)],
+                                    times=[0, 1]))
+    tree.attach_urdf(ROBOTS / "kinova_description/robots/kinova.urdf", "mount", prefix="k/")
+    actuated = [name for name, joint in tree.joints.items() if joint.is_actuated]
+    tree.set_joint_trajectory([0.0, 1.0], rng.uniform(-3, 3, size=(2, len(actuated))), actuated)
+    compiled = tree.to_pinocchio()
+    data = compiled.model.createData()
+    for t, q in zip([0.3, 0.8], compiled.configurations([0.3, 0.8]), strict=True):
+        pin.framesForwardKinematics(compiled.model, data, q)
+        for frame in tree.frames[::3]:
+            np.testing.assert_allclose(
+                data.oMf[compiled.frame_ids[frame]].homogeneous,
+                tree.pose(frame, "world", times=[t]).matrix[0], atol=1e-12)
