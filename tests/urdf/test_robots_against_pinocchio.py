@@ -8,6 +8,7 @@ import pinocchio as pin
 import pytest
 
 from pinframes import FrameTree, Pose
+from pinframes.joint_trajectory import JointLimitWarning
 
 
 def robot_data_dir() -> Path | None:
@@ -99,7 +100,9 @@ def test_whole_tree_configurations_drive_pinocchio_like_the_queries(rng):
                                     times=[0, 1]))
     tree.attach_urdf(ROBOTS / "kinova_description/robots/kinova.urdf", "mount", prefix="k/")
     actuated = [name for name, joint in tree.joints.items() if joint.is_actuated]
-    tree.set_joint_trajectory([0.0, 1.0], rng.uniform(-3, 3, size=(2, len(actuated))), actuated)
+    positions = rng.uniform(-3, 3, size=(2, len(actuated)))
+    with pytest.warns(JointLimitWarning):  # values outside limits still drive the joints
+        tree.set_joint_trajectory([0.0, 1.0], positions, actuated)
     compiled = tree.to_pinocchio()
     data = compiled.model.createData()
     for t, q in zip([0.3, 0.8], compiled.configurations([0.3, 0.8]), strict=True):
