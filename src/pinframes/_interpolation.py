@@ -31,11 +31,12 @@ def segment_positions(
     if count == 1:
         return np.zeros(times.shape, dtype=np.intp), np.zeros(times.shape)
     index = np.searchsorted(keyframe_times, times, side="right") - 1
-    np.clip(index, 0, count - 2, out=index)
+    # np.minimum/np.maximum: np.clip costs several microseconds more on short arrays.
+    np.minimum(np.maximum(index, 0, out=index), count - 2, out=index)
     start = keyframe_times[index]
     span = (keyframe_times[index + 1] - start).astype(float)
     fraction = (times - start).astype(float) / span
-    np.clip(fraction, 0.0, 1.0, out=fraction)
+    np.minimum(np.maximum(fraction, 0.0, out=fraction), 1.0, out=fraction)
     return index, fraction
 
 
