@@ -23,6 +23,7 @@ from .scene_writer import write_scene
 from .subsystem import Subsystem
 from .trajectory_io import read_joint_trajectory
 from .tree import FrameTree
+from .urdf import read_urdf, write_urdf
 
 __version__ = "0.1.0"
 
@@ -49,5 +50,7 @@ __all__ = [
     "__version__",
     "read_joint_trajectory",
     "read_scene",
+    "read_urdf",
     "write_scene",
+    "write_urdf",
 ]

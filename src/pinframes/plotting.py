@@ -7,7 +7,7 @@ plotting works the same without a display and never changes matplotlib's global 
 from __future__ import annotations
 
 import os
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -53,7 +53,8 @@ def plot_frames(
     ax: Axes | None = None,
     time_index: int = 0,
     axis_length: float | None = None,
-    labels: bool = True,
+    labels: bool | Collection[str] = True,
+    skeleton: Collection[str] = (),
 ) -> Axes:
     """Draw ``frames`` of ``tree`` in ``relative_to`` on a 3-D axes.
 
@@ -74,8 +75,11 @@ def plot_frames(
         Which of the finely sampled times the axes are drawn at (0: the first, -1: last).
     axis_length : float, optional
         Length of the drawn axes, metres (default: 8 % of the plot's extent).
-    labels : bool
-        Write frame names next to their origins.
+    labels : bool or collection of str
+        Write frame names next to their origins: all, none, or these.
+    skeleton : collection of str
+        Frames to join to their (drawn) parent with a grey bar: pass a robot's links to
+        see its arm.
     """
     relative_to = tree.root if relative_to is None else relative_to
     frames = list(tree.frames if frames is None else frames)
@@ -92,6 +96,7 @@ def plot_frames(
     points = np.concatenate([np.atleast_2d(pose.translation) for pose in poses.values()])
     extent = float(np.max(np.ptp(points, axis=0))) if points.shape[0] > 1 else 1.0
     length = axis_length if axis_length is not None else max(0.08 * extent, 1e-3)
+    texts: list[tuple[np.ndarray, list[str]]] = []
     for frame, pose in poses.items():
         translation = np.atleast_2d(pose.translation)
         rotation = pose.rotation.reshape(-1, 3, 3)
@@ -103,8 +108,15 @@ def plot_frames(
         for column, colour in enumerate(_AXIS_COLOURS):
             tip = origin + length * axes[:, column]
             ax.plot(*np.stack([origin, tip]).T, color=colour, linewidth=1.5)
-        if labels:
-            ax.text(*origin, f" {frame}", fontsize=7, color="0.15")
+        if labels is True or (labels and frame in labels):
+            _add_label(texts, origin, frame, length)
+        parent = tree.parent(frame)
+        if frame in skeleton and parent in poses:
+            parent_translation = np.atleast_2d(poses[parent].translation)
+            start = parent_translation[time_index if parent_translation.shape[0] > 1 else 0]
+            ax.plot(*np.stack([start, origin]).T, color="0.6", linewidth=2.5, zorder=0)
+    for origin, names in texts:
+        ax.text(*origin, " " + ", ".join(names), fontsize=7, color="0.15")
     _equal_axes(ax, points, length)
     legend = [Line2D([], [], color=colour, label=f"{axis} axis")
               for axis, colour in zip("xyz", _AXIS_COLOURS, strict=True)]
@@ -114,6 +126,16 @@ def plot_frames(
     ax.set_ylabel(f"y in {relative_to} [m]")
     ax.set_zlabel(f"z in {relative_to} [m]")
     return ax
+
+
+def _add_label(texts: list[tuple[np.ndarray, list[str]]], origin: np.ndarray, frame: str,
+               length: float) -> None:
+    """Frames whose origins coincide share one label instead of overprinting."""
+    for position, names in texts:
+        if np.linalg.norm(position - origin) < 0.05 * length:
+            names.append(frame)
+            return
+    texts.append((origin, [frame]))
 
 
 def _common_times(tree: FrameTree, frames: list[str], relative_to: str) -> Any:

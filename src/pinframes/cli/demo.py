@@ -15,6 +15,7 @@ from ..errors import FileFormatError
 from ..plotting import new_figure, plot_frames, save_figure
 from ..pose import Pose
 from ..tree import FrameTree
+from ..urdf import URDF_METADATA_KEY
 from ._evaluate import evaluate_poses, terminal_stderr
 from ._output import write_poses
 
@@ -123,8 +124,9 @@ def _plot(tree: FrameTree, pose: Pose, summary: PathSummary, tool: str, workpiec
     figure = new_figure(13.0, 6.5)
     grid = figure.add_gridspec(2, 2, width_ratios=(1.15, 1.0))
     cell = figure.add_subplot(grid[:, 0], projection="3d")
-    named = [frame for frame in tree.frames if tree.joint_of(frame) is None]
-    plot_frames(tree, named, ax=cell)
+    robot = [frame for frame in tree.frames if URDF_METADATA_KEY in tree.frame_metadata(frame)]
+    labelled = [frame for frame in tree.frames if frame not in robot and frame != tool]
+    plot_frames(tree, ax=cell, labels=labelled, skeleton=[*robot, tool])
     cell.set_title(f"{tree.name or 'cell'}: frames at the start, paths of moving frames")
     seconds = pose.times.astype(np.int64) / 1e9
     millimetres = 1000 * pose.translation
@@ -134,15 +136,18 @@ def _plot(tree: FrameTree, pose: Pose, summary: PathSummary, tool: str, workpiec
     tip.set_aspect("equal", adjustable="datalim")
     tip.set_xlabel(f"x in {workpiece} [mm]")
     tip.set_ylabel(f"y in {workpiece} [mm]")
-    tip.set_title(f"{tool} path seen from above the {workpiece}")
+    tip.set_title(f"{tool} path in the {workpiece} frame (x-y plane)")
     figure.colorbar(scatter, ax=tip, label="time [s]")
     speed = figure.add_subplot(grid[1, 1])
     steps = np.linalg.norm(np.diff(pose.translation, axis=0), axis=1) / np.diff(seconds)
-    speed.step(seconds[1:], 1000 * steps, where="pre", color="tab:blue", linewidth=1.0)
+    speed.step(seconds[1:], 1000 * steps, where="pre", color="tab:blue", linewidth=2.0,
+               label="per sample")
     speed.axhline(1000 * summary.mean_speed_m_s, color="tab:orange", linestyle="--",
                   label=f"mean {1000 * summary.mean_speed_m_s:.1f} mm/s")
+    speed.set_ylim(0.0, 1000 * summary.max_speed_m_s * 1.25)
     speed.set_xlabel("time [s]")
     speed.set_ylabel("travel speed [mm/s]")
     speed.set_title(f"{tool} speed relative to the {workpiece}")
     speed.legend(loc="upper right")
     save_figure(figure, path)
+
