@@ -207,7 +207,12 @@ class _Scene:
                 raise self._referenced(exc, f"{field}.trajectory") from None
 
         def attach(tree: FrameTree) -> None:
-            tree.attach_urdf(str(urdf), parent, pose=pose, prefix=prefix)
+            try:
+                tree.attach_urdf(str(urdf), parent, pose=pose, prefix=prefix)
+            except PinframesError as exc:
+                if exc.file is None:
+                    raise  # a clash with the scene, located at this entry by _apply
+                raise self._referenced(exc, f"{field}.urdf") from None
             if trajectory is not None:
                 self._drive(tree, trajectory, prefix, path, label, f"{field}.trajectory")
 
