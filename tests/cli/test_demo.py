@@ -1,0 +1,82 @@
+"""The bundled welding-cell scene and ``pinframes demo``, checked against the seam geometry.
+
+The geometry comes from models/README.md: the torch tip rides the seam, a half circle of
+radius 0.10955 m about the pipe axis (the workpiece z axis), at constant speed over 20 s.
+"""
+
+import io
+from pathlib import Path
+
+import numpy as np
+import yaml
+
+from pinframes import read_scene
+from pinframes.cli.demo import bundled_scene
+
+MODELS = Path(__file__).resolve().parents[2] / "models"
+RADIUS = 0.10955
+DURATION = 20.0
+
+
+def quaternion_close(actual, expected):
+    actual, expected = np.asarray(actual), np.asarray(expected) / np.linalg.norm(expected)
+    return min(np.abs(actual - expected).max(), np.abs(actual + expected).max()) < 1e-11
+
+
+def test_bundled_scene_is_the_package_copy_of_models():
+    assert bundled_scene().resolve() == (MODELS / "welding_cell" / "scene.yaml").resolve()
+
+
+def test_bundled_scene_matches_cell_description():
+    cell = yaml.safe_load((MODELS / "welding_cell" / "cell.yaml").read_text())
+    tree = read_scene(MODELS / "welding_cell" / "scene.yaml")
+    for frame in cell["frames"]:
+        name = frame["name"]
+        assert tree.parent(name) == frame["parent"]
+        pose = tree.local_pose(name)
+        np.testing.assert_array_equal(np.atleast_2d(pose.translation),
+                                      np.atleast_2d(frame["xyz"]).repeat(len(pose), axis=0))
+        if "keyframes" in frame:
+            np.testing.assert_array_equal(pose.times.astype(np.int64) / 1e9,
+                                          frame["keyframes"]["times_s"])
+            for actual, expected in zip(pose.quaternion, frame["keyframes"]["quat_xyzw"],
+                                        strict=True):
+                assert quaternion_close(actual, expected), name
+        else:
+            assert quaternion_close(pose.quaternion, frame["quat_xyzw"]), name
+    robot = cell["robot"]
+    joints = [robot["prefix"] + name for name in robot["joint_names"]]
+    assert list(tree.joints) == joints
+    motion = np.loadtxt(MODELS / "welding_cell" / robot["joint_trajectory"], delimiter=",",
+                        skiprows=1)
+    for column, joint in enumerate(joints, start=1):
+        track = tree.joint_track(joint)
+        np.testing.assert_array_equal(track.values, motion[:, column])
+        np.testing.assert_array_equal(track.times, np.round(motion[:, 0] * 1e9))
+
+
+def test_demo_prints_summary_and_writes_csv_and_png(run_cli, tmp_path):
+    result = run_cli("demo", "--out", "results", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert lines[0] == "torch_tcp relative to workpiece (scene.yaml)"
+    summary = dict(line.split("  ", 1) for line in lines[1:])
+    summary = {key.strip(): value.strip() for key, value in summary.items()}
+    seam_length = np.pi * RADIUS
+    assert summary["samples"] == "2001"
+    assert summary["time span"] == "0.000 s .. 20.000 s (20.000 s)"
+    assert summary["seam length travelled"] == f"{1000 * seam_length:.1f} mm"  # 344.2 mm
+    assert summary["mean travel speed"] == f"{1000 * seam_length / DURATION:.2f} mm/s"
+    assert summary["max travel speed"] == f"{1000 * seam_length / DURATION:.2f} mm/s"
+
+    text = (tmp_path / "results" / "torch_poses.csv").read_text()
+    assert text.startswith("time_s,x,y,z,qx,qy,qz,qw\n")
+    rows = np.loadtxt(io.StringIO(text), delimiter=",", skiprows=1)
+    np.testing.assert_allclose(rows[:, 0], np.linspace(0.0, DURATION, 2001), atol=1e-12)
+    angle = np.pi * rows[:, 0] / DURATION
+    seam_point = np.column_stack([RADIUS * np.cos(angle), RADIUS * np.sin(angle),
+                                  np.zeros_like(angle)])
+    np.testing.assert_allclose(rows[:, 1:4], seam_point, atol=1e-6)
+    np.testing.assert_allclose(np.linalg.norm(rows[:, 4:], axis=1), 1.0, atol=1e-12)
+    png = (tmp_path / "results" / "torch_path.png").read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
