@@ -45,3 +45,7 @@ __all__ = [
     "WriteError",
     "__version__",
 ]
+
+from .frames_yaml import FramesYamlWarning, read_frames_yaml, write_frames_yaml
+
+__all__ += ["FramesYamlWarning", "read_frames_yaml", "write_frames_yaml"]
