@@ -103,7 +103,9 @@ class _Writer:
         self.keys = frame_keys(tree)
         self.by_original_key = {kept["key"]: name for name in tree.frames[1:]
                         if "key" in (kept := _kept(tree, name))}
+        self.tiles_in_metres: list[str] = []
         self._tile_sizes: dict[str, TileSize] | None = None
+        self._tile_maps_problem = ""
 
     def frames(self) -> dict[str, dict[str, Any]]:
         rows: list[tuple[float, int, str, dict[str, Any]]] = []
@@ -137,8 +139,10 @@ class _Writer:
         pose = self.pose(name, target)
         unchanged = (target is not None or kept["relative_to"] is None) and np.allclose(
             pose.matrix, kept["pose_in_relative_to"].matrix, rtol=0.0, atol=_POSE_TOLERANCE)
-        if unchanged and entry.get("unit") == "tiles":
-            unchanged = self.tile_size(name) == kept["tile_size"]
+        if unchanged and entry.get("unit") == "tiles" and (
+                self.tile_size(name) != kept["tile_size"]):
+            self.tiles_in_metres.append(name)
+            unchanged = False
         if not unchanged:
             entry["pose"] = _pose_fields(pose)
             if entry.get("unit") == "tiles":
@@ -179,20 +183,32 @@ class _Writer:
         """The tile size a reader of the output file would use for frame ``name``."""
         if self._tile_sizes is None:
             beside = tile_maps_beside(self.path)
-            try:
-                self._tile_sizes = load_tile_maps(beside)
-            except (OSError, PinframesError) as exc:
-                warn_layer(os.fspath(self.path), None,
-                           f"cannot use {beside} ({exc}): 'unit: tiles' frames are written "
-                           "in metres")
-                self._tile_sizes = {}
+            self._tile_sizes = {}
+            if not beside.is_file():
+                self._tile_maps_problem = " (no such file)"
+            else:
+                try:
+                    self._tile_sizes = load_tile_maps(beside)
+                except PinframesError as exc:
+                    self._tile_maps_problem = f" ({exc})"
         return nearest_tile_size(self.keys[name], self._tile_sizes)
+
+    def warn_about_tiles(self) -> None:
+        """One warning for the ``unit: tiles`` frames that had to be written in metres."""
+        if self.tiles_in_metres:
+            warn_layer(os.fspath(self.path), None, (
+                f"{len(self.tiles_in_metres)} 'unit: tiles' frames (first "
+                f"{self.tiles_in_metres[0]!r}) are written in metres: "
+                f"{tile_maps_beside(self.path)} does not give them their tile size"
+                f"{self._tile_maps_problem}"))
 
 
 def _document(tree: FrameTree, path: Path, time: Any) -> dict[str, Any]:
     kept = tree.metadata.get(METADATA_KEY, {})
     document = dict(kept.get("top_level", {"version": 1.0, "frames": None}))
-    document["frames"] = _Writer(tree, path, time).frames()
+    writer = _Writer(tree, path, time)
+    document["frames"] = writer.frames()
+    writer.warn_about_tiles()
     return document
 
 
