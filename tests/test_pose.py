@@ -4,7 +4,7 @@ import pytest
 from pinframes import Pose
 from pinframes.errors import InvalidPoseError, InvalidTimeError, ReferenceTimeError
 
-from conftest import homogeneous, rot_x, rot_z
+from geometry import homogeneous, rot_x, rot_z
 
 QUARTER_TURN_Z = [0.0, 0.0, np.sin(np.pi / 4), np.cos(np.pi / 4)]
 

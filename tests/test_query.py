@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 from pinframes import FrameTree, Pose
 from pinframes.errors import ExtrapolationError, InvalidTimeError, ReferenceTimeError
 
-from conftest import homogeneous, rot_z
+from geometry import homogeneous, rot_z
 
 SECOND = np.timedelta64(1, "s")
 

@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ._interpolation import Keyframes
-from ._se3 import Transform, compose, inverse
+from ._se3 import IDENTITY, Transform, compose, inverse
 from ._timeline import QueryTimeline, TimedSource, plan_query_timeline
 from .errors import ExtrapolationError, InvalidTimeError, JointError
 from .joint import Joint
@@ -31,13 +31,14 @@ __all__ = [
     "basis_shifts",
     "compile_model",
     "evaluate_pose",
-    "joint_motion",
     "model_sources",
     "plan_timeline",
     "sample_joint_values",
 ]
 
 _EXTRAPOLATION_POLICIES = ("clamp", "error")
+_CHUNK = 1 << 15
+"""Samples evaluated at once: bounds the temporaries of long queries (about 2 MB each)."""
 
 
 @dataclass(frozen=True)
@@ -54,6 +55,7 @@ class Evaluation:
     static: Transform | None
     model: CompiledModel | None = None
     placed_keyframes: tuple[Keyframes | None, ...] = ()
+    sources: tuple[TimedSource, ...] = ()
 
 
 def evaluate_pose(
@@ -65,14 +67,14 @@ def evaluate_pose(
         raise ValueError(f"extrapolation must be one of {_EXTRAPOLATION_POLICIES}, "
                          f"got {extrapolation!r}")
     evaluation = _evaluation(tree, frame, relative_to)
-    sources = [] if evaluation.model is None else model_sources(tree, evaluation.model)
+    sources = list(evaluation.sources)
     timeline = plan_timeline(tree, sources, times, time_ref)
     if extrapolation == "error" and timeline.evaluation_times is not None:
         _check_within_keyframes(sources, timeline)
     if evaluation.static is not None:
         rotation, translation = evaluation.static
     else:
-        rotation, translation = _evaluate_model(tree, evaluation, sources, timeline)
+        rotation, translation = _evaluate_in_chunks(tree, evaluation, sources, timeline)
     offsets = timeline.result_offsets
     if offsets is None:
         return Pose._trusted(translation, rotation)
@@ -137,7 +139,8 @@ def _evaluation(tree: FrameTree, frame: str, relative_to: str) -> Evaluation:
             None if joint.joint is not None else _placed_keyframes(
                 tree._local[joint.frame].keyframes, model.joint_placements[position])
             for position, joint in enumerate(model.joints))
-        evaluation = Evaluation(frame, relative_to, None, model, keyframes)
+        evaluation = Evaluation(frame, relative_to, None, model, keyframes,
+                                tuple(model_sources(tree, model)))
     tree._store_evaluation(key, evaluation)
     return evaluation
 
@@ -145,8 +148,7 @@ def _evaluation(tree: FrameTree, frame: str, relative_to: str) -> Evaluation:
 def _placed_keyframes(keyframes: Keyframes, placement: Transform) -> Keyframes:
     """Keyframes of ``placement @ pose``: a static factor on the left commutes with
     linear interpolation and SLERP, so it can be applied to the keyframes once."""
-    rotation, translation = placement
-    if not translation.any() and np.array_equal(rotation, np.eye(3)):
+    if placement is IDENTITY:
         return keyframes
     rotations, translations = compose(placement, (keyframes.rotations, keyframes.translations))
     return Keyframes(keyframes.times, translations, rotations)
@@ -216,14 +218,31 @@ def _check_within_keyframes(sources: list[TimedSource], timeline: QueryTimeline)
                 frame=source.name, field="times")
 
 
-def _evaluate_model(
+def _evaluate_in_chunks(
     tree: FrameTree, evaluation: Evaluation, sources: list[TimedSource],
     timeline: QueryTimeline,
 ) -> Transform:
-    """The pose of the query frame in the reference frame, batched over the timeline."""
+    """:func:`_evaluate_model` over slices of the timeline, so that the temporary arrays of
+    a long query stay small (and cache-friendly) while the result is filled in place."""
+    times = timeline.evaluation_times
+    if times is None or times.shape[0] <= _CHUNK:
+        return _evaluate_model(tree, evaluation, sources, times, timeline)
+    count = times.shape[0]
+    rotation, translation = np.empty((count, 3, 3)), np.empty((count, 3))
+    for start in range(0, count, _CHUNK):
+        part = slice(start, start + _CHUNK)
+        rotation[part], translation[part] = _evaluate_model(
+            tree, evaluation, sources, times[part], timeline)
+    return rotation, translation
+
+
+def _evaluate_model(
+    tree: FrameTree, evaluation: Evaluation, sources: list[TimedSource],
+    times: NDArray[np.int64] | None, timeline: QueryTimeline,
+) -> Transform:
+    """The pose of the query frame in the reference frame at ``times`` (timeline basis)."""
     model = evaluation.model
     shifts = basis_shifts(sources, timeline)
-    times = timeline.evaluation_times
     local: list[Transform] = []
     values_cache: dict[str, NDArray[np.float64] | float] = {}
     for position, joint in enumerate(model.joints):
@@ -234,7 +253,9 @@ def _evaluate_model(
             local.append((sampled[1], sampled[0]))
             continue
         values = sample_joint_values(tree, joint.joint, times, shifts, values_cache)
-        local.append(compose(model.joint_placements[position], joint_motion(joint.joint, values)))
+        rotation, translation = joint.joint.placed_motion(
+            model.joint_placements[position], np.atleast_1d(values))
+        local.append((rotation, translation) if np.ndim(values) else (rotation[0], translation[0]))
     frame_pose, reference_pose = model.forward_kinematics(
         local, [evaluation.frame, evaluation.relative_to])
     return compose(inverse(reference_pose), frame_pose)
@@ -247,16 +268,6 @@ def basis_shifts(sources: list[TimedSource], timeline: QueryTimeline) -> dict[st
         if timeline.absolute and s.reference is not None else 0
         for s in sources
     }
-
-
-def joint_motion(joint: Joint, values: NDArray[np.float64] | float) -> Transform:
-    """The motion transform of ``joint`` at ``values`` (static for a scalar value)."""
-    rotation, translation = joint.motion(np.atleast_1d(values))
-    if np.ndim(values) == 0:
-        return (np.eye(3) if rotation is None else rotation[0],
-                np.zeros(3) if translation is None else translation[0])
-    return (np.eye(3) if rotation is None else rotation,
-            np.zeros(3) if translation is None else translation)
 
 
 def sample_joint_values(

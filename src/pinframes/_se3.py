@@ -11,25 +11,30 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["IDENTITY", "Transform", "compose", "inverse", "is_identity"]
+__all__ = ["IDENTITY", "Transform", "canonical", "compose", "inverse"]
 
 FloatArray = NDArray[np.float64]
 Transform = tuple[FloatArray, FloatArray]
 IDENTITY: Transform = (np.eye(3), np.zeros(3))
+"""The identity; :func:`compose` skips it by object identity, so share this one object."""
+
+_SMALL_BATCH = 64
 
 
-def is_identity(transform: Transform) -> bool:
-    """True for a static transform equal to the identity."""
+def canonical(transform: Transform) -> Transform:
+    """``transform``, or the shared :data:`IDENTITY` object when it is exactly the identity."""
     rotation, translation = transform
-    return (rotation.ndim == 2 and translation.ndim == 1
-            and not translation.any() and np.array_equal(rotation, IDENTITY[0]))
+    if (rotation.ndim == 2 and translation.ndim == 1 and not translation.any()
+            and np.array_equal(rotation, IDENTITY[0])):
+        return IDENTITY
+    return transform
 
 
 def compose(first: Transform, second: Transform) -> Transform:
     """``first @ second``: the pose of C in A from the pose of B in A and of C in B."""
-    if is_identity(first):
+    if first is IDENTITY:
         return second
-    if is_identity(second):
+    if second is IDENTITY:
         return first
     rotation_1, translation_1 = first
     rotation_2, translation_2 = second
@@ -38,6 +43,8 @@ def compose(first: Transform, second: Transform) -> Transform:
 
 def inverse(transform: Transform) -> Transform:
     """The inverse transform."""
+    if transform is IDENTITY:
+        return IDENTITY
     rotation, translation = transform
     rotation_t = np.swapaxes(rotation, -1, -2)
     return rotation_t, -_apply(rotation_t, translation)
@@ -45,10 +52,10 @@ def inverse(transform: Transform) -> Transform:
 
 def _rotate(left: FloatArray, right: FloatArray) -> FloatArray:
     """Products of rotation matrices, with static factors done as one matrix product."""
-    if left.ndim == 2 and right.ndim == 3:
+    if left.ndim == 2 and right.ndim == 3 and right.shape[0] > _SMALL_BATCH:
         # (S @ A[n]) for all n: contract S's columns with A's rows in one BLAS call.
         return np.tensordot(right, left, axes=([1], [1])).transpose(0, 2, 1)
-    if left.ndim == 3 and right.ndim == 2:
+    if left.ndim == 3 and right.ndim == 2 and left.shape[0] > _SMALL_BATCH:
         count = left.shape[0]
         return (np.ascontiguousarray(left).reshape(count * 3, 3) @ right).reshape(count, 3, 3)
     return left @ right

@@ -15,7 +15,6 @@ import pinocchio as pin
 from numpy.typing import NDArray
 
 from .errors import JointError
-from .rotations import matrix_from_axis_angle
 
 __all__ = ["JOINT_KINDS", "Joint", "Mimic"]
 
@@ -79,13 +78,34 @@ class Joint:
         """True for joints driven by their own value (not mimic joints)."""
         return self.mimic is None
 
-    def motion(
-        self, values: NDArray[np.float64]
-    ) -> tuple[NDArray[np.float64] | None, NDArray[np.float64] | None]:
-        """Rotations ``(N, 3, 3)`` or None, translations ``(N, 3)`` or None for ``values``."""
+    def placed_motion(
+        self, placement: tuple[NDArray[np.float64], NDArray[np.float64]],
+        values: NDArray[np.float64],
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """``placement @ motion(values)`` for ``values`` of shape (N,), batched.
+
+        For a rotation, Rodrigues' formula ``R(q) = I + sin q K + (1 - cos q) K^2`` (``K`` the
+        cross-product matrix of the axis) turns ``P @ R(q)`` into
+        ``P + sin q (P K) + (1 - cos q) (P K^2)``: one (N, 3) x (3, 9) matrix product.
+        """
+        rotation, translation = placement
+        axis = np.asarray(self.axis)
+        count = values.shape[0]
         if self.kind == "prismatic":
-            return None, values[:, None] * np.asarray(self.axis)
-        return matrix_from_axis_angle(self.axis, values), None
+            return (np.broadcast_to(rotation, (count, 3, 3)),
+                    translation + values[:, None] * (rotation @ axis))
+        cross = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]],
+                          [-axis[1], axis[0], 0.0]])
+        rotation_cross = rotation @ cross
+        basis = np.stack([rotation.ravel(), rotation_cross.ravel(),
+                          (rotation_cross @ cross).ravel()])
+        weights = np.empty((count, 3))
+        weights[:, 0] = 1.0
+        np.sin(values, out=weights[:, 1])
+        np.cos(values, out=weights[:, 2])
+        np.subtract(1.0, weights[:, 2], out=weights[:, 2])
+        rotated = (weights @ basis).reshape(count, 3, 3)
+        return rotated, np.broadcast_to(translation, (count, 3))
 
     def pinocchio_joint_model(self) -> pin.JointModel:
         """The Pinocchio joint model of this joint (aligned axes get the specialised ones)."""

@@ -16,7 +16,7 @@ import numpy as np
 import pinocchio as pin
 from numpy.typing import NDArray
 
-from ._se3 import Transform, compose
+from ._se3 import Transform, canonical, compose
 from .joint import Joint
 from .rotations import quaternion_from_matrix
 
@@ -151,4 +151,4 @@ def _to_se3(transform: Transform) -> pin.SE3:
 
 
 def _from_se3(placement: pin.SE3) -> Transform:
-    return np.array(placement.rotation), np.array(placement.translation)
+    return canonical((np.array(placement.rotation), np.array(placement.translation)))

@@ -79,6 +79,8 @@ def parse_time_axis(values: Any, *, field: str = "times") -> TimeAxis:
     Absolute input gets its first value as reference; relative input has no reference.
     Mixing absolute and relative values is an error.
     """
+    if isinstance(values, (float, int)) and not isinstance(values, bool) and abs(values) < 9e9:
+        return TimeAxis(np.array([round(values * 1e9)], dtype=np.int64), None)
     array = _as_time_array(values, field)
     if array.dtype.kind == "M":
         absolute = array.astype("datetime64[ns]")

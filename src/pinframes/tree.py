@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+import os
+from collections.abc import Iterator, Sequence
 from typing import Any
 
 import numpy as np
@@ -180,6 +181,50 @@ class FrameTree:
         self._insert(name, parent, origin)
         self._joints[name] = joint
         self._joint_frames[joint.name] = name
+
+    def attach_urdf(
+        self, urdf: str | os.PathLike[str], parent: str, pose: Pose | None = None,
+        prefix: str = "",
+    ) -> list[str]:
+        """Mount a robot: its root link at ``parent`` (at ``pose``), every link a frame.
+
+        Parameters
+        ----------
+        urdf : path or str
+            A URDF file, or its XML text. Meshes are never needed.
+        parent : str
+            The frame the robot's root link is placed on.
+        pose : Pose or None
+            The root link's pose in ``parent`` (identity if None; may move in time).
+        prefix : str
+            Put before every link and joint name, to mount several copies of a robot.
+
+        Returns
+        -------
+        list of str
+            The new frame names, root link first. Revolute, continuous and prismatic
+            joints stay joints (value 0 until :meth:`set_joint_trajectory`); fixed,
+            floating and planar joints become frames at their origin. A failed import
+            leaves the tree unchanged.
+        """
+        from .urdf import mount_robot, parse_urdf
+
+        return mount_robot(self, parse_urdf(urdf), parent, pose, prefix)
+
+    def set_joint_trajectory(
+        self, times: Any, positions: Any, joint_names: Sequence[str] | None = None
+    ) -> None:
+        """Drive robot joints with samples: ``positions`` (T, n) at T ``times``.
+
+        Columns follow ``joint_names`` (default: every actuated joint of the tree, in the
+        order the robots were mounted, URDF order within a robot). Values are radians or
+        metres, interpolated linearly between samples (continuous joints the short way
+        round) and held outside them; the sample times join the default time union of
+        :meth:`pose`. Values outside the URDF limits warn (``JointLimitWarning``).
+        """
+        from .joint_trajectory import set_joint_trajectory
+
+        set_joint_trajectory(self, times, positions, joint_names)
 
     def set_joint_track(self, joint_name: str, track: JointTrack | None) -> None:
         """Set (or with None, clear) the trajectory of a robot joint."""

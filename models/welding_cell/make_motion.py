@@ -1,0 +1,336 @@
+"""Generate the bundled welding cell: frames in ``cell.yaml``, joints in ``robot_motion.csv``.
+
+Run from the repository root::
+
+    PYTHONPATH=src python models/welding_cell/make_motion.py [--out DIR]
+
+It rewrites ``cell.yaml`` and ``robot_motion.csv`` beside itself (or in ``--out DIR``) and
+gives the same numbers on every run.
+
+The cell (all lengths in metres, angles in radians, times in seconds, quaternions x y z w):
+
+- ``world``: the floor, z up.
+- ``robot_base``: where the robot's ``base_link`` sits: on a 0.3 m riser, 0.4 m to the side
+  of the seam plane, facing +x (so every joint takes part in the motion).
+- ``positioner_base``: a single-axis headstock positioner; its z axis (the turning axis) is
+  horizontal along world +y, its x axis points up.
+- ``positioner``: the faceplate, turned about ``positioner_base`` z by the angle theta(t),
+  stored as keyframes every 0.5 s (read between keyframes by SLERP, which for one axis is
+  linear in the angle).
+- ``workpiece``: a pipe of outer diameter 219.1 mm (DN 200) clamped on the faceplate, its axis
+  on the turning axis; its origin is on the axis in the plane of the girth seam.
+- ``weld_seam``: the start of the circumferential butt seam on the pipe surface: x along the
+  welding direction, y along the pipe axis, z the outward surface normal. The seam is the
+  half circle ``centre + Ry(a) @ (0, 0, radius)`` with centre ``(0, 0, -radius)`` in
+  ``weld_seam`` coordinates and travel angle ``a`` from 0 to pi, welded at constant travel
+  speed over the 20 s.
+- ``torch_tcp``: the tool centre point of a torch with a 22 degree neck, a static frame under
+  the robot's ``flange``.
+
+The positioner turns the pipe (theta falls from -25 to -155 degrees) while the robot moves
+the torch from 25 degrees before the top of the pipe to 25 degrees past it, so that the torch
+keeps a fixed pose (10 degree push angle, 90 degree work angle) relative to the seam point
+under it. The joint samples come from damped-least-squares inverse kinematics on the
+Pinocchio model of ``models/welding_robot/welding_robot.urdf``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import io
+import math
+from pathlib import Path
+
+import numpy as np
+import pinocchio as pin
+import yaml
+
+from pinframes._atomic import atomic_write
+
+HERE = Path(__file__).resolve().parent
+URDF_PATH = HERE.parent / "welding_robot" / "welding_robot.urdf"
+CELL_FILE = "cell.yaml"
+MOTION_FILE = "robot_motion.csv"
+
+DURATION_S = 20.0
+SAMPLE_RATE_HZ = 100.0
+KEYFRAME_STEP_S = 0.5
+PIPE_RADIUS_M = 0.10955
+SEAM_OFFSET_FROM_FACEPLATE_M = 0.30
+TORCH_STRAIGHT_M = 0.25  # straight torch body along the flange z axis
+TORCH_NECK_M = 0.16  # bent neck, contact tip and wire stick-out up to the TCP
+TORCH_NECK_ANGLE_RAD = math.radians(22.0)
+PUSH_ANGLE_RAD = math.radians(10.0)
+TORCH_ANGLE_START_RAD = math.radians(-25.0)  # seam point under the torch, from the pipe top
+TORCH_ANGLE_END_RAD = math.radians(25.0)
+ROBOT_PREFIX = "robot/"
+JOINT_NAMES = [f"joint_{i}" for i in range(1, 7)]
+IK_SEED = np.array([-0.4, 0.3, 0.2, 0.0, 1.0, 1.5])  # rad, elbow up, wrist bent down
+IK_TOLERANCE = 1e-12  # norm of the SE(3) log error (m and rad)
+IK_DAMPING = 1e-6  # squared damping of the least-squares step
+SIGNIFICANT_DIGITS = 12  # of the numbers in cell.yaml
+
+
+def _round(values) -> list:
+    """Numbers rounded to ``SIGNIFICANT_DIGITS`` as plain (nested) Python floats."""
+    array = np.asarray(values, dtype=float)
+    if array.ndim == 0:
+        return float(f"{float(array):.{SIGNIFICANT_DIGITS}g}")
+    return [_round(item) for item in array]
+
+
+def _quat_xyzw(rotation: np.ndarray) -> np.ndarray:
+    """Unit quaternion (x, y, z, w) of a 3x3 rotation matrix, w >= 0."""
+    quat = pin.Quaternion(rotation).coeffs().copy()
+    return -quat if quat[3] < 0 else quat
+
+
+def _static_frame(name: str, parent: str, xyz, rotation: np.ndarray) -> dict:
+    return {
+        "name": name,
+        "parent": parent,
+        "xyz": _round(xyz),
+        "quat_xyzw": _round(_quat_xyzw(rotation)),
+    }
+
+
+def _positioner_angle(times_s: np.ndarray) -> np.ndarray:
+    """Planned positioner angle theta (rad) about its axis at ``times_s``.
+
+    The torch angle from the pipe top follows a smooth step from start to end, the seam
+    angle grows linearly; theta is their difference.
+    """
+    u = times_s / DURATION_S
+    torch_angle = TORCH_ANGLE_START_RAD + (TORCH_ANGLE_END_RAD - TORCH_ANGLE_START_RAD) * (
+        3 * u**2 - 2 * u**3
+    )
+    return torch_angle - math.pi * u
+
+
+def _torch_rotation_in_seam_point() -> np.ndarray:
+    """Rotation of ``torch_tcp`` in the seam-point frame (x travel, y pipe axis, z normal).
+
+    The wire (TCP z) points into the pipe, tilted forward by the push angle; the TCP y axis
+    points along the travel direction, so the torch neck leans back against it.
+    """
+    return (
+        pin.utils.rotate("y", -PUSH_ANGLE_RAD)
+        @ pin.utils.rotate("x", math.pi)
+        @ pin.utils.rotate("z", -math.pi / 2)
+    )
+
+
+def build_cell() -> dict:
+    """The cell description written to ``cell.yaml`` (plain dicts, lists and floats)."""
+    up_x_axis_along_y = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]])
+    seam_axes_in_workpiece = np.array([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+    neck = TORCH_NECK_ANGLE_RAD
+    tcp_in_flange = [
+        0.0,
+        -TORCH_NECK_M * math.sin(neck),
+        TORCH_STRAIGHT_M + TORCH_NECK_M * math.cos(neck),
+    ]
+    key_times = np.arange(0.0, DURATION_S + KEYFRAME_STEP_S / 2, KEYFRAME_STEP_S)
+    half_theta = _positioner_angle(key_times) / 2
+    zeros = np.zeros_like(half_theta)
+    key_quats = np.stack([zeros, zeros, np.sin(half_theta), np.cos(half_theta)], axis=1)
+    frames = [
+        _static_frame("robot_base", "world", [0.0, 0.40, 0.30], np.eye(3)),
+        _static_frame("positioner_base", "world", [1.0, -0.30, 0.85], up_x_axis_along_y),
+        {
+            "name": "positioner",
+            "parent": "positioner_base",
+            "xyz": [0.0, 0.0, 0.0],
+            "keyframes": {"times_s": _round(key_times), "quat_xyzw": _round(key_quats)},
+        },
+        _static_frame(
+            "workpiece", "positioner", [0.0, 0.0, SEAM_OFFSET_FROM_FACEPLATE_M], np.eye(3)
+        ),
+        _static_frame("weld_seam", "workpiece", [PIPE_RADIUS_M, 0.0, 0.0], seam_axes_in_workpiece),
+        _static_frame(
+            "torch_tcp", ROBOT_PREFIX + "flange", tcp_in_flange, pin.utils.rotate("x", neck)
+        ),
+    ]
+    seam_length = PIPE_RADIUS_M * math.pi
+    return {
+        "format": "pinframes-welding-cell",
+        "version": 1,
+        "units": {"length": "m", "angle": "rad", "time": "s", "quaternion": "xyzw"},
+        "root": "world",
+        "frames": frames,
+        "robot": {
+            "urdf": "../welding_robot/welding_robot.urdf",
+            "mount_frame": "robot_base",
+            "prefix": ROBOT_PREFIX,
+            "joint_trajectory": MOTION_FILE,
+            "joint_names": JOINT_NAMES,
+        },
+        "seam": {
+            "frame": "weld_seam",
+            "shape": "circular_arc",
+            "radius": _round(PIPE_RADIUS_M),
+            "centre_xyz": _round([0.0, 0.0, -PIPE_RADIUS_M]),
+            "axis_xyz": [0.0, 1.0, 0.0],
+            "start_angle": 0.0,
+            "end_angle": _round(math.pi),
+            "length": _round(seam_length),
+            "start_time_s": 0.0,
+            "end_time_s": DURATION_S,
+            "travel_speed_m_per_s": _round(seam_length / DURATION_S),
+        },
+        "torch": {
+            "tcp_frame": "torch_tcp",
+            "neck_angle": _round(neck),
+            "push_angle": _round(PUSH_ANGLE_RAD),
+            "work_angle": _round(math.pi / 2),
+            "tcp_quat_xyzw_in_seam_point": _round(_quat_xyzw(_torch_rotation_in_seam_point())),
+        },
+    }
+
+
+def _se3(entry: dict) -> pin.SE3:
+    """Pose of a static frame entry in its parent."""
+    x, y, z, w = entry["quat_xyzw"]
+    return pin.SE3(pin.Quaternion(w, x, y, z).matrix(), np.array(entry["xyz"]))
+
+
+def _frames_by_name(cell: dict) -> dict:
+    return {entry["name"]: entry for entry in cell["frames"]}
+
+
+def seam_targets_in_robot_base(cell: dict, times_s: np.ndarray) -> list[pin.SE3]:
+    """Wanted ``torch_tcp`` poses in ``robot_base`` at ``times_s``, from the cell description.
+
+    The positioner pose between keyframes is the SLERP of its keyframe quaternions; for its
+    single axis that is the keyframe angle interpolated linearly.
+    """
+    frames = _frames_by_name(cell)
+    keyframes = frames["positioner"]["keyframes"]
+    key_quats = np.array(keyframes["quat_xyzw"])
+    key_angles = np.unwrap(2 * np.arctan2(key_quats[:, 2], key_quats[:, 3]))
+    theta = np.interp(times_s, keyframes["times_s"], key_angles)
+    seam = cell["seam"]
+    fraction = (times_s - seam["start_time_s"]) / (seam["end_time_s"] - seam["start_time_s"])
+    seam_angle = seam["start_angle"] + fraction * (seam["end_angle"] - seam["start_angle"])
+    x, y, z, w = cell["torch"]["tcp_quat_xyzw_in_seam_point"]
+    tcp_in_seam_point = pin.SE3(pin.Quaternion(w, x, y, z).matrix(), np.zeros(3))
+    world_in_robot_base = _se3(frames["robot_base"]).inverse()
+    positioner_base_in_world = _se3(frames["positioner_base"])
+    seam_in_positioner = _se3(frames["workpiece"]) * _se3(frames["weld_seam"])
+    centre = np.array(seam["centre_xyz"])
+    radial = np.array([0.0, 0.0, seam["radius"]])
+    targets = []
+    for angle_positioner, angle_seam in zip(theta, seam_angle, strict=True):
+        positioner_in_base = pin.SE3(pin.utils.rotate("z", angle_positioner), np.zeros(3))
+        turn = pin.utils.rotate("y", angle_seam)
+        seam_point_in_seam = pin.SE3(turn, centre + turn @ radial)
+        targets.append(
+            world_in_robot_base
+            * positioner_base_in_world
+            * positioner_in_base
+            * seam_in_positioner
+            * seam_point_in_seam
+            * tcp_in_seam_point
+        )
+    return targets
+
+
+def robot_model_with_tcp(cell: dict) -> tuple[pin.Model, int]:
+    """Pinocchio model of the robot (base_link = robot_base) with ``torch_tcp`` added."""
+    model = pin.buildModelFromUrdf(str(URDF_PATH))
+    tcp = _frames_by_name(cell)["torch_tcp"]
+    flange_id = model.getFrameId("flange")
+    flange = model.frames[flange_id]
+    model.addFrame(
+        pin.Frame(
+            "torch_tcp",
+            flange.parentJoint,
+            flange_id,
+            flange.placement * _se3(tcp),
+            pin.FrameType.OP_FRAME,
+        )
+    )
+    return model, model.getFrameId("torch_tcp")
+
+
+def solve_ik(
+    model: pin.Model, data: pin.Data, frame_id: int, target: pin.SE3, q: np.ndarray
+) -> tuple[np.ndarray, float]:
+    """Damped-least-squares IK: joint values (rad) putting ``frame_id`` at ``target``.
+
+    Starts at ``q``; the error is the SE(3) log of the frame pose in the target, a 6-vector
+    (m, rad) in the frame. Returns the joint values and the final error norm.
+    """
+    q = q.copy()
+    for _ in range(200):
+        pin.framesForwardKinematics(model, data, q)
+        frame_in_target = target.actInv(data.oMf[frame_id])
+        error = pin.log6(frame_in_target).vector
+        residual = float(np.linalg.norm(error))
+        if residual < IK_TOLERANCE:
+            break
+        jacobian = pin.Jlog6(frame_in_target) @ pin.computeFrameJacobian(
+            model, data, q, frame_id, pin.ReferenceFrame.LOCAL
+        )
+        normal = jacobian @ jacobian.T + IK_DAMPING * np.eye(6)
+        step = -jacobian.T @ np.linalg.solve(normal, error)
+        scale = min(1.0, 0.2 / max(np.abs(step).max(), 1e-300))  # at most 0.2 rad a step
+        q = pin.integrate(model, q, scale * step)
+    return q, residual
+
+
+def compute_motion(cell: dict, times_s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Joint samples (T, 6) in rad following the seam, and the IK residual of each sample."""
+    model, tcp_id = robot_model_with_tcp(cell)
+    data = model.createData()
+    q = IK_SEED
+    samples, residuals = [], []
+    for target in seam_targets_in_robot_base(cell, times_s):
+        q, residual = solve_ik(model, data, tcp_id, target, q)
+        samples.append(q)
+        residuals.append(residual)
+    return np.array(samples), np.array(residuals)
+
+
+def _cell_yaml(cell: dict) -> str:
+    header = (
+        "# pinframes welding cell: frames, positioner keyframes, seam and torch.\n"
+        "# Generated by models/welding_cell/make_motion.py; described in models/README.md.\n"
+        "# Lengths m, angles rad, times s, quaternions x y z w; a pose maps child to parent.\n"
+    )
+    return header + yaml.safe_dump(cell, sort_keys=False, default_flow_style=None, width=100)
+
+
+def _motion_csv(times_s: np.ndarray, samples: np.ndarray) -> str:
+    buffer = io.StringIO()
+    writer = csv.writer(buffer, lineterminator="\n")
+    writer.writerow(["time_s", *JOINT_NAMES])
+    for time, row in zip(times_s, samples, strict=True):
+        writer.writerow([f"{time:.9g}", *(f"{value:.9g}" for value in row)])
+    return buffer.getvalue()
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--out", type=Path, default=HERE, help="folder to write into")
+    out = parser.parse_args().out
+    cell = build_cell()
+    count = round(DURATION_S * SAMPLE_RATE_HZ) + 1
+    times_s = np.arange(count) / SAMPLE_RATE_HZ
+    samples, residuals = compute_motion(cell, times_s)
+    model = pin.buildModelFromUrdf(str(URDF_PATH))
+    if np.any(samples < model.lowerPositionLimit) or np.any(samples > model.upperPositionLimit):
+        raise SystemExit("the motion leaves the joint limits")
+    with atomic_write(out / CELL_FILE, "w") as handle:
+        handle.write(_cell_yaml(cell))
+    with atomic_write(out / MOTION_FILE, "w") as handle:
+        handle.write(_motion_csv(times_s, samples))
+    speeds = np.abs(np.diff(samples, axis=0)) * SAMPLE_RATE_HZ
+    print(f"{count} samples over {DURATION_S} s; max IK residual {residuals.max():.3g}")
+    print("joint range (rad):", np.round(samples.min(0), 3), np.round(samples.max(0), 3))
+    print("max joint speed (rad/s):", np.round(speeds.max(0), 4))
+
+
+if __name__ == "__main__":
+    main()
