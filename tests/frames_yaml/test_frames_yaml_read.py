@@ -9,7 +9,7 @@ import pytest
 
 from pinframes import FramesYamlWarning, read_frames_yaml
 
-from conftest import rot_x, rot_z
+from geometry import rot_x, rot_z
 
 HALF_PI = np.pi / 2
 

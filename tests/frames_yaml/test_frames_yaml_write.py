@@ -10,7 +10,7 @@ import yaml
 from pinframes import FramesYamlWarning, FrameTree, Pose, read_frames_yaml, write_frames_yaml
 from pinframes.errors import UnsupportedFeatureError, WriteError
 
-from conftest import rot_z
+from geometry import rot_z
 
 HALF_PI = np.pi / 2
 
