@@ -20,7 +20,7 @@ needed to write the file back unchanged is kept in metadata under ``"frames_yaml
 from __future__ import annotations
 
 import os
-from typing import Any
+from collections.abc import Callable
 
 from .._yaml_loader import load_yaml
 from ..errors import FileFormatError, PinframesError
@@ -196,7 +196,9 @@ def _world_poses(declared: dict[str, Entry], dummies: dict[str, None],
     return world
 
 
-def _raise_cycle(cycle: list[str], basis: Any, declared: dict[str, Entry], file: str) -> None:
+def _raise_cycle(cycle: list[str], basis: Callable[[str], str], declared: dict[str, Entry],
+                 file: str) -> None:
+    """Report a cycle of frames whose poses each depend on the next."""
     links = []
     for name in cycle:
         relation = "is relative to" if declared.get(name) and (

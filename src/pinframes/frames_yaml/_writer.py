@@ -101,8 +101,8 @@ class _Writer:
         self.path = path
         self.time = time
         self.keys = frame_keys(tree)
-        self.by_original_key = {kept["key"]: name for name in tree.frames[1:]
-                        if "key" in (kept := _kept(tree, name))}
+        self.by_original_key = {
+            kept["key"]: name for name in tree.frames[1:] if "key" in (kept := _kept(tree, name))}
         self.tiles_in_metres: list[str] = []
         self._tile_sizes: dict[str, TileSize] | None = None
         self._tile_maps_problem = ""
