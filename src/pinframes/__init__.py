@@ -54,3 +54,7 @@ __all__ = [
     "write_scene",
     "write_urdf",
 ]
+
+from .frames_yaml import FramesYamlWarning, read_frames_yaml, write_frames_yaml
+
+__all__ += ["FramesYamlWarning", "read_frames_yaml", "write_frames_yaml"]

@@ -53,7 +53,9 @@ class FrameTree:
         self.name = name
         self._root = root
         self._reference = None if reference_time is None else parse_timestamp(reference_time)
-        self._parent: dict[str, str | None] = {root: None}
+        # Every frame is a key of _children (in insertion order, root first); every frame but
+        # the root is a key of _parent.
+        self._parent: dict[str, str] = {}
         self._children: dict[str, dict[str, None]] = {root: {}}
         self._depth: dict[str, int] = {root: 0}
         self._local: dict[str, Pose] = {}
@@ -82,16 +84,16 @@ class FrameTree:
     @property
     def frames(self) -> list[str]:
         """All frame names, root first, every parent before its children."""
-        return list(self._parent)
+        return list(self._children)
 
     def __contains__(self, name: object) -> bool:
-        return name in self._parent
+        return name in self._children
 
     def __len__(self) -> int:
-        return len(self._parent)
+        return len(self._children)
 
     def __iter__(self) -> Iterator[str]:
-        return iter(self._parent)
+        return iter(self._children)
 
     def __repr__(self) -> str:
         moving = sum(1 for pose in self._local.values() if pose.is_time_dependent)
@@ -101,7 +103,7 @@ class FrameTree:
     def parent(self, name: str) -> str | None:
         """The parent frame of ``name`` (None for the root)."""
         self._require(name)
-        return self._parent[name]
+        return self._parent.get(name)
 
     def children(self, name: str) -> list[str]:
         """The child frames of ``name``, in the order they were added."""
@@ -272,10 +274,10 @@ class FrameTree:
         """Rename frame ``old`` to ``new``, keeping its place, pose and metadata."""
         self._require(old)
         _check_name(new)
-        if new in self._parent:
+        if new in self._children:
             raise FrameExistsError("the tree already has a frame of this name", frame=new)
 
-        def renamed(key: str | None) -> str | None:
+        def renamed(key: str) -> str:
             return new if key == old else key
 
         self._parent = {renamed(k): renamed(v) for k, v in self._parent.items()}
@@ -349,7 +351,7 @@ class FrameTree:
         """
         self._require(frame)
         if relative_to is None:
-            relative_to = self._parent[frame]
+            relative_to = self._parent.get(frame)
             if relative_to is None:
                 raise TreeStructureError(
                     "the root frame has no parent; pass relative_to", frame=frame,
@@ -415,14 +417,14 @@ class FrameTree:
 
     # -- helpers ---------------------------------------------------------------------------
     def _require(self, name: str) -> None:
-        if name not in self._parent:
+        if name not in self._children:
             raise FrameNotFoundError("no frame of this name in the tree", frame=str(name))
 
     def _check_new(self, name: str, parent: str) -> None:
         _check_name(name)
-        if name in self._parent:
+        if name in self._children:
             raise FrameExistsError("the tree already has a frame of this name", frame=name)
-        if parent not in self._parent:
+        if parent not in self._children:
             raise FrameNotFoundError(f"parent frame {parent!r} is not in the tree",
                                      frame=name, field="parent")
 
