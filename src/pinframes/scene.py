@@ -24,8 +24,9 @@ from typing import Any
 
 import numpy as np
 
-from ._yaml import load_yaml_file
+from ._yaml_loader import load_yaml
 from .errors import FileFormatError, PinframesError, UnsupportedFeatureError
+from .frames_yaml import read_frames_yaml
 from .pose import Pose
 from .timeconv import parse_timestamp
 from .trajectory_io import read_joint_trajectory
@@ -87,7 +88,7 @@ class _Scene:
 
     def __init__(self, path: Path) -> None:
         self.path = path
-        content = load_yaml_file(path)
+        content = load_yaml(path)
         if not isinstance(content, dict) or SCENE_FORMAT_KEY not in content:
             raise FileFormatError(f"not a pinframes scene: the file must start with "
                                   f"'{SCENE_FORMAT_KEY}: {SCENE_FORMAT_VERSION}'", file=path)
@@ -154,10 +155,10 @@ class _Scene:
         return entry, layer
 
     def _read_layer(self, file: Path, key: Any, field: str) -> FrameTree:
-        from . import read_asdf, read_frames_yaml
-
         try:
             if file.suffix.lower() == ".asdf":
+                from . import read_asdf  # imported when needed: it loads the asdf package
+
                 return read_asdf(file, key=key)
             if key is not None:
                 raise FileFormatError("'key' is only for ASDF layers", file=self.path,

@@ -9,6 +9,9 @@ import sys
 import numpy as np
 import pinocchio as pin
 import pytest
+import yaml
+
+from conftest import SHARED_DATA
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 
@@ -99,7 +102,7 @@ def test_unreadable_yaml_kinds(run_cli, tmp_path):
     broken.write_text("pinframes_scene: 1\nframes: [\n")
     result = run_cli("info", broken)
     assert result.returncode == 1
-    assert result.stderr.startswith(f"pinframes: error: {broken}: line")
+    assert result.stderr.startswith(f"pinframes: error: {broken}: YAML syntax error at line")
 
 
 def test_plot_writes_png(run_cli, turntable, tmp_path):
@@ -147,3 +150,33 @@ def test_progress_bar_on_a_terminal_only(run_cli, turntable, cli_env):
     with np.load(turntable.parent / "p.npz") as plain, \
             np.load(turntable.parent / "q.npz") as barred:
         np.testing.assert_array_equal(plain["translation"], barred["translation"])
+
+
+def test_convert_scene_to_frames_yaml_and_back(run_cli, turntable, tmp_path):
+    out = tmp_path / "frames_snapshot.yaml"
+    result = run_cli("convert", turntable, out, "--time", "10")
+    assert result.returncode == 0, result.stderr
+    frames = yaml.safe_load(out.read_text())["frames"]  # read back with plain PyYAML
+    table = frames["table"]["pose"]
+    assert (table["x"], table["y"], table["z"]) == (1.0, 0.0, 0.5)
+    assert table["yaw"] == pytest.approx(np.pi / 2, abs=1e-12)
+    assert frames["table/tip"]["pose"]["x"] == pytest.approx(0.2, abs=1e-15)
+    result = run_cli("pose", out, "table/tip", "-r", "world")
+    assert result.returncode == 0, result.stderr
+    row = result.stdout.splitlines()[1].split(",")
+    assert row[0] == ""  # nothing moves: a static pose, no time
+    np.testing.assert_allclose([float(v) for v in row[1:4]], [1.0, 0.2, 0.5], atol=1e-12)
+    result = run_cli("convert", turntable, out)
+    assert result.returncode == 1  # a moving tree needs --time for frames.yaml
+    assert result.stderr.startswith("pinframes: error: ")
+
+
+def test_info_on_a_real_duckietown_map(run_cli):
+    path = SHARED_DATA / "duckietown-maps" / "dt-gui-tools__loop_objects" / "frames.yaml"
+    if not path.is_file():
+        pytest.skip("shared sample data not present")
+    result = run_cli("info", path)
+    assert result.returncode == 0, result.stderr
+    declared = yaml.safe_load(path.read_text())["frames"]
+    listed = result.stdout
+    assert all(key.rsplit("/", 1)[-1] in listed for key in declared)

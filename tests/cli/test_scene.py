@@ -208,3 +208,43 @@ def test_errors_in_referenced_files_name_that_file_and_the_entry(tmp_path, cell)
     with pytest.raises(PinframesError) as caught:
         read_scene(cell)
     assert "robots[0].urdf" in str(caught.value)
+
+
+def test_frames_yaml_layer_mounted_with_prefix(tmp_path):
+    (tmp_path / "layers").mkdir()
+    (tmp_path / "layers" / "frames.yaml").write_text(textwrap.dedent("""\
+        version: 1.0
+        frames:
+          desk:
+            relative_to: ~
+            pose: {x: 1, y: 0, z: 0, roll: 0, pitch: 0, yaw: 1.5707963267948966}
+          desk/lamp:
+            relative_to: ~
+            pose: {x: 0.5, y: 0, z: 0.2, roll: 0, pitch: 0, yaw: 0}
+        """))
+    path = scene_file(tmp_path, """\
+        pinframes_scene: 1
+        layers:
+          - {file: layers/frames.yaml, mount: room, prefix: "L/"}
+        frames:
+          - {name: room, parent: world, xyz: [10, 0, 0], rpy: [0, 0, 3.141592653589793]}
+        """)
+    tree = read_scene(path)
+    assert tree.parent("L/desk") == "room"
+    assert tree.parent("L/desk/lamp") == "L/desk"
+    # world -> room (10, 0, 0) turned 180 deg -> desk (1, 0, 0) turned 90 deg -> lamp
+    expected = (np.array([10.0, 0, 0]) + rot_z(np.pi) @ (
+        np.array([1.0, 0, 0]) + rot_z(np.pi / 2) @ np.array([0.5, 0, 0.2])))
+    lamp = tree.pose("L/desk/lamp", relative_to="world")
+    np.testing.assert_allclose(lamp.translation, expected, atol=1e-12)
+    np.testing.assert_allclose(lamp.rotation, rot_z(3 * np.pi / 2), atol=1e-12)
+
+
+def test_errors_inside_a_layer_name_the_layer_file(tmp_path):
+    (tmp_path / "frames.yaml").write_text("frames:\n  a: {pose: {x: oops}}\n")
+    path = scene_file(tmp_path, "pinframes_scene: 1\nlayers:\n- {file: frames.yaml}\n")
+    with pytest.raises(FileFormatError) as caught:
+        read_scene(path)
+    message = str(caught.value)
+    assert message.startswith(str(tmp_path / "frames.yaml"))
+    assert f"(referenced by {path}: layers[0].file)" in message

@@ -15,7 +15,7 @@ from typing import Any
 
 import pinframes
 
-from .._yaml import load_yaml_file
+from .._yaml_loader import load_yaml
 from ..errors import FileFormatError, UnsupportedFeatureError
 from ..scene import SCENE_FORMAT_KEY
 from ..tree import FrameTree
@@ -39,7 +39,7 @@ def detect_format(path: str | Path, *, writing: bool = False) -> str:
     named_frames = path.name.lower().startswith("frames")
     if writing:
         return "frames.yaml" if named_frames else "scene"
-    content = load_yaml_file(path)
+    content = load_yaml(path)
     if isinstance(content, dict) and SCENE_FORMAT_KEY in content:
         return "scene"
     if (isinstance(content, dict) and "frames" in content) or named_frames:
