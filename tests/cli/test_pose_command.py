@@ -98,7 +98,8 @@ def test_reference_time_and_time_ref(run_cli, tmp_path):
     ("args", "expected"),
     [
         (["missing.yaml", "tip"], "missing.yaml: No such file"),
-        (["{scene}", "nope", "-r", "world"], "frame 'nope': no frame of this name"),
+        (["{scene}", "nope", "-r", "world"],
+         "turntable.yaml: frame 'nope': no frame of this name"),
         (["{scene}", "tip", "-r", "nowhere"], "frame 'nowhere'"),
         (["{scene}", "world"], "the root frame has no parent"),
         (["{scene}", "tip", "--times", "abc"], "field '--times': cannot read a time from 'abc'"),

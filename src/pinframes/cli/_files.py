@@ -16,11 +16,11 @@ from typing import Any
 import pinframes
 
 from .._yaml_loader import load_yaml
-from ..errors import FileFormatError, UnsupportedFeatureError
+from ..errors import FileFormatError, FrameNotFoundError, UnsupportedFeatureError
 from ..scene import SCENE_FORMAT_KEY
 from ..tree import FrameTree
 
-__all__ = ["FORMATS", "detect_format", "read_tree", "write_tree"]
+__all__ = ["FORMATS", "detect_format", "read_tree", "require_frames", "write_tree"]
 
 FORMATS = ("frames.yaml", "asdf", "urdf", "scene")
 
@@ -53,6 +53,13 @@ def read_tree(path: str | Path, fmt: str | None = None) -> FrameTree:
     if not Path(path).is_file():
         raise FileNotFoundError(2, "No such file", str(path))
     return _function("read", fmt or detect_format(path))(path)
+
+
+def require_frames(tree: FrameTree, path: str | Path, *names: str | None) -> None:
+    """Raise a :class:`FrameNotFoundError` naming ``path`` for a name not in ``tree``."""
+    for name in names:
+        if name is not None and name not in tree:
+            raise FrameNotFoundError("no frame of this name in the file", file=path, frame=name)
 
 
 def write_tree(tree: FrameTree, path: str | Path, fmt: str | None = None, *,

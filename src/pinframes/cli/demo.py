@@ -17,6 +17,7 @@ from ..pose import Pose
 from ..tree import FrameTree
 from ..urdf import URDF_METADATA_KEY
 from ._evaluate import evaluate_poses, terminal_stderr
+from ._files import require_frames
 from ._output import write_poses
 
 __all__ = ["PathSummary", "add_parser", "bundled_scene", "run", "summarize"]
@@ -103,6 +104,7 @@ def run(args: argparse.Namespace) -> int:
     """Compute, print the summary, write the files."""
     scene = Path(args.scene) if args.scene else bundled_scene()
     tree = read_scene(scene)
+    require_frames(tree, scene, args.tool, args.workpiece)
     pose = evaluate_poses(tree, args.tool, args.workpiece, None, progress=terminal_stderr())
     if not pose.is_time_dependent or len(pose) < 2:
         raise FileFormatError(f"{args.tool!r} does not move relative to {args.workpiece!r}",

@@ -6,7 +6,7 @@ import argparse
 import sys
 
 from ..plotting import new_figure, plot_frames, save_figure
-from ._files import read_tree
+from ._files import read_tree, require_frames
 
 __all__ = ["add_parser", "run"]
 
@@ -34,6 +34,7 @@ def run(args: argparse.Namespace) -> int:
     """Draw and save."""
     figure = new_figure()
     tree = read_tree(args.file)
+    require_frames(tree, args.file, args.relative_to, *(args.frames or []))
     ax = figure.add_subplot(projection="3d")
     plot_frames(tree, args.frames, args.relative_to, ax=ax,
                 time_index=0 if args.at == "start" else -1)

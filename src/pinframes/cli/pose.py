@@ -6,7 +6,7 @@ import argparse
 import sys
 
 from ._evaluate import add_time_arguments, evaluate_poses, requested_times, terminal_stderr
-from ._files import read_tree
+from ._files import read_tree, require_frames
 from ._output import OUTPUT_FORMATS, output_format, write_poses
 
 __all__ = ["add_parser", "run"]
@@ -34,11 +34,12 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 def run(args: argparse.Namespace) -> int:
     """Evaluate and write the poses."""
     tree = read_tree(args.file)
+    require_frames(tree, args.file, args.frame, args.relative_to)
     relative_to = args.relative_to
     if relative_to is None:
-        relative_to = tree.parent(args.frame) if args.frame in tree else None
+        relative_to = tree.parent(args.frame)
     if relative_to is None:
-        tree.pose(args.frame)  # raises the error for an unknown frame or the root
+        tree.pose(args.frame)  # raises the error for the root, which has no parent
     times = requested_times(args, tree, args.frame, relative_to)
     pose = evaluate_poses(tree, args.frame, relative_to, times, args.time_ref,
                           progress=terminal_stderr())
