@@ -7,9 +7,8 @@ import numpy as np
 import pytest
 
 import pinframes
-from pinframes import FrameTree, Pose, read_scene
-
 from conftest import SHARED_DATA
+from pinframes import FrameTree, Pose, read_scene
 
 pytestmark = pytest.mark.skipif(not hasattr(pinframes, "read_asdf"),
                                 reason="pinframes.read_asdf is not merged yet")
