@@ -17,12 +17,13 @@ from ._sample_times import sample_times
 from .errors import ReferenceTimeError, UnsupportedFeatureError
 from .timeconv import TimeAxis
 from .tree import FrameTree
+from .urdf import URDF_METADATA_KEY
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-__all__ = ["new_figure", "plot_frames", "save_figure"]
+__all__ = ["new_figure", "plot_frames", "robot_frames", "save_figure"]
 
 _AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
 _PATH_SAMPLES = 400
@@ -54,7 +55,7 @@ def plot_frames(
     time_index: int = 0,
     axis_length: float | None = None,
     labels: bool | Collection[str] = True,
-    skeleton: Collection[str] = (),
+    skeleton: Collection[str] | None = None,
 ) -> Axes:
     """Draw ``frames`` of ``tree`` in ``relative_to`` on a 3-D axes.
 
@@ -77,11 +78,12 @@ def plot_frames(
         Length of the drawn axes, metres (default: 8 % of the plot's extent).
     labels : bool or collection of str
         Write frame names next to their origins: all, none, or these.
-    skeleton : collection of str
-        Frames to join to their (drawn) parent with a grey bar: pass a robot's links to
-        see its arm.
+    skeleton : collection of str, optional
+        Frames to join to their (drawn) parent with a grey bar (default: the frames of
+        URDF robots, which then show as arms).
     """
     relative_to = tree.root if relative_to is None else relative_to
+    skeleton = robot_frames(tree) if skeleton is None else set(skeleton)
     frames = list(tree.frames if frames is None else frames)
     for frame in frames:
         tree.path(frame, relative_to)  # raises for unknown frames
@@ -126,6 +128,11 @@ def plot_frames(
     ax.set_ylabel(f"y in {relative_to} [m]")
     ax.set_zlabel(f"z in {relative_to} [m]")
     return ax
+
+
+def robot_frames(tree: FrameTree) -> set[str]:
+    """The frames that came from URDF robots (their links)."""
+    return {frame for frame in tree.frames if URDF_METADATA_KEY in tree.frame_metadata(frame)}
 
 
 def _add_label(texts: list[tuple[np.ndarray, list[str]]], origin: np.ndarray, frame: str,

@@ -12,10 +12,9 @@ import numpy as np
 
 from .. import read_scene
 from ..errors import FileFormatError
-from ..plotting import new_figure, plot_frames, save_figure
+from ..plotting import new_figure, plot_frames, robot_frames, save_figure
 from ..pose import Pose
 from ..tree import FrameTree
-from ..urdf import URDF_METADATA_KEY
 from ._evaluate import evaluate_poses, terminal_stderr
 from ._files import require_frames
 from ._output import write_poses
@@ -126,9 +125,9 @@ def _plot(tree: FrameTree, pose: Pose, summary: PathSummary, tool: str, workpiec
     figure = new_figure(13.0, 6.5)
     grid = figure.add_gridspec(2, 2, width_ratios=(1.15, 1.0))
     cell = figure.add_subplot(grid[:, 0], projection="3d")
-    robot = [frame for frame in tree.frames if URDF_METADATA_KEY in tree.frame_metadata(frame)]
+    robot = robot_frames(tree)
     labelled = [frame for frame in tree.frames if frame not in robot and frame != tool]
-    plot_frames(tree, ax=cell, labels=labelled, skeleton=[*robot, tool])
+    plot_frames(tree, ax=cell, labels=labelled, skeleton=robot | {tool})
     cell.set_title(f"{tree.name or 'cell'}: frames at the start, paths of moving frames")
     seconds = pose.times.astype(np.int64) / 1e9
     millimetres = 1000 * pose.translation

@@ -38,7 +38,8 @@ def run(args: argparse.Namespace) -> int:
     ax = figure.add_subplot(projection="3d")
     plot_frames(tree, args.frames, args.relative_to, ax=ax,
                 time_index=0 if args.at == "start" else -1)
-    ax.set_title(f"{tree.name or args.file}: frames in {args.relative_to or tree.root}")
+    ax.set_title(f"{tree.name or args.file}: frames in {args.relative_to or tree.root} "
+                 f"(axes at the {args.at})")
     save_figure(figure, args.output)
     print(f"pinframes: wrote {args.output}", file=sys.stderr)
     return 0
