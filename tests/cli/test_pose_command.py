@@ -130,6 +130,10 @@ def test_verbose_adds_traceback_and_usage_errors_exit_2(run_cli, turntable):
     assert result.returncode == 1
     assert "Traceback (most recent call last)" in result.stderr
     assert result.stderr.rstrip().splitlines()[-1].startswith("pinframes: error: ")
+    result = run_cli("--verbose", "pose", turntable, "nope")
+    assert "Traceback (most recent call last)" in result.stderr
+    result = run_cli("pose", turntable, "nope")
+    assert "Traceback" not in result.stderr
     result = run_cli("pose", turntable)
     assert result.returncode == 2
     assert "usage: pinframes pose" in result.stderr

@@ -43,15 +43,17 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="pinframes",
+        description="Coordinate-frame trees that move in time: inspect, query, convert, plot.",
+        epilog="Run 'pinframes SUBCOMMAND --help' for the options of each subcommand.")
+    parser.add_argument("-v", "--verbose", action="store_true",
+                        help="print the traceback of an error")
+    parser.add_argument("--version", action="version", version=f"pinframes {__version__}")
+    # accepted after the subcommand too; SUPPRESS keeps a --verbose given before it
     verbose = argparse.ArgumentParser(add_help=False)
     verbose.add_argument("-v", "--verbose", action="store_true", default=argparse.SUPPRESS,
                          help="print the traceback of an error")
-    parser = argparse.ArgumentParser(
-        prog="pinframes", parents=[verbose],
-        description="Coordinate-frame trees that move in time: inspect, query, convert, plot.",
-        epilog="Run 'pinframes SUBCOMMAND --help' for the options of each subcommand.")
-    parser.add_argument("--version", action="version", version=f"pinframes {__version__}")
-    parser.set_defaults(verbose=False)
     subparsers = parser.add_subparsers(title="subcommands", metavar="SUBCOMMAND", required=True)
     for module in _SUBCOMMANDS:
         module.add_parser(subparsers, [verbose])
