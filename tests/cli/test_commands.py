@@ -180,3 +180,16 @@ def test_info_on_a_real_duckietown_map(run_cli):
     declared = yaml.safe_load(path.read_text())["frames"]
     listed = result.stdout
     assert all(key.rsplit("/", 1)[-1] in listed for key in declared)
+
+
+def test_info_lists_subsystems():
+    from pinframes import FrameTree, Subsystem
+    from pinframes.cli.info import describe
+
+    tree = FrameTree(name="cell")
+    tree.add("robot_base", "world")
+    tree.add("tcp", "robot_base")
+    tree.subsystems.append(Subsystem("robot", "robot_base", ("robot_base", "tcp"),
+                                     parent="cell"))
+    lines = describe(tree).splitlines()
+    assert lines[-1] == "subsystem robot: root robot_base, 2 frames, merged into cell"

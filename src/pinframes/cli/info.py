@@ -19,7 +19,8 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "info", parents=parents, help="show the tree of frames",
         description="Print the tree of frames in FILE with each frame's kind (static, "
         "moving, robot joint), the time span of its keyframes or joint samples (seconds "
-        "after its reference time) and that reference time.")
+        "after its reference time) and that reference time, then the subsystems (weldx) "
+        "merged into the tree.")
     parser.add_argument("file", metavar="FILE", help="scene, frames.yaml, ASDF or URDF file")
     parser.set_defaults(run=run)
 
@@ -44,6 +45,10 @@ def describe(tree: FrameTree) -> str:
     for row in rows:
         cells = [cell.ljust(width) for cell, width in zip(row[:3], widths, strict=True)]
         lines.append("  ".join([*cells, row[3]]).rstrip())
+    for subsystem in tree.subsystems:
+        inside = "" if subsystem.parent is None else f", merged into {subsystem.parent}"
+        lines.append(f"subsystem {subsystem.name}: root {subsystem.root}, "
+                     f"{len(subsystem.members)} frames{inside}")
     return "\n".join(lines) + "\n"
 
 
