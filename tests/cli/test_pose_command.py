@@ -109,6 +109,7 @@ def test_reference_time_and_time_ref(run_cli, tmp_path):
         (["{scene}", "tip", "--times", "1", "--step", "1"], "either --times or --start"),
         (["{scene}", "tip", "--start", "5", "--stop", "1", "--step", "1"], "--stop is before"),
         (["{scene}", "tip", "--format", "npz"], "NPZ output is binary"),
+        (["{scene}", "tip", "--step", "1ns"], "more than 50000000; take a larger --step"),
         (["{scene}", "tip", "-o", "/nonexistent-folder/p.csv"], "the folder does not exist"),
         (["{scene}", "tip", "--times", "1", "--time-ref", "2024-01-01T00:00:00"],
          "neither the tree nor its frames have a reference time"),

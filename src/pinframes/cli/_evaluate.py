@@ -19,6 +19,9 @@ __all__ = ["add_time_arguments", "evaluate_poses", "requested_times", "terminal_
 CHUNK_SIZE = 20_000
 """Times evaluated per call; the progress bar moves once per chunk."""
 
+MAX_SAMPLES = 50_000_000
+"""The most times a --start/--stop/--step grid may have (about 3 GB of poses)."""
+
 _BAR_WIDTH = 30
 
 
@@ -72,7 +75,11 @@ def requested_times(args: argparse.Namespace, tree: FrameTree, frame: str,
     (absolute, first), (_, last) = ends
     if last < first:
         raise InvalidTimeError("--stop is before --start", field="--stop")
-    offsets = step * np.arange((last - first) // step + 1, dtype=np.int64)
+    count = (last - first) // step + 1
+    if count > MAX_SAMPLES:
+        raise InvalidTimeError(f"this grid has {count} times, more than {MAX_SAMPLES}; take a "
+                               "larger --step", field="--step")
+    offsets = step * np.arange(count, dtype=np.int64)
     if absolute:
         return TimeAxis(offsets, np.datetime64(first, "ns"))
     return TimeAxis(first + offsets, None)
