@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import stat
 import tempfile
 from collections.abc import Iterator
 from pathlib import Path
@@ -30,6 +31,7 @@ def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO]
     except OSError as exc:
         raise WriteError(f"cannot create a file here: {exc.strerror}", file=str(target)) from exc
     try:
+        os.fchmod(fd, _mode_for(target))
         with os.fdopen(fd, mode, **({} if "b" in mode else {"encoding": "utf-8"})) as handle:
             yield handle
             handle.flush()
@@ -40,3 +42,13 @@ def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO]
             os.unlink(tmp_name)
         raise
 
+
+def _mode_for(target: Path) -> int:
+    """The permissions of the file being replaced, else what a new file gets (0o666 - umask);
+    ``mkstemp`` alone would leave every written file readable by its owner only."""
+    try:
+        return stat.S_IMODE(target.stat().st_mode)
+    except FileNotFoundError:
+        umask = os.umask(0)
+        os.umask(umask)
+        return 0o666 & ~umask

@@ -1,0 +1,39 @@
+import os
+import stat
+
+import pytest
+
+from pinframes._atomic import atomic_write
+from pinframes.errors import WriteError
+
+
+def test_new_files_get_the_umask_mode_and_replaced_files_keep_theirs(tmp_path):
+    old_umask = os.umask(0o022)
+    try:
+        path = tmp_path / "new.txt"
+        with atomic_write(path, "w") as handle:
+            handle.write("x")
+        assert stat.S_IMODE(path.stat().st_mode) == 0o644
+        path.chmod(0o600)
+        with atomic_write(path, "w") as handle:
+            handle.write("y")
+        assert stat.S_IMODE(path.stat().st_mode) == 0o600 and path.read_text() == "y"
+    finally:
+        os.umask(old_umask)
+
+
+def test_a_failed_write_keeps_the_old_file_and_leaves_no_temporary_file(tmp_path):
+    path = tmp_path / "keep.txt"
+    path.write_text("old")
+    with pytest.raises(RuntimeError), atomic_write(path, "w") as handle:
+        handle.write("half")
+        raise RuntimeError("boom")
+    assert path.read_text() == "old"
+    assert [p.name for p in tmp_path.iterdir()] == ["keep.txt"]
+
+
+def test_no_folders_are_created(tmp_path):
+    with pytest.raises(WriteError) as info, atomic_write(tmp_path / "a" / "b.txt"):
+        pass
+    assert info.value.file.endswith("b.txt") and isinstance(info.value, OSError)
+    assert not (tmp_path / "a").exists()
