@@ -294,3 +294,13 @@ def test_composing_along_a_path_equals_the_direct_query_and_inverses_cancel(case
     np.testing.assert_allclose((b_in_c @ a_in_b).matrix, a_in_c.matrix, atol=1e-9)
     identity = (tree.pose(b, a, times=times) @ a_in_b).matrix
     np.testing.assert_allclose(identity, np.broadcast_to(np.eye(4), identity.shape), atol=1e-9)
+
+
+def test_sample_times_are_the_times_pose_evaluates_at_by_default():
+    tree = tree_with(None, [T0 + 5 * SECOND, T0 + 2 * SECOND])
+    axis = tree.sample_times("a", "b")
+    result = tree.pose("a", "b")
+    assert axis.reference == result.reference_time
+    assert axis.offsets.tolist() == result.times.astype("int64").tolist()
+    tree.add("still", "world", Pose([1, 0, 0]))
+    assert tree.sample_times("still") is None

@@ -30,6 +30,7 @@ __all__ = [
     "Evaluation",
     "basis_shifts",
     "compile_model",
+    "default_times",
     "evaluate_pose",
     "model_sources",
     "plan_timeline",
@@ -84,6 +85,15 @@ def evaluate_pose(
     if translation.ndim == 1:
         translation = np.broadcast_to(translation, (count, 3)).copy()
     return Pose._trusted(translation, rotation, offsets, timeline.reference)
+
+
+def default_times(tree: FrameTree, frame: str, relative_to: str) -> TimeAxis | None:
+    """The times ``tree.pose(frame, relative_to)`` evaluates at when given none."""
+    evaluation = _evaluation(tree, frame, relative_to)
+    timeline = plan_timeline(tree, list(evaluation.sources), None, None)
+    if timeline.evaluation_times is None:
+        return None
+    return TimeAxis(timeline.result_offsets, timeline.reference)
 
 
 def compile_model(tree: FrameTree, root: str, frames: list[str]) -> CompiledModel:

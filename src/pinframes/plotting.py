@@ -13,7 +13,6 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ._atomic import atomic_write
-from ._sample_times import sample_times
 from .errors import ReferenceTimeError, UnsupportedFeatureError
 from .timeconv import TimeAxis
 from .tree import FrameTree
@@ -148,7 +147,7 @@ def _add_label(texts: list[tuple[np.ndarray, list[str]]], origin: np.ndarray, fr
 def _common_times(tree: FrameTree, frames: list[str], relative_to: str) -> Any:
     """Finely spaced times over the span of all moving things behind ``frames``."""
     axes: list[TimeAxis] = [axis for frame in frames
-                            if (axis := sample_times(tree, frame, relative_to)) is not None]
+                            if (axis := tree.sample_times(frame, relative_to)) is not None]
     if not axes:
         return None
     absolute = {axis.reference is not None for axis in axes}

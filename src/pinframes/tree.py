@@ -22,7 +22,7 @@ from .joint_track import JointTrack
 from .pinocchio_tree import PinocchioTree
 from .pose import Pose
 from .subsystem import Subsystem
-from .timeconv import parse_timestamp
+from .timeconv import TimeAxis, parse_timestamp
 
 __all__ = ["FrameTree"]
 
@@ -350,14 +350,20 @@ class FrameTree:
             One pose per requested time; ``reference_time`` set by the rules of SPEC 4.
         """
         self._require(frame)
-        if relative_to is None:
-            relative_to = self._parent.get(frame)
-            if relative_to is None:
-                raise TreeStructureError(
-                    "the root frame has no parent; pass relative_to", frame=frame,
-                    field="relative_to")
+        relative_to = self._default_reference(frame, relative_to)
         self._require(relative_to)
         return _query.evaluate_pose(self, frame, relative_to, times, time_ref, extrapolation)
+
+    def sample_times(self, frame: str, relative_to: str | None = None) -> TimeAxis | None:
+        """The times :meth:`pose` evaluates at when given none, without evaluating.
+
+        Every keyframe and joint sample time on the path, as nanosecond offsets after the
+        reference time the result would carry; None when nothing on the path moves.
+        """
+        self._require(frame)
+        relative_to = self._default_reference(frame, relative_to)
+        self._require(relative_to)
+        return _query.default_times(self, frame, relative_to)
 
     def to_pinocchio(self) -> PinocchioTree:
         """The whole tree as one Pinocchio model, with name mappings and configurations.
@@ -368,6 +374,16 @@ class FrameTree:
         return PinocchioTree(self)
 
     # -- internals used by _query ----------------------------------------------------------
+    def _default_reference(self, frame: str, relative_to: str | None) -> str:
+        """``relative_to``, or the parent of ``frame`` when it is None."""
+        if relative_to is not None:
+            return relative_to
+        parent = self._parent.get(frame)
+        if parent is None:
+            raise TreeStructureError("the root frame has no parent; pass relative_to",
+                                     frame=frame, field="relative_to")
+        return parent
+
     def _anchor(self, name: str) -> tuple[str, Transform]:
         """The nearest joint frame at or above ``name`` and ``name``'s placement in it."""
         cached = self._anchors.get(name)

@@ -8,7 +8,6 @@ from typing import Any, TextIO
 
 import numpy as np
 
-from .._sample_times import sample_times
 from ..errors import InvalidTimeError
 from ..pose import Pose
 from ..timeconv import TimeAxis, parse_time_axis, parse_timedelta, parse_timestamp
@@ -58,7 +57,7 @@ def requested_times(args: argparse.Namespace, tree: FrameTree, frame: str,
     if step <= 0:
         raise InvalidTimeError(f"must be a positive duration, got {args.step!r}",
                                field="--step")
-    samples = sample_times(tree, frame, relative_to)
+    samples = tree.sample_times(frame, relative_to)
     if samples is None and (args.start is None or args.stop is None):
         raise InvalidTimeError("nothing on this path moves, so give both --start and --stop",
                                field="--step")
@@ -102,7 +101,7 @@ def evaluate_poses(tree: FrameTree, frame: str, relative_to: str, times: TimeAxi
     With ``progress`` (a terminal), a text bar on it shows how far the evaluation is.
     """
     if times is None:
-        times = sample_times(tree, frame, relative_to)
+        times = tree.sample_times(frame, relative_to)
         if times is None:
             return tree.pose(frame, relative_to=relative_to)
         time_ref = times.reference
