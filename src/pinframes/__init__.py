@@ -1,6 +1,7 @@
 """pinframes: coordinate-frame hierarchies that move in time, backed by Pinocchio."""
 
 from .errors import (
+    ArgumentTypeError,
     ExtrapolationError,
     FileFormatError,
     FrameExistsError,
@@ -9,6 +10,7 @@ from .errors import (
     InvalidTimeError,
     JointError,
     PinframesError,
+    ReadError,
     ReferenceTimeError,
     TreeStructureError,
     UnsupportedFeatureError,
@@ -28,6 +30,7 @@ from .urdf import read_urdf, write_urdf
 __version__ = "0.1.0"
 
 __all__ = [
+    "ArgumentTypeError",
     "ExtrapolationError",
     "FileFormatError",
     "FrameExistsError",
@@ -42,6 +45,7 @@ __all__ = [
     "PinframesError",
     "PinocchioTree",
     "Pose",
+    "ReadError",
     "ReferenceTimeError",
     "Subsystem",
     "TreeStructureError",

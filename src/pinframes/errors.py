@@ -14,6 +14,7 @@ from __future__ import annotations
 import os
 
 __all__ = [
+    "ArgumentTypeError",
     "ExtrapolationError",
     "FileFormatError",
     "FrameExistsError",
@@ -22,6 +23,7 @@ __all__ = [
     "InvalidTimeError",
     "JointError",
     "PinframesError",
+    "ReadError",
     "ReferenceTimeError",
     "TreeStructureError",
     "UnsupportedFeatureError",
@@ -127,3 +129,11 @@ class UnsupportedFeatureError(PinframesError, ValueError):
 
 class WriteError(PinframesError, OSError):
     """A file that could not be written; any existing file at the path is left untouched."""
+
+
+class ReadError(PinframesError, OSError):
+    """A file that could not be read at all: missing, a folder, unreadable or not text."""
+
+
+class ArgumentTypeError(PinframesError, TypeError):
+    """An argument of the wrong type passed to a pinframes function or method."""
