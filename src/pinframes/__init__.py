@@ -62,3 +62,15 @@ __all__ = [
 from .frames_yaml import FramesYamlWarning, read_frames_yaml, write_frames_yaml
 
 __all__ += ["FramesYamlWarning", "read_frames_yaml", "write_frames_yaml"]
+
+# The ASDF functions load the asdf package: they are imported on first use.
+_ASDF_FUNCTIONS = ("read_asdf",)
+__all__ += list(_ASDF_FUNCTIONS)
+
+
+def __getattr__(name: str):
+    if name in _ASDF_FUNCTIONS:
+        from . import asdf
+
+        return getattr(asdf, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

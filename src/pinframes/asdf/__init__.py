@@ -1,0 +1,5 @@
+"""weldx ASDF files: coordinate system hierarchies of all three generations (SPEC 7)."""
+
+from ._reader import read_asdf
+
+__all__ = ["read_asdf"]
