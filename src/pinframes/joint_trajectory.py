@@ -59,7 +59,7 @@ def set_joint_trajectory(
 def _positions(positions: Any, count: int, joint_names: list[str]) -> np.ndarray:
     try:
         values = np.array(positions, dtype=float)
-    except (TypeError, ValueError) as exc:
+    except (TypeError, ValueError, OverflowError) as exc:
         raise JointError(f"positions must be numbers: {exc}", field="positions") from None
     if values.ndim == 1 and len(joint_names) == 1:
         values = values[:, None]

@@ -8,7 +8,13 @@ import pytest
 import yourdfpy
 
 from pinframes import FrameTree, Pose
-from pinframes.errors import FileFormatError, FrameExistsError, InvalidTimeError, JointError
+from pinframes.errors import (
+    FileFormatError,
+    FrameExistsError,
+    InvalidTimeError,
+    JointError,
+    ReadError,
+)
 from pinframes.joint_trajectory import JointLimitWarning
 from pinframes.urdf import read_urdf, write_urdf
 
@@ -152,7 +158,7 @@ def test_bad_urdfs_raise_named_errors_and_leave_the_tree_unchanged(urdf, field):
 
 
 def test_missing_file_names_the_file(tmp_path):
-    with pytest.raises(FileFormatError, match="no such file") as info:
+    with pytest.raises(ReadError, match="no such file") as info:
         read_urdf(tmp_path / "missing.urdf")
     assert info.value.file.endswith("missing.urdf")
 
