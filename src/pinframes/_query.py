@@ -65,8 +65,8 @@ def evaluate_pose(
 ) -> Pose:
     """``tree.pose(frame, relative_to, times, time_ref)``; arguments already checked."""
     if extrapolation not in _EXTRAPOLATION_POLICIES:
-        raise ValueError(f"extrapolation must be one of {_EXTRAPOLATION_POLICIES}, "
-                         f"got {extrapolation!r}")
+        raise ExtrapolationError(f"expected one of {', '.join(_EXTRAPOLATION_POLICIES)}, "
+                                 f"got {extrapolation!r}", field="extrapolation")
     evaluation = _evaluation(tree, frame, relative_to)
     sources = list(evaluation.sources)
     timeline = plan_timeline(tree, sources, times, time_ref)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import os
 
-from .errors import ReadError
+from .errors import ArgumentTypeError, ReadError
 
 __all__ = ["read_bytes", "read_text"]
 
@@ -15,12 +15,15 @@ def read_bytes(path: str | os.PathLike[str]) -> bytes:
     Raises
     ------
     ReadError
-        The path is missing, a folder, not readable, or not a path at all.
+        The path is missing, a folder or not readable.
+    ArgumentTypeError
+        ``path`` is not a path.
     """
     try:
         file = os.fspath(path)
     except TypeError:
-        raise ReadError(f"expected a file path, got {type(path).__name__}") from None
+        raise ArgumentTypeError(f"expected a file path, got {type(path).__name__}",
+                                field="path") from None
     try:
         with open(file, "rb") as handle:
             return handle.read()

@@ -148,7 +148,7 @@ def _as_time_array(values: Any, field: str) -> np.ndarray:
         seconds = array.astype(float)
         if not np.all(np.isfinite(seconds)):
             raise InvalidTimeError("times must be finite numbers of seconds", field=field)
-        if np.max(np.abs(seconds)) * 1e9 > _NS_LIMIT:
+        if np.max(np.abs(seconds)) > _NS_LIMIT / 1e9:
             raise _beyond_nanoseconds(field)
         return np.round(seconds * 1e9).astype(np.int64).astype("timedelta64[ns]")
     items = list(values) if isinstance(values, (list, tuple)) else array.tolist()
