@@ -29,7 +29,7 @@ def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO]
     if target.is_dir():
         raise WriteError("is a folder, not a file", file=os.fspath(path))
     if not folder.is_dir():
-        raise WriteError(f"the folder {os.fspath(folder)!r} does not exist",
+        raise WriteError(f"the folder does not exist: {os.fspath(folder)}",
                          file=os.fspath(path))
     try:
         fd, tmp_name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=folder)

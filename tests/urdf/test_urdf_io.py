@@ -89,12 +89,14 @@ def test_export_keeps_joints_limits_mimic_and_link_contents_and_reloads(tmp_path
     write_urdf(tree, path, time=2.0)
     text = path.read_text()
     assert "package://arm/base.dae" in text and 'damping="0.7"' in text
-    assert '<mimic joint="a/elbow_mimic" multiplier="-1.0" offset="0.0"' in text
+    # wrist = -1 * elbow and elbow = 2 * shoulder + 0.1: one mimic of the driven joint
+    assert '<mimic joint="a/shoulder" multiplier="-2.0" offset="-0.1"' in text
 
     again = read_urdf(path)
     assert set(again.frames) == set(tree.frames)
     assert again.joints["a/shoulder"].upper == 1.5
     assert again.joints["a/elbow_mimic"].mimic.joint == "a/shoulder"
+    assert again.joints["a/wrist_mimic"].mimic.joint == "a/shoulder"
     values = {"a/shoulder": 0.4, "a/slider": 0.15}
     again.set_joint_trajectory([0.0], [list(values.values())], list(values))
     tree.set_joint_trajectory([0.0], [list(values.values())], list(values))
