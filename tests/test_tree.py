@@ -3,9 +3,9 @@ import pytest
 
 from pinframes import FrameTree, Pose, Subsystem
 from pinframes.errors import (
+    ArgumentTypeError,
     FrameExistsError,
     FrameNotFoundError,
-    InvalidPoseError,
     ReferenceTimeError,
     TreeStructureError,
 )
@@ -40,7 +40,7 @@ def test_add_errors_name_the_frame_and_leave_the_tree_unchanged():
     with pytest.raises(FrameNotFoundError) as info:
         tree.add("x", "missing")
     assert info.value.field == "parent" and isinstance(info.value, KeyError)
-    with pytest.raises(InvalidPoseError):
+    with pytest.raises(ArgumentTypeError):
         tree.add("y", "world", pose=np.eye(4))
     with pytest.raises(TreeStructureError):
         tree.add("", "world")

@@ -10,7 +10,7 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import IO
 
-from .errors import WriteError
+from .errors import PinframesError, WriteError
 
 __all__ = ["atomic_write"]
 
@@ -19,27 +19,41 @@ __all__ = ["atomic_write"]
 def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO]:
     """Open a temporary file in the target's folder; on success rename it onto ``path``.
 
-    The folder must exist (no folders are created). If the body raises, the temporary file
-    is removed and any existing file at ``path`` is left untouched.
+    The folder must exist (no folders are created). A symbolic link is kept: the file it
+    points to is replaced. If the body raises, or writing fails, the temporary file is
+    removed and any existing file at ``path`` is left untouched; failures of the file
+    system are :class:`~pinframes.errors.WriteError` naming ``path``.
     """
-    target = Path(path)
+    target = Path(os.path.realpath(path)) if os.path.islink(path) else Path(path)
     folder = target.parent if str(target.parent) else Path(".")
+    if target.is_dir():
+        raise WriteError("is a folder, not a file", file=os.fspath(path))
     if not folder.is_dir():
-        raise WriteError("the folder does not exist", file=str(target))
+        raise WriteError(f"the folder does not exist: {os.fspath(folder)}",
+                         file=os.fspath(path))
     try:
         fd, tmp_name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=folder)
     except OSError as exc:
-        raise WriteError(f"cannot create a file here: {exc.strerror}", file=str(target)) from exc
+        raise WriteError(f"cannot create a file here: {exc.strerror}",
+                         file=os.fspath(path)) from exc
     try:
-        os.fchmod(fd, _mode_for(target))
-        with os.fdopen(fd, mode, **({} if "b" in mode else {"encoding": "utf-8"})) as handle:
+        try:
+            os.fchmod(fd, _mode_for(target))
+            handle = os.fdopen(fd, mode, **({} if "b" in mode else {"encoding": "utf-8"}))
+        except BaseException:
+            os.close(fd)
+            raise
+        with handle:
             yield handle
             handle.flush()
             os.fsync(handle.fileno())
         os.replace(tmp_name, target)
-    except BaseException:
+    except BaseException as exc:
         with contextlib.suppress(OSError):
             os.unlink(tmp_name)
+        if isinstance(exc, OSError) and not isinstance(exc, PinframesError):
+            raise WriteError(f"cannot write: {exc.strerror or exc}",
+                             file=os.fspath(path)) from exc
         raise
 
 

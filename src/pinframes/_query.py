@@ -17,8 +17,8 @@ from numpy.typing import NDArray
 from ._interpolation import Keyframes
 from ._se3 import IDENTITY, Transform, compose, inverse
 from ._timeline import QueryTimeline, TimedSource, plan_query_timeline
-from .errors import ExtrapolationError, InvalidTimeError, JointError
-from .joint import Joint
+from .errors import ExtrapolationError, InvalidTimeError
+from .joint import Joint, mimic_chain
 from .pinocchio_model import CompiledJoint, CompiledModel
 from .pose import Pose
 from .timeconv import TimeAxis, parse_time_axis
@@ -65,8 +65,8 @@ def evaluate_pose(
 ) -> Pose:
     """``tree.pose(frame, relative_to, times, time_ref)``; arguments already checked."""
     if extrapolation not in _EXTRAPOLATION_POLICIES:
-        raise ValueError(f"extrapolation must be one of {_EXTRAPOLATION_POLICIES}, "
-                         f"got {extrapolation!r}")
+        raise ExtrapolationError(f"expected one of {', '.join(_EXTRAPOLATION_POLICIES)}, "
+                                 f"got {extrapolation!r}", field="extrapolation")
     evaluation = _evaluation(tree, frame, relative_to)
     sources = list(evaluation.sources)
     timeline = plan_timeline(tree, sources, times, time_ref)
@@ -193,14 +193,7 @@ def model_sources(tree: FrameTree, model: CompiledModel) -> list[TimedSource]:
 
 def _driving_joints(tree: FrameTree, joint: Joint) -> list[str]:
     """``joint`` and, for a mimic joint, the chain of joints it follows."""
-    names = [joint.name]
-    while joint.mimic is not None:
-        if joint.mimic.joint in names:
-            raise JointError(f"mimic joints form a cycle: {' -> '.join(names)}",
-                             frame=joint.name, field="mimic")
-        names.append(joint.mimic.joint)
-        joint = tree.joints[joint.mimic.joint]
-    return names
+    return [link.name for link in mimic_chain(joint, tree.joints)]
 
 
 def _requested_times(tree: FrameTree, times: Any) -> TimeAxis | None:

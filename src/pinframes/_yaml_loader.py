@@ -14,6 +14,7 @@ from typing import Any
 
 import yaml
 
+from ._reading import read_text
 from .errors import FileFormatError
 
 __all__ = ["KeyPath", "Locate", "load_yaml"]
@@ -44,19 +45,17 @@ def load_yaml(path: str | os.PathLike[str], locate: Locate = _dotted) -> Any:
 
     Raises
     ------
+    ReadError
+        The file is missing, a folder, unreadable or not UTF-8 text.
     FileFormatError
         On a YAML syntax error, a mapping with two equal keys, or a tag other than the
         YAML core tags; the message gives the line.
     """
+    text = read_text(path)
     file = os.fspath(path)
-    with open(file, "rb") as handle:
-        raw = handle.read()
+    loader = None
     try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise FileFormatError(f"not UTF-8 text (byte {exc.start})", file=file) from exc
-    loader = _StrictLoader(text, file, locate)
-    try:
+        loader = _StrictLoader(text, file, locate)  # refuses unprintable characters
         node = loader.get_single_node()
         if node is None:
             return None
@@ -66,8 +65,11 @@ def load_yaml(path: str | os.PathLike[str], locate: Locate = _dotted) -> Any:
         raise FileFormatError(_syntax_message(exc), file=file) from exc
     except yaml.YAMLError as exc:
         raise FileFormatError(f"YAML error: {exc}", file=file) from exc
+    except RecursionError:
+        raise FileFormatError("YAML nested too deeply to read", file=file) from None
     finally:
-        loader.dispose()
+        if loader is not None:
+            loader.dispose()
 
 
 class _StrictLoader(yaml.SafeLoader):

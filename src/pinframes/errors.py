@@ -112,7 +112,8 @@ class ReferenceTimeError(PinframesError, ValueError):
 
 
 class ExtrapolationError(PinframesError, ValueError):
-    """A query time outside a frame's keyframes under ``extrapolation="error"``."""
+    """A query time outside a frame's keyframes under ``extrapolation="error"``, or an
+    unknown extrapolation policy."""
 
 
 class JointError(PinframesError, ValueError):

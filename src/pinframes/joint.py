@@ -16,7 +16,7 @@ from numpy.typing import NDArray
 
 from .errors import JointError
 
-__all__ = ["JOINT_KINDS", "Joint", "Mimic"]
+__all__ = ["JOINT_KINDS", "Joint", "Mimic", "mimic_chain"]
 
 JOINT_KINDS = ("revolute", "continuous", "prismatic")
 """Joint kinds driven by one value each."""
@@ -128,3 +128,23 @@ class Joint:
         if self.kind == "continuous":
             return np.stack([np.cos(values), np.sin(values)], axis=1)
         return values[:, None]
+
+
+def mimic_chain(joint: Joint, joints: dict[str, Joint]) -> list[Joint]:
+    """``joint``, the joint it mimics, and so on up to a joint that mimics none.
+
+    Raises :class:`~pinframes.errors.JointError` when a joint in the chain mimics one that is
+    not in ``joints`` (by name) or the chain closes on itself.
+    """
+    chain = [joint]
+    while chain[-1].mimic is not None:
+        target = chain[-1].mimic.joint
+        if target not in joints:
+            raise JointError(f"mimics joint {target!r}, which is not in the tree",
+                             frame=chain[-1].name, field="mimic")
+        if any(link.name == target for link in chain):
+            names = [link.name for link in chain]
+            raise JointError(f"mimic joints form a cycle: {' -> '.join([*names, target])}",
+                             frame=chain[-1].name, field="mimic")
+        chain.append(joints[target])
+    return chain

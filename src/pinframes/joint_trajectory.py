@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .errors import InvalidTimeError, JointError
+from .errors import ArgumentTypeError, InvalidTimeError, JointError
 from .joint_track import JointTrack
 from .timeconv import parse_time_axis
 
@@ -26,6 +26,9 @@ def set_joint_trajectory(
     tree: FrameTree, times: Any, positions: Any, joint_names: Sequence[str] | None = None
 ) -> None:
     """Set samples of joint values; see :meth:`pinframes.FrameTree.set_joint_trajectory`."""
+    if isinstance(joint_names, str):
+        raise ArgumentTypeError(f"expected a list of joint names, got the string {joint_names!r}",
+                                field="joint_names")
     if joint_names is None:
         joint_names = [name for name, joint in tree.joints.items() if joint.is_actuated]
     joint_names = list(joint_names)
@@ -59,7 +62,7 @@ def set_joint_trajectory(
 def _positions(positions: Any, count: int, joint_names: list[str]) -> np.ndarray:
     try:
         values = np.array(positions, dtype=float)
-    except (TypeError, ValueError) as exc:
+    except (TypeError, ValueError, OverflowError) as exc:
         raise JointError(f"positions must be numbers: {exc}", field="positions") from None
     if values.ndim == 1 and len(joint_names) == 1:
         values = values[:, None]

@@ -280,7 +280,7 @@ def _union_timeline(a: Pose, b: Pose) -> tuple[NDArray[np.int64], np.datetime64 
 def _as_float_array(values: ArrayLike, field: str) -> FloatArray:
     try:
         array = np.array(values, dtype=float)
-    except (TypeError, ValueError) as exc:
+    except (TypeError, ValueError, OverflowError) as exc:
         raise InvalidPoseError(f"expected numbers: {exc}", field=field) from None
     if not np.all(np.isfinite(array)):
         raise InvalidPoseError("values must be finite (no NaN or infinity)", field=field)

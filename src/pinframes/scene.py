@@ -76,8 +76,8 @@ def read_scene(path: str | os.PathLike[str]) -> FrameTree:
         inside a referenced file name that file and say which scene entry referenced it.
     UnsupportedFeatureError
         A scene format version newer than this pinframes reads.
-    OSError
-        The scene file cannot be read.
+    ReadError
+        The scene file (or a file it names) is missing, a folder, unreadable or not text.
     """
     scene = _Scene(Path(path))
     return scene.build()
@@ -350,7 +350,10 @@ class _Scene:
                            for v in values)):
             raise FileFormatError(f"expected a list of {count} numbers, got {value!r}",
                                   file=self.path, frame=frame, field=field)
-        array = np.array(values, dtype=float)
+        try:
+            array = np.array(values, dtype=float)
+        except OverflowError:  # an integer too large for a float
+            array = np.full(count, np.inf)
         if not np.all(np.isfinite(array)):
             raise FileFormatError("values must be finite", file=self.path, frame=frame,
                                   field=field)

@@ -18,6 +18,7 @@ import yaml
 
 from ._atomic import atomic_write
 from .errors import UnsupportedFeatureError
+from .joint import mimic_chain
 from .pose import Pose
 from .scene import SCENE_FORMAT_KEY, SCENE_FORMAT_VERSION
 from .timeconv import format_timedelta_iso
@@ -131,11 +132,9 @@ def _check_joint_steps(tree: FrameTree, name: str) -> None:
     joint = tree.joint_of(name)
     if joint is None or joint.kind == "prismatic":
         return
-    multiplier = 1.0
-    while joint.mimic is not None:
-        multiplier *= joint.mimic.multiplier
-        joint = tree.joints[joint.mimic.joint]
-    track = tree.joint_track(joint.name)
+    chain = mimic_chain(joint, tree.joints)
+    multiplier = float(np.prod([link.mimic.multiplier for link in chain[:-1]]))
+    track = tree.joint_track(chain[-1].name)
     if track is not None and np.any(np.abs(np.diff(track.values) * multiplier) >= np.pi):
         raise UnsupportedFeatureError(
             "its joint turns by half a turn or more between two trajectory samples, which "

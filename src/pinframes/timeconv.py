@@ -33,6 +33,8 @@ __all__ = [
     "parse_timestamp",
 ]
 
+_NS_LIMIT = 2**63 - 1
+"""Largest int64 nanosecond count (int64 min is NaT): about 292 years."""
 _NS_PER_UNIT = {
     "ns": 1, "nanosecond": 1, "nanoseconds": 1,
     "us": 1_000, "µs": 1_000, "microsecond": 1_000, "microseconds": 1_000,
@@ -82,16 +84,17 @@ def parse_time_axis(values: Any, *, field: str = "times") -> TimeAxis:
     if isinstance(values, (float, int)) and not isinstance(values, bool) and abs(values) < 9e9:
         return TimeAxis(np.array([round(values * 1e9)], dtype=np.int64), None)
     array = _as_time_array(values, field)
-    if array.dtype.kind == "M":
-        absolute = array.astype("datetime64[ns]")
-        if np.isnat(absolute).any():
-            raise InvalidTimeError("not-a-time (NaT) values", field=field)
-        reference = absolute[0]
-        return TimeAxis((absolute - reference).astype(np.int64), reference)
-    offsets = array.astype("timedelta64[ns]")
-    if np.isnat(offsets).any():
+    if np.isnat(array).any():
         raise InvalidTimeError("not-a-time (NaT) values", field=field)
-    return TimeAxis(offsets.astype(np.int64), None)
+    if array.dtype.kind == "M":
+        reference = array[0]
+        nanoseconds = array.astype(np.int64)
+        first = int(nanoseconds[0])
+        span = max(int(nanoseconds.max()) - first, first - int(nanoseconds.min()))
+        if span > _NS_LIMIT:
+            raise _beyond_nanoseconds(field)
+        return TimeAxis(nanoseconds - first, reference)
+    return TimeAxis(array.astype(np.int64), None)
 
 
 def parse_timestamp(value: Any, *, field: str = "reference_time") -> np.datetime64:
@@ -99,7 +102,7 @@ def parse_timestamp(value: Any, *, field: str = "reference_time") -> np.datetime
     array = _as_time_array(value, field)
     if array.dtype.kind != "M" or array.size != 1:
         raise InvalidTimeError(f"expected one timestamp, got {value!r}", field=field)
-    stamp = array.astype("datetime64[ns]")[0]
+    stamp = array[0]
     if np.isnat(stamp):
         raise InvalidTimeError("not-a-time (NaT)", field=field)
     return stamp
@@ -124,7 +127,7 @@ def format_timedelta_iso(nanoseconds: int) -> str:
 
 
 def _as_time_array(values: Any, field: str) -> np.ndarray:
-    """An array of dtype ``datetime64``, ``timedelta64`` or float seconds -> timedelta64."""
+    """``datetime64[ns]`` or ``timedelta64[ns]`` (float seconds become the latter)."""
     values = _from_pandas(values)
     if isinstance(values, (str, bytes, _dt.datetime, _dt.date, _dt.timedelta, np.generic)):
         values = [values]
@@ -140,14 +143,13 @@ def _as_time_array(values: Any, field: str) -> np.ndarray:
     if array.size == 0:
         raise InvalidTimeError("no times given", field=field)
     if array.dtype.kind in "mM":
-        return array
+        return _in_nanoseconds(array, field)
     if array.dtype.kind in "iuf":
         seconds = array.astype(float)
         if not np.all(np.isfinite(seconds)):
             raise InvalidTimeError("times must be finite numbers of seconds", field=field)
-        if np.max(np.abs(seconds)) > 9.2e9:
-            raise InvalidTimeError("times beyond +-292 years do not fit in nanoseconds",
-                                   field=field)
+        if np.max(np.abs(seconds)) > _NS_LIMIT / 1e9:
+            raise _beyond_nanoseconds(field)
         return np.round(seconds * 1e9).astype(np.int64).astype("timedelta64[ns]")
     items = list(values) if isinstance(values, (list, tuple)) else array.tolist()
     return _parse_elements(items, values, field)
@@ -161,7 +163,8 @@ def _parse_elements(items: list[Any], original: Any, field: str) -> np.ndarray:
             f"mixes absolute timestamps and relative durations: {original!r}", field=field
         )
     unit = "datetime64[ns]" if kinds == {"M"} else "timedelta64[ns]"
-    return np.array([value.astype(unit) for value in parsed], dtype=unit)
+    return np.array([_in_nanoseconds(np.array([value]), field)[0] for value in parsed],
+                    dtype=unit)
 
 
 def _parse_one(item: Any, field: str) -> np.generic:
@@ -170,15 +173,19 @@ def _parse_one(item: Any, field: str) -> np.generic:
     if isinstance(item, _dt.datetime):
         if item.tzinfo is not None:
             item = item.astimezone(_dt.timezone.utc).replace(tzinfo=None)
-        return np.datetime64(item, "ns")
+        return np.datetime64(item)
     if isinstance(item, _dt.date):
-        return np.datetime64(item, "ns")
+        return np.datetime64(item)
     if isinstance(item, _dt.timedelta):
-        return np.timedelta64(item, "ns")
+        return np.timedelta64(item)
     if isinstance(item, (int, float, np.integer, np.floating)) and not isinstance(item, bool):
-        if not np.isfinite(item):
+        try:
+            seconds = float(item)
+        except OverflowError:
+            raise _beyond_nanoseconds(field) from None
+        if not np.isfinite(seconds):
             raise InvalidTimeError("times must be finite numbers of seconds", field=field)
-        return np.timedelta64(round(float(item) * 1e9), "ns")
+        return _duration(seconds * 1e9, field)
     if isinstance(item, bytes):
         item = item.decode("utf-8", "replace")
     if isinstance(item, str):
@@ -189,16 +196,17 @@ def _parse_one(item: Any, field: str) -> np.generic:
 def _parse_string(text: str, field: str) -> np.generic:
     duration = _parse_duration_string(text.strip())
     if duration is not None:
-        return np.timedelta64(duration, "ns")
+        return _duration(duration, field)
     return _parse_timestamp_string(text.strip(), field)
 
 
-def _parse_duration_string(text: str) -> int | None:
+def _parse_duration_string(text: str) -> float | int | None:
+    """Nanoseconds of a duration string (may be huge or infinite), None if it is none."""
     if _NUMBER.match(text):
-        return round(float(text) * _NS_PER_UNIT["s"])
+        return float(text) * _NS_PER_UNIT["s"]
     match = _DURATION.match(text)
     if match and match.group(2) in _NS_PER_UNIT:
-        return round(float(match.group(1)) * _NS_PER_UNIT[match.group(2)])
+        return float(match.group(1)) * _NS_PER_UNIT[match.group(2)]
     match = _ISO_DURATION.match(text)
     if match and text not in ("P", "PT") and not text.endswith("T"):
         parts = match.groupdict()
@@ -209,7 +217,7 @@ def _parse_duration_string(text: str) -> int | None:
                 total += float(parts[name]) * _NS_PER_UNIT[unit]
         if parts["seconds"]:
             nanoseconds = _seconds_text_to_ns(parts["seconds"])
-        value = round(total) + nanoseconds
+        value = (round(total) if np.isfinite(total) else total) + nanoseconds
         return -value if parts["sign"] == "-" else value
     return None
 
@@ -230,13 +238,46 @@ def _parse_timestamp_string(text: str, field: str) -> np.datetime64:
             raise InvalidTimeError(f"cannot read a time from {text!r}", field=field) from None
         return _parse_one(stamp, field)
     try:
-        return np.datetime64(text, "ns")
+        return np.datetime64(text)
     except ValueError:
         raise InvalidTimeError(
             f"cannot read a time from {text!r} (expected seconds, a duration such as '2s' "
             "or 'P0DT0H0M2S', or a timestamp such as '2024-03-01T08:00:00')",
             field=field,
         ) from None
+
+
+def _duration(nanoseconds: float | int, field: str) -> np.timedelta64:
+    """``timedelta64[ns]`` of a (possibly huge or infinite) number of nanoseconds."""
+    if not abs(nanoseconds) <= _NS_LIMIT:
+        raise _beyond_nanoseconds(field)
+    return np.timedelta64(round(nanoseconds), "ns")
+
+
+def _in_nanoseconds(array: np.ndarray, field: str) -> np.ndarray:
+    """A ``datetime64`` or ``timedelta64`` array of any unit in nanoseconds.
+
+    numpy wraps values that do not fit in int64 nanoseconds around without a word
+    (``9999-12-31`` becomes ``1816-03-29``), so the range is checked in the array's own unit.
+    """
+    kind = "datetime64" if array.dtype.kind == "M" else "timedelta64"
+    unit, _ = np.datetime_data(array.dtype)
+    if unit not in ("ns", "ps", "fs", "as", "generic"):
+        values = array.astype(np.int64)
+        values = values[values != np.iinfo(np.int64).min]  # NaT, reported by the callers
+        limit = np.datetime64(_NS_LIMIT, "ns").astype(f"datetime64[{unit}]").astype(np.int64)
+        if values.size and np.max(np.abs(values)) > limit:
+            raise _beyond_nanoseconds(field)
+    try:
+        return array.astype(f"{kind}[ns]")
+    except TypeError as exc:  # timedelta64 in months or years: no fixed length
+        raise InvalidTimeError(f"cannot read times in {array.dtype}: {exc}", field=field) from None
+
+
+def _beyond_nanoseconds(field: str) -> InvalidTimeError:
+    return InvalidTimeError(
+        "times beyond +-292 years (of 1970 for timestamps) do not fit in int64 nanoseconds",
+        field=field)
 
 
 def _from_pandas(values: Any) -> Any:

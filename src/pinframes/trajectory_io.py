@@ -14,6 +14,7 @@ NPZ
 from __future__ import annotations
 
 import csv
+import io
 import os
 import zipfile
 from pathlib import Path
@@ -21,6 +22,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from ._reading import read_bytes, read_text
 from .errors import FileFormatError, InvalidTimeError
 from .timeconv import parse_time_axis
 
@@ -48,8 +50,8 @@ def read_joint_trajectory(
     ------
     FileFormatError
         Malformed content; the message names the file, the column and the line.
-    OSError
-        The file cannot be read.
+    ReadError
+        The file is missing, a folder, unreadable, or (CSV) not UTF-8 text.
     """
     suffix = Path(path).suffix.lower()
     if suffix == ".csv":
@@ -68,13 +70,14 @@ def read_joint_trajectory(
 
 
 def _read_csv(path: str | os.PathLike[str]) -> tuple[np.ndarray, NDArray[np.float64], list[str]]:
-    with open(path, encoding="utf-8", newline="") as handle:
-        try:
-            lines = [(number, row) for number, row in enumerate(csv.reader(handle), start=1)
-                     if row and any(cell.strip() for cell in row)
-                     and not row[0].lstrip().startswith("#")]
-        except (UnicodeDecodeError, csv.Error) as exc:
-            raise FileFormatError(f"not a readable CSV file: {exc}", file=path) from None
+    text = read_text(path)
+    try:
+        lines = [(number, row) for number, row in
+                 enumerate(csv.reader(io.StringIO(text, newline="")), start=1)
+                 if row and any(cell.strip() for cell in row)
+                 and not row[0].lstrip().startswith("#")]
+    except csv.Error as exc:
+        raise FileFormatError(f"not a readable CSV file: {exc}", file=path) from None
     if not lines:
         raise FileFormatError("empty file: expected a header line and samples", file=path)
     header_line, header = lines[0]
@@ -125,7 +128,7 @@ def _csv_times(cells: list[str], column: str, rows: list[tuple[int, list[str]]],
 
 def _read_npz(path: str | os.PathLike[str]) -> tuple[np.ndarray, NDArray[np.float64], list[str]]:
     try:
-        archive = np.load(path, allow_pickle=False)
+        archive = np.load(io.BytesIO(read_bytes(path)), allow_pickle=False)
     except (ValueError, EOFError, zipfile.BadZipFile) as exc:
         raise FileFormatError(f"not a readable NPZ file: {exc}", file=path) from None
     if not isinstance(archive, np.lib.npyio.NpzFile):
@@ -177,6 +180,10 @@ def _check_times(times: np.ndarray, path: str | os.PathLike[str]) -> None:
     if times.dtype.kind == "f" and not np.all(np.isfinite(times)):
         raise FileFormatError(f"time at sample {int(np.argmin(np.isfinite(times))) + 1} is not "
                               "finite", file=path, field="times")
+    try:
+        parse_time_axis(times)  # the same range rules as every other time input
+    except InvalidTimeError as exc:
+        raise FileFormatError(exc.message, file=path, field="times") from None
     steps = np.diff(times)
     if np.any(steps <= steps.dtype.type(0)):
         sample = int(np.argmax(steps <= steps.dtype.type(0))) + 2

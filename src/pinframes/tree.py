@@ -11,6 +11,7 @@ import numpy as np
 from . import _query
 from ._se3 import IDENTITY, Transform, compose
 from .errors import (
+    ArgumentTypeError,
     FrameExistsError,
     FrameNotFoundError,
     InvalidPoseError,
@@ -159,10 +160,7 @@ class FrameTree:
         reference time, moving frames must all have reference times or all have none.
         """
         self._check_new(name, parent)
-        pose = Pose.identity() if pose is None else pose
-        if not isinstance(pose, Pose):
-            raise InvalidPoseError(f"expected a pinframes.Pose, got {type(pose).__name__}",
-                                   frame=name, field="pose")
+        pose = _checked_pose(pose, name, "pose")
         if pose.is_time_dependent:
             self._count_reference(pose.reference_time, name)
         self._insert(name, parent, pose)
@@ -174,10 +172,13 @@ class FrameTree:
         The pose of ``name`` in ``parent`` is ``origin @ motion(value)``.
         """
         self._check_new(name, parent)
+        if not isinstance(joint, Joint):
+            raise ArgumentTypeError(f"expected a pinframes.Joint, got {type(joint).__name__}",
+                                    frame=name, field="joint")
         if joint.name in self._joint_frames:
             raise FrameExistsError(f"the tree already has a joint named {joint.name!r}",
                                    frame=name, field="joint")
-        origin = Pose.identity() if origin is None else origin
+        origin = _checked_pose(origin, name, "origin")
         if origin.is_time_dependent:
             raise InvalidPoseError("a joint origin must be static", frame=name, field="origin")
         self._insert(name, parent, origin)
@@ -230,13 +231,19 @@ class FrameTree:
 
     def set_joint_track(self, joint_name: str, track: JointTrack | None) -> None:
         """Set (or with None, clear) the trajectory of a robot joint."""
-        if joint_name not in self._joint_frames:
+        if not isinstance(joint_name, str) or joint_name not in self._joint_frames:
             raise FrameNotFoundError(f"no joint named {joint_name!r}", field="joint_names")
         previous = self._joint_tracks.pop(joint_name, None)
         if previous is not None:
             self._uncount_reference(previous.reference)
         if track is not None:
-            self._count_reference(track.reference, joint_name)
+            try:
+                self._count_reference(track.reference, joint_name)
+            except ReferenceTimeError:
+                if previous is not None:  # leave the tree as it was
+                    self._count_reference(previous.reference, joint_name)
+                    self._joint_tracks[joint_name] = previous
+                raise
             self._joint_tracks[joint_name] = track
         self._invalidate()
 
@@ -299,8 +306,8 @@ class FrameTree:
         """Replace the pose of ``name`` in its parent (static or moving)."""
         previous = self.local_pose(name)
         if not isinstance(pose, Pose):
-            raise InvalidPoseError(f"expected a pinframes.Pose, got {type(pose).__name__}",
-                                   frame=name, field="pose")
+            raise ArgumentTypeError(f"expected a pinframes.Pose, got {type(pose).__name__}",
+                                    frame=name, field="pose")
         if name in self._joints and pose.is_time_dependent:
             raise InvalidPoseError("a joint origin must be static", frame=name, field="pose")
         if previous.is_time_dependent:
@@ -349,9 +356,9 @@ class FrameTree:
         Pose
             One pose per requested time; ``reference_time`` set by the rules of SPEC 4.
         """
-        self._require(frame)
+        self._require(frame, "frame")
         relative_to = self._default_reference(frame, relative_to)
-        self._require(relative_to)
+        self._require(relative_to, "relative_to")
         return _query.evaluate_pose(self, frame, relative_to, times, time_ref, extrapolation)
 
     def sample_times(self, frame: str, relative_to: str | None = None) -> TimeAxis | None:
@@ -360,9 +367,9 @@ class FrameTree:
         Every keyframe and joint sample time on the path, as nanosecond offsets after the
         reference time the result would carry; None when nothing on the path moves.
         """
-        self._require(frame)
+        self._require(frame, "frame")
         relative_to = self._default_reference(frame, relative_to)
-        self._require(relative_to)
+        self._require(relative_to, "relative_to")
         return _query.default_times(self, frame, relative_to)
 
     def to_pinocchio(self) -> PinocchioTree:
@@ -432,7 +439,10 @@ class FrameTree:
         return self._timed_with_reference > 0
 
     # -- helpers ---------------------------------------------------------------------------
-    def _require(self, name: str) -> None:
+    def _require(self, name: str, field: str | None = None) -> None:
+        if not isinstance(name, str):
+            raise ArgumentTypeError(f"frame names are strings, got {type(name).__name__}",
+                                    field=field)
         if name not in self._children:
             raise FrameNotFoundError("no frame of this name in the tree", frame=str(name))
 
@@ -440,6 +450,9 @@ class FrameTree:
         _check_name(name)
         if name in self._children:
             raise FrameExistsError("the tree already has a frame of this name", frame=name)
+        if not isinstance(parent, str):
+            raise ArgumentTypeError(f"frame names are strings, got {type(parent).__name__}",
+                                    frame=name, field="parent")
         if parent not in self._children:
             raise FrameNotFoundError(f"parent frame {parent!r} is not in the tree",
                                      frame=name, field="parent")
@@ -488,9 +501,21 @@ class FrameTree:
 
 
 def _check_name(name: object) -> None:
-    if not isinstance(name, str) or not name:
-        raise TreeStructureError(f"frame names must be non-empty strings, got {name!r}",
-                                 field="name")
+    if not isinstance(name, str):
+        raise ArgumentTypeError(f"frame names are strings, got {type(name).__name__}",
+                                field="name")
+    if not name:
+        raise TreeStructureError("frame names must not be empty", field="name")
+
+
+def _checked_pose(pose: object, frame: str, field: str) -> Pose:
+    """``pose``, the identity for None; an :class:`ArgumentTypeError` for a non-Pose."""
+    if pose is None:
+        return Pose.identity()
+    if not isinstance(pose, Pose):
+        raise ArgumentTypeError(f"expected a pinframes.Pose or None, got {type(pose).__name__}",
+                                frame=frame, field=field)
+    return pose
 
 
 def _replace_members(subsystem: Subsystem, members: tuple[str, ...]) -> Subsystem:

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from pinframes import read_joint_trajectory
-from pinframes.errors import FileFormatError
+from pinframes.errors import FileFormatError, ReadError
 
 
 def write(tmp_path, name, text):
@@ -93,5 +93,5 @@ def test_malformed_npz(tmp_path):
 def test_unknown_suffix_and_missing_file(tmp_path):
     with pytest.raises(FileFormatError, match=r"expected \.csv or \.npz"):
         read_joint_trajectory(write(tmp_path, "m.txt", "time_s,j\n0,1\n"))
-    with pytest.raises(FileNotFoundError):
+    with pytest.raises(ReadError, match="no such file"):
         read_joint_trajectory(tmp_path / "absent.csv")

@@ -8,7 +8,13 @@ import pytest
 import yourdfpy
 
 from pinframes import FrameTree, Pose
-from pinframes.errors import FileFormatError, FrameExistsError, InvalidTimeError, JointError
+from pinframes.errors import (
+    FileFormatError,
+    FrameExistsError,
+    InvalidTimeError,
+    JointError,
+    ReadError,
+)
 from pinframes.joint_trajectory import JointLimitWarning
 from pinframes.urdf import read_urdf, write_urdf
 
@@ -83,12 +89,14 @@ def test_export_keeps_joints_limits_mimic_and_link_contents_and_reloads(tmp_path
     write_urdf(tree, path, time=2.0)
     text = path.read_text()
     assert "package://arm/base.dae" in text and 'damping="0.7"' in text
-    assert '<mimic joint="a/elbow_mimic" multiplier="-1.0" offset="0.0"' in text
+    # wrist = -1 * elbow and elbow = 2 * shoulder + 0.1: one mimic of the driven joint
+    assert '<mimic joint="a/shoulder" multiplier="-2.0" offset="-0.1"' in text
 
     again = read_urdf(path)
     assert set(again.frames) == set(tree.frames)
     assert again.joints["a/shoulder"].upper == 1.5
     assert again.joints["a/elbow_mimic"].mimic.joint == "a/shoulder"
+    assert again.joints["a/wrist_mimic"].mimic.joint == "a/shoulder"
     values = {"a/shoulder": 0.4, "a/slider": 0.15}
     again.set_joint_trajectory([0.0], [list(values.values())], list(values))
     tree.set_joint_trajectory([0.0], [list(values.values())], list(values))
@@ -152,7 +160,7 @@ def test_bad_urdfs_raise_named_errors_and_leave_the_tree_unchanged(urdf, field):
 
 
 def test_missing_file_names_the_file(tmp_path):
-    with pytest.raises(FileFormatError, match="no such file") as info:
+    with pytest.raises(ReadError, match="no such file") as info:
         read_urdf(tmp_path / "missing.urdf")
     assert info.value.file.endswith("missing.urdf")
 

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import read_scene
-from ..errors import FileFormatError
+from ..errors import FileFormatError, WriteError
 from ..plotting import new_figure, plot_frames, robot_frames, save_figure
 from ..pose import Pose
 from ..tree import FrameTree
@@ -39,7 +39,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         f"print a summary and write the poses ({POSES_FILE}) and a plot ({PLOT_FILE}).")
     parser.add_argument("--out", metavar="DIR", default=".",
                         help="folder for the CSV and PNG files (default: the current folder; "
-                        "created if missing)")
+                        "created if missing, but not its parent folders)")
     parser.add_argument("--scene", metavar="FILE",
                         help="another scene file (default: the bundled welding cell)")
     parser.add_argument("--tool", default="torch_tcp", metavar="FRAME",
@@ -110,7 +110,10 @@ def run(args: argparse.Namespace) -> int:
                               file=scene)
     summary = summarize(pose)
     out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    try:
+        out.mkdir(exist_ok=True)  # the output folder itself, never its parents
+    except OSError as exc:
+        raise WriteError(f"cannot create the output folder: {exc.strerror}", file=out) from None
     write_poses(pose, "csv", str(out / POSES_FILE), frame=args.tool,
                 relative_to=args.workpiece)
     _plot(tree, pose, summary, args.tool, args.workpiece, out / PLOT_FILE)

@@ -184,10 +184,15 @@ def finite_number(value: Any, file: str, frame: str | None, field: str) -> float
     if isinstance(value, bool) or not isinstance(value, int | float):
         raise FileFormatError(f"expected a number, got {_kind(value)}", file=file, frame=frame,
                               field=field)
-    if not math.isfinite(value):
+    try:
+        number = float(value)
+    except OverflowError:
+        raise FileFormatError(f"expected a finite number, got an integer of {len(str(value))} "
+                              "digits", file=file, frame=frame, field=field) from None
+    if not math.isfinite(number):
         raise FileFormatError(f"expected a finite number, got {value!r}", file=file,
                               frame=frame, field=field)
-    return float(value)
+    return number
 
 
 def load_tile_maps(path: str | os.PathLike[str]) -> dict[str, TileSize]:

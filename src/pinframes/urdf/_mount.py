@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from ..errors import FrameExistsError, FrameNotFoundError
+from ..errors import ArgumentTypeError, FrameExistsError, FrameNotFoundError
 from ..joint import Joint, Mimic
 from ..pose import Pose
 from ._parse import RobotDescription
@@ -30,6 +30,9 @@ def mount_robot(
     Everything is checked before the tree changes, and a failure midway is rolled back, so
     the tree is left as it was.
     """
+    if not isinstance(prefix, str):
+        raise ArgumentTypeError(f"expected a string, got {type(prefix).__name__}",
+                                file=robot.source, field="prefix")
     root_frame = prefix + robot.root_link
     names = [root_frame] + [prefix + joint.child for joint in robot.joints]
     if parent is not None:

@@ -10,12 +10,14 @@ from pathlib import Path
 
 import numpy as np
 
+from .._reading import read_text
 from ..errors import FileFormatError
 from ..pose import Pose
 
 __all__ = ["URDF_JOINT_TYPES", "JointDescription", "RobotDescription", "parse_urdf"]
 
 URDF_JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
+_DRIVEN_TYPES = ("revolute", "continuous", "prismatic")
 _JOINT_FIELDS_READ = {"parent", "child", "origin", "axis", "limit", "mimic"}
 
 
@@ -74,6 +76,18 @@ def parse_urdf(urdf: str | os.PathLike[str]) -> RobotDescription:
     if not name:
         name = Path(source).stem if source != "<urdf string>" else "robot"
         warnings.warn(f"{source}: <robot> has no name; using {name!r}", stacklevel=3)
+    try:
+        links, joints, extra = _elements(root, source)
+    except RecursionError:
+        raise FileFormatError("XML elements nested too deeply to keep", file=source) from None
+    ordered, root_link = _check_tree(links, joints, source)
+    _check_mimics(ordered, source)
+    return RobotDescription(name, source, root_link, links, tuple(ordered), tuple(extra))
+
+
+def _elements(root: ET.Element, source: str
+              ) -> tuple[dict[str, tuple[str, ...]], list[JointDescription], list[str]]:
+    """The links (their inner XML as written), the joints and the other top-level XML."""
     links: dict[str, tuple[str, ...]] = {}
     joints: list[JointDescription] = []
     extra: list[str] = []
@@ -88,20 +102,13 @@ def parse_urdf(urdf: str | os.PathLike[str]) -> RobotDescription:
             joints.append(_parse_joint(element, source))
         elif isinstance(element.tag, str):
             extra.append(_xml(element))
-    ordered, root_link = _check_tree(links, joints, source)
-    return RobotDescription(name, source, root_link, links, tuple(ordered), tuple(extra))
+    return links, joints, extra
 
 
 def _read_source(urdf: str | os.PathLike[str]) -> tuple[str, str]:
     if isinstance(urdf, str) and urdf.lstrip().startswith("<"):
         return urdf, "<urdf string>"
-    path = Path(urdf)
-    try:
-        return path.read_text(encoding="utf-8"), str(path)
-    except FileNotFoundError:
-        raise FileFormatError("no such file", file=str(path)) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise FileFormatError(f"cannot read: {exc}", file=str(path)) from None
+    return read_text(urdf), os.fspath(urdf)
 
 
 def _parse_joint(element: ET.Element, source: str) -> JointDescription:
@@ -158,10 +165,6 @@ def _check_tree(
                 f"link {joint.child!r} has two parents (joints {by_child[joint.child].name!r} "
                 f"and {joint.name!r})", file=source, frame=joint.name, field="child.link")
         by_child[joint.child] = joint
-    for joint in joints:
-        if joint.mimic is not None and joint.mimic[0] not in names:
-            raise FileFormatError(f"mimics unknown joint {joint.mimic[0]!r}", file=source,
-                                  frame=joint.name, field="mimic.joint")
     roots = [link for link in links if link not in by_child]
     if len(roots) != 1:
         detail = ("no link without a parent: the joints form a cycle" if not roots
@@ -185,6 +188,36 @@ def _check_tree(
         raise FileFormatError(f"links {', '.join(cut_off)} form a cycle", file=source,
                               field="link")
     return ordered, roots[0]
+
+
+def _check_mimics(joints: list[JointDescription], source: str) -> None:
+    """Mimic targets exist, are driven joints, and no chain of mimics closes on itself.
+
+    A mimic of a mimic is allowed (its value follows the chain to a driven joint).
+    """
+    by_name = {joint.name: joint for joint in joints}
+    for joint in joints:
+        if joint.mimic is None or joint.type not in _DRIVEN_TYPES:
+            continue
+        target = by_name.get(joint.mimic[0])
+        if target is None:
+            raise FileFormatError(f"mimics unknown joint {joint.mimic[0]!r}", file=source,
+                                  frame=joint.name, field="mimic.joint")
+        if target.type not in _DRIVEN_TYPES:
+            raise FileFormatError(
+                f"mimics {target.name!r}, a {target.type} joint; only "
+                f"{', '.join(_DRIVEN_TYPES)} joints have a value to follow", file=source,
+                frame=joint.name, field="mimic.joint")
+        chain = [joint.name]
+        while target.mimic is not None and target.type in _DRIVEN_TYPES:
+            if target.name in chain:
+                cycle = [*chain[chain.index(target.name):], target.name]
+                raise FileFormatError(f"mimic cycle: {' -> '.join(cycle)}", file=source,
+                                      frame=target.name, field="mimic.joint")
+            chain.append(target.name)
+            target = by_name.get(target.mimic[0])
+            if target is None:
+                break  # reported when the loop reaches that joint
 
 
 def _required(element: ET.Element, attribute: str, source: str, what: str) -> str:

@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from .._atomic import atomic_write
-from ..joint import Joint
+from ..joint import Joint, mimic_chain
 from ..rotations import rpy_from_matrix
 from ..tree import FrameTree
 from ._mount import URDF_METADATA_KEY, mount_robot
@@ -74,7 +74,7 @@ def _joint(tree: FrameTree, frame: str, time: Any, used: set[str]) -> ET.Element
     ET.SubElement(joint, "origin", xyz=_numbers(translation),
                   rpy=_numbers(rpy_from_matrix(rotation)))
     if driven is not None:
-        _driven_elements(joint, driven)
+        _driven_elements(joint, driven, tree.joints)
     elif joint_type == "planar":
         ET.SubElement(joint, "axis", xyz=_numbers(kept.get("axis", (0.0, 0.0, 1.0))))
     for text in kept.get("extra_xml", ()):
@@ -93,7 +93,7 @@ def _origin(tree: FrameTree, frame: str, parent: str, time: Any
     return frozen.translation[0], frozen.rotation[0]
 
 
-def _driven_elements(element: ET.Element, joint: Joint) -> None:
+def _driven_elements(element: ET.Element, joint: Joint, joints: dict[str, Joint]) -> None:
     ET.SubElement(element, "axis", xyz=_numbers(joint.axis))
     limits = {"lower": joint.lower, "upper": joint.upper, "effort": joint.effort,
               "velocity": joint.velocity}
@@ -105,9 +105,24 @@ def _driven_elements(element: ET.Element, joint: Joint) -> None:
     if written:
         ET.SubElement(element, "limit", **written)
     if joint.mimic is not None:
-        ET.SubElement(element, "mimic", joint=joint.mimic.joint,
-                      multiplier=repr(float(joint.mimic.multiplier)),
-                      offset=repr(float(joint.mimic.offset)))
+        primary, multiplier, offset = _mimic_of_driven_joint(joint, joints)
+        ET.SubElement(element, "mimic", joint=primary, multiplier=repr(multiplier),
+                      offset=repr(offset))
+
+
+def _mimic_of_driven_joint(joint: Joint, joints: dict[str, Joint]) -> tuple[str, float, float]:
+    """The joint at the end of ``joint``'s mimic chain, and the multiplier and offset that
+    give ``joint``'s value from it.
+
+    URDF readers such as Pinocchio's refuse a mimic of a mimic, so a chain is written as one
+    mimic of the driven joint: ``v2 = m2 (m1 v0 + o1) + o2 = (m2 m1) v0 + (m2 o1 + o2)``.
+    """
+    chain = mimic_chain(joint, joints)
+    multiplier, offset = 1.0, 0.0
+    for link in reversed(chain[:-1]):
+        multiplier, offset = (link.mimic.multiplier * multiplier,
+                              link.mimic.multiplier * offset + link.mimic.offset)
+    return chain[-1].name, float(multiplier), float(offset)
 
 
 def _free_name(wanted: str, used: set[str]) -> str:
