@@ -9,6 +9,7 @@ syntax errors (with their line) and tags it has no constructor for (``!include``
 from __future__ import annotations
 
 import os
+import sys
 from collections.abc import Callable, Hashable
 from typing import Any
 
@@ -55,8 +56,9 @@ def load_yaml(path: str | os.PathLike[str], locate: Locate = _dotted) -> Any:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:
         raise FileFormatError(f"not UTF-8 text (byte {exc.start})", file=file) from exc
-    loader = _StrictLoader(text, file, locate)
+    loader = None
     try:
+        loader = _StrictLoader(text, file, locate)  # refuses control characters at once
         node = loader.get_single_node()
         if node is None:
             return None
@@ -66,8 +68,11 @@ def load_yaml(path: str | os.PathLike[str], locate: Locate = _dotted) -> Any:
         raise FileFormatError(_syntax_message(exc), file=file) from exc
     except yaml.YAMLError as exc:
         raise FileFormatError(f"YAML error: {exc}", file=file) from exc
+    except RecursionError:  # PyYAML composes and constructs nested nodes recursively
+        raise FileFormatError("YAML nested too deeply to read", file=file) from None
     finally:
-        loader.dispose()
+        if loader is not None:
+            loader.dispose()
 
 
 class _StrictLoader(yaml.SafeLoader):
@@ -103,6 +108,15 @@ class _StrictLoader(yaml.SafeLoader):
             elif isinstance(current, yaml.SequenceNode):
                 stack.extend((item, (*where, index)) for index, item in enumerate(current.value))
 
+    def construct_yaml_int(self, node: yaml.ScalarNode) -> int:
+        """An integer, refused when no float holds it (every pinframes number is a float)."""
+        value = super().construct_yaml_int(node)
+        if abs(value) > sys.float_info.max:
+            raise FileFormatError(
+                f"integer at line {node.start_mark.line + 1} is too large for a number",
+                file=self._file)
+        return value
+
     def construct_mapping(self, node: yaml.MappingNode, deep: bool = False) -> dict:
         first_lines: dict[Any, int] = {}
         for key_node, _ in node.value:
@@ -119,6 +133,9 @@ class _StrictLoader(yaml.SafeLoader):
             if isinstance(key, Hashable):
                 first_lines[key] = line
         return super().construct_mapping(node, deep=deep)
+
+
+_StrictLoader.add_constructor("tag:yaml.org,2002:int", _StrictLoader.construct_yaml_int)
 
 
 def _syntax_message(exc: yaml.MarkedYAMLError) -> str:
