@@ -16,6 +16,7 @@ Relative times (offsets) are ``timedelta64[ns]``; absolute times are ``datetime6
 from __future__ import annotations
 
 import datetime as _dt
+import math
 import re
 from dataclasses import dataclass
 from typing import Any
@@ -44,6 +45,12 @@ _NS_PER_UNIT = {
     "d": 86_400_000_000_000, "day": 86_400_000_000_000, "days": 86_400_000_000_000,
 }
 _DURATION = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([a-zµ]+)\s*$")
+_NANOSECOND_LIMIT = 2**63 - 1
+_EARLIEST = np.datetime64("1677-09-21T00:12:44", "s")
+_LATEST = np.datetime64("2262-04-11T23:47:16", "s")
+"""The whole seconds that int64 nanoseconds since 1970 reach."""
+_COARSE_UNITS = ("Y", "M", "W", "D", "h", "m", "s", "ms", "us")
+"""Units of parsed timestamps that reach beyond the nanosecond range without wrapping."""
 _NUMBER = re.compile(r"^[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?$")
 _ISO_DURATION = re.compile(
     r"^(?P<sign>[-+])?P(?:(?P<days>[-+]?\d+(?:\.\d+)?)D)?"
@@ -170,15 +177,14 @@ def _parse_one(item: Any, field: str) -> np.generic:
     if isinstance(item, _dt.datetime):
         if item.tzinfo is not None:
             item = item.astimezone(_dt.timezone.utc).replace(tzinfo=None)
-        return np.datetime64(item, "ns")
+        return _in_nanoseconds(np.datetime64(item, "us"), item, field)
     if isinstance(item, _dt.date):
-        return np.datetime64(item, "ns")
+        return _in_nanoseconds(np.datetime64(item, "D"), item, field)
     if isinstance(item, _dt.timedelta):
         return np.timedelta64(item, "ns")
     if isinstance(item, (int, float, np.integer, np.floating)) and not isinstance(item, bool):
-        if not np.isfinite(item):
-            raise InvalidTimeError("times must be finite numbers of seconds", field=field)
-        return np.timedelta64(round(float(item) * 1e9), "ns")
+        exact = isinstance(item, (int, np.integer))
+        return _duration(int(item) * 1_000_000_000 if exact else float(item) * 1e9, item, field)
     if isinstance(item, bytes):
         item = item.decode("utf-8", "replace")
     if isinstance(item, str):
@@ -187,10 +193,21 @@ def _parse_one(item: Any, field: str) -> np.generic:
 
 
 def _parse_string(text: str, field: str) -> np.generic:
-    duration = _parse_duration_string(text.strip())
+    try:
+        duration = _parse_duration_string(text.strip())
+    except OverflowError:  # infinite, or more digits than a float holds
+        duration = math.inf
     if duration is not None:
-        return np.timedelta64(duration, "ns")
+        return _duration(duration, text, field)
     return _parse_timestamp_string(text.strip(), field)
+
+
+def _duration(nanoseconds: float | int, written: Any, field: str) -> np.timedelta64:
+    """``nanoseconds`` as a duration; an error unless finite and within int64 nanoseconds."""
+    if not abs(nanoseconds) < _NANOSECOND_LIMIT:  # also refuses NaN
+        raise InvalidTimeError(f"time {written!r} is not finite or beyond +-292 years, which "
+                               "do not fit in nanoseconds", field=field)
+    return np.timedelta64(round(nanoseconds), "ns")
 
 
 def _parse_duration_string(text: str) -> int | None:
@@ -230,13 +247,23 @@ def _parse_timestamp_string(text: str, field: str) -> np.datetime64:
             raise InvalidTimeError(f"cannot read a time from {text!r}", field=field) from None
         return _parse_one(stamp, field)
     try:
-        return np.datetime64(text, "ns")
+        stamp = np.datetime64(text)  # in its own unit, which does not wrap around
     except ValueError:
         raise InvalidTimeError(
             f"cannot read a time from {text!r} (expected seconds, a duration such as '2s' "
             "or 'P0DT0H0M2S', or a timestamp such as '2024-03-01T08:00:00')",
             field=field,
         ) from None
+    return _in_nanoseconds(stamp, text, field)
+
+
+def _in_nanoseconds(stamp: np.datetime64, written: Any, field: str) -> np.datetime64:
+    """``stamp`` in nanoseconds; an error (not numpy's silent wrap) outside their range."""
+    if np.datetime_data(stamp.dtype)[0] in _COARSE_UNITS and not (
+            _EARLIEST <= stamp.astype("datetime64[s]") <= _LATEST):
+        raise InvalidTimeError(f"timestamp {written!r} is outside {_EARLIEST} to {_LATEST}, "
+                               "the range of nanosecond timestamps", field=field)
+    return stamp.astype("datetime64[ns]")
 
 
 def _from_pandas(values: Any) -> Any:

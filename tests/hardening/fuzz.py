@@ -454,19 +454,27 @@ def fuzz(reader_table: dict[str, Reader], folder: Path, seed: int,
     return tried, failures
 
 
-def regression_inputs() -> list[tuple[str, Path]]:
-    """The kept inputs that once failed: (reader name, file), named ``<reader>__*``."""
-    return [(path.name.split("__")[0], path) for path in sorted(REGRESSIONS.glob("*__*"))
-            if path.suffix != ".json"]
+def regression_inputs() -> list[Path]:
+    """The records (``.json``) of kept inputs that once failed."""
+    return sorted(REGRESSIONS.glob("*.json"))
 
 
-def replay(reader_table: dict[str, Reader], name: str, path: Path, folder: Path) -> str | None:
-    """Read a kept input with its reader (companion files of the reader's first sample)."""
-    reader = reader_table[name]
-    record = path.with_suffix(path.suffix + ".json")
-    sample_name = json.loads(record.read_text())["sample"] if record.is_file() else None
-    sample = next((s for s in reader.samples if s.name == sample_name), reader.samples[0])
-    return read_once(reader, prepare(folder, sample), path.read_bytes())
+def replay(reader_table: dict[str, Reader], record_path: Path, folder: Path) -> str | None:
+    """Read a kept input again: the file beside its record, else remade from seed and index.
+
+    Remade inputs depend on the mutation code; large inputs are kept that way all the same.
+    """
+    record = json.loads(record_path.read_text())
+    reader = reader_table[record["reader"]]
+    sample = next((s for s in reader.samples if s.name == record["sample"]), None)
+    if sample is None:
+        sample = reader.samples[0]
+    content_path = record_path.with_suffix("")
+    if content_path.is_file():
+        content = content_path.read_bytes()
+    else:
+        content = make_input(reader, sample, record["reader"], record["seed"], record["index"])
+    return read_once(reader, prepare(folder, sample), content)
 
 
 def _save(failure: Failure, out: Path) -> Path:

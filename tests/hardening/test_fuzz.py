@@ -21,10 +21,9 @@ def test_mutated_samples_give_pinframes_errors_only(name, tmp_path):
         f"{f.sample} input {f.index}: {f.error}" for f in failures[:10])
 
 
-@pytest.mark.parametrize(("name", "path"), fuzz.regression_inputs(),
-                         ids=lambda value: getattr(value, "name", value))
-def test_inputs_that_once_failed_give_pinframes_errors_only(name, path, tmp_path):
-    assert fuzz.replay(READERS, name, path, tmp_path) is None
+@pytest.mark.parametrize("record", fuzz.regression_inputs(), ids=lambda path: path.stem)
+def test_inputs_that_once_failed_give_pinframes_errors_only(record, tmp_path):
+    assert fuzz.replay(READERS, record, tmp_path) is None
 
 
 def test_the_regression_folder_holds_inputs():

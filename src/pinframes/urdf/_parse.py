@@ -16,6 +16,8 @@ from ..pose import Pose
 __all__ = ["URDF_JOINT_TYPES", "JointDescription", "RobotDescription", "parse_urdf"]
 
 URDF_JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
+_DEEPEST = 100
+"""Deepest element nesting read; URDFs nest about six deep."""
 _JOINT_FIELDS_READ = {"parent", "child", "origin", "axis", "limit", "mimic"}
 
 
@@ -67,6 +69,7 @@ def parse_urdf(urdf: str | os.PathLike[str]) -> RobotDescription:
         root = ET.fromstring(text)
     except ET.ParseError as exc:
         raise FileFormatError(f"malformed XML: {exc}", file=source) from None
+    _check_depth(root, source)
     if root.tag != "robot":
         raise FileFormatError(f"the root element is <{root.tag}>, expected <robot>",
                               file=source, field="robot")
@@ -90,6 +93,17 @@ def parse_urdf(urdf: str | os.PathLike[str]) -> RobotDescription:
             extra.append(_xml(element))
     ordered, root_link = _check_tree(links, joints, source)
     return RobotDescription(name, source, root_link, links, tuple(ordered), tuple(extra))
+
+
+def _check_depth(root: ET.Element, source: str) -> None:
+    """Refuse elements nested deeper than :data:`_DEEPEST` (kept XML is written recursively)."""
+    stack = [(root, 1)]
+    while stack:
+        element, depth = stack.pop()
+        if depth > _DEEPEST:
+            raise FileFormatError(f"XML elements nested more than {_DEEPEST} deep",
+                                  file=source, field=element.tag)
+        stack.extend((child, depth + 1) for child in element)
 
 
 def _read_source(urdf: str | os.PathLike[str]) -> tuple[str, str]:
