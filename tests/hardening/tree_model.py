@@ -14,12 +14,14 @@ nanoseconds since the epoch).
 
 from __future__ import annotations
 
+import warnings
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, replace
 
 import numpy as np
 
 import pinframes
+from pinframes.joint_trajectory import JointLimitWarning
 
 
 def axis_rotation(axis, angles) -> np.ndarray:
@@ -303,8 +305,10 @@ def build_tree(spec: TreeSpec) -> pinframes.FrameTree:
 def drive(tree: pinframes.FrameTree, robot: RobotItem) -> None:
     """Set ``robot``'s joint samples on ``tree`` (for a tree read back from a URDF too)."""
     if robot.driven:
-        tree.set_joint_trajectory(robot.query_times(), robot.positions,
-                                  [robot.prefix + name for name in robot.driven])
+        with warnings.catch_warnings():  # random values leave the welding robot's limits
+            warnings.simplefilter("ignore", JointLimitWarning)
+            tree.set_joint_trajectory(robot.query_times(), robot.positions,
+                                      [robot.prefix + name for name in robot.driven])
 
 
 def shifted_to_absolute(spec: TreeSpec, start: int, shifts: list[int],
