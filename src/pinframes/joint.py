@@ -108,26 +108,31 @@ class Joint:
         return rotated, np.broadcast_to(translation, (count, 3))
 
     def pinocchio_joint_model(self) -> pin.JointModel:
-        """The Pinocchio joint model of this joint (aligned axes get the specialised ones)."""
+        """The Pinocchio joint model of this joint (aligned axes get the specialised ones).
+
+        A continuous joint about an unaligned axis becomes a revolute one, which moves the
+        same: pin 4.1's Python bindings build ``JointModelRevoluteUnboundedUnaligned`` only
+        about the x axis.
+        """
         axis = np.asarray(self.axis)
-        aligned = {0: "X", 1: "Y", 2: "Z"}
-        index = int(np.argmax(np.abs(axis)))
-        is_aligned = abs(axis[index] - 1.0) < _AXIS_TOLERANCE
-        prefix = {"revolute": "R", "continuous": "RUB", "prismatic": "P"}[self.kind]
-        if is_aligned:
-            return getattr(pin, f"JointModel{prefix}{aligned[index]}")()
-        unaligned = {
-            "revolute": pin.JointModelRevoluteUnaligned,
-            "continuous": pin.JointModelRevoluteUnboundedUnaligned,
-            "prismatic": pin.JointModelPrismaticUnaligned,
-        }[self.kind]
-        return unaligned(axis)
+        aligned = self._aligned_axis()
+        if aligned is not None:
+            prefix = {"revolute": "R", "continuous": "RUB", "prismatic": "P"}[self.kind]
+            return getattr(pin, f"JointModel{prefix}{aligned}")()
+        if self.kind == "prismatic":
+            return pin.JointModelPrismaticUnaligned(axis)
+        return pin.JointModelRevoluteUnaligned(axis)
 
     def configuration(self, values: NDArray[np.float64]) -> NDArray[np.float64]:
         """Pinocchio configuration entries ``(N, nq)`` of this joint for ``values``."""
-        if self.kind == "continuous":
+        if self.kind == "continuous" and self._aligned_axis() is not None:
             return np.stack([np.cos(values), np.sin(values)], axis=1)
         return values[:, None]
+
+    def _aligned_axis(self) -> str | None:
+        """``"X"``, ``"Y"`` or ``"Z"`` when the axis is that unit axis, else None."""
+        index = int(np.argmax(np.abs(self.axis)))
+        return "XYZ"[index] if abs(self.axis[index] - 1.0) < _AXIS_TOLERANCE else None
 
 
 def mimic_chain(joint: Joint, joints: dict[str, Joint]) -> list[Joint]:

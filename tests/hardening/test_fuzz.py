@@ -1,0 +1,30 @@
+"""A bounded fuzz run of the readers, and the inputs that once made one fail (see fuzz.py)."""
+
+from __future__ import annotations
+
+import pytest
+
+from conftest import SHARED_DATA
+from hardening import fuzz
+
+FUZZ_SEED = 20261123
+INPUTS_PER_READER = 120
+READERS = fuzz.readers(SHARED_DATA)
+
+
+@pytest.mark.parametrize("name", sorted(READERS))
+def test_mutated_samples_give_pinframes_errors_only(name, tmp_path):
+    tried, failures = fuzz.fuzz({name: READERS[name]}, tmp_path, FUZZ_SEED,
+                                count=INPUTS_PER_READER)
+    assert tried[name] == INPUTS_PER_READER
+    assert not failures, "\n".join(
+        f"{f.sample} input {f.index}: {f.error}" for f in failures[:10])
+
+
+@pytest.mark.parametrize("record", fuzz.regression_inputs(), ids=lambda path: path.stem)
+def test_inputs_that_once_failed_give_pinframes_errors_only(record, tmp_path):
+    assert fuzz.replay(READERS, record, tmp_path) is None
+
+
+def test_the_regression_folder_holds_inputs():
+    assert fuzz.regression_inputs(), f"no kept inputs in {fuzz.REGRESSIONS}"
