@@ -55,6 +55,7 @@ __all__ = [
     "read_joint_trajectory",
     "read_scene",
     "read_urdf",
+    "write_asdf",
     "write_scene",
     "write_urdf",
 ]
@@ -62,3 +63,14 @@ __all__ = [
 from .frames_yaml import FramesYamlWarning, read_frames_yaml, write_frames_yaml
 
 __all__ += ["FramesYamlWarning", "read_frames_yaml", "write_frames_yaml"]
+
+# The ASDF functions load the asdf package, so they are imported on first use only.
+_ASDF_FUNCTIONS = ("write_asdf",)
+
+
+def __getattr__(name: str) -> object:
+    if name in _ASDF_FUNCTIONS:
+        from . import asdf as _asdf_format
+
+        return getattr(_asdf_format, name)
+    raise AttributeError(f"module 'pinframes' has no attribute {name!r}")
