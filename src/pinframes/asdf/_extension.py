@@ -4,7 +4,8 @@ weldx registers its own converters and schemas for the ``asdf://weldx.bam.de`` t
 asdf's entry points. pinframes must live beside it in one environment, so it never registers
 anything globally: :func:`bound_schemas` adds the schemas in ``schemas/`` and an extension
 built from ``schemas/manifests/`` to a temporary asdf configuration, where they take
-precedence over weldx's for the tags they name; asdf then validates against them.
+precedence over weldx's for the tags they name; asdf then validates against them, on write
+and on read (asdf 6 no longer validates on read by default, so the block turns it on).
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ def bound_schemas() -> Iterator[None]:
     import asdf
 
     with asdf.config_context() as config:
+        config.validate_on_read = True
         config.add_resource_mapping(_schema_mapping())
         config.add_extension(_extension())
         yield
