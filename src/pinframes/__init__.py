@@ -55,7 +55,6 @@ __all__ = [
     "read_joint_trajectory",
     "read_scene",
     "read_urdf",
-    "write_asdf",
     "write_scene",
     "write_urdf",
 ]
@@ -64,8 +63,9 @@ from .frames_yaml import FramesYamlWarning, read_frames_yaml, write_frames_yaml
 
 __all__ += ["FramesYamlWarning", "read_frames_yaml", "write_frames_yaml"]
 
-# The ASDF functions load the asdf package, so they are imported on first use only.
-_ASDF_FUNCTIONS = ("write_asdf",)
+# The ASDF functions load the asdf package: they are imported on first use.
+_ASDF_FUNCTIONS = ("read_asdf", "write_asdf")
+__all__ += list(_ASDF_FUNCTIONS)
 
 
 def __getattr__(name: str) -> object:
@@ -73,4 +73,4 @@ def __getattr__(name: str) -> object:
         from . import asdf as _asdf_format
 
         return getattr(_asdf_format, name)
-    raise AttributeError(f"module 'pinframes' has no attribute {name!r}")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -42,9 +42,28 @@ def weldx_pose(path: Path, frame: str, relative_to: str, times_ns: Any = None,
                time_ref: str | None = None) -> dict[str, Any]:
     """weldx's ``get_cs`` answer as numpy arrays: translation (T, 3) in metres, rotation
     (T, 3, 3), ``times_ns`` (T,) int64 or None, ``reference_time`` datetime64[ns] or None."""
+    return _as_arrays(ask_weldx("get_cs", **_query(frame, relative_to, times_ns, time_ref),
+                                path=path))
+
+
+def weldx_poses(path: Path, queries: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Many ``get_cs`` answers from one weldx process (its import is slow).
+
+    Each query is ``{frame, relative_to, times_ns (optional), time_ref (optional)}``; each
+    answer is as for :func:`weldx_pose`, or ``{"error": message}`` where weldx raised."""
+    requests = [_query(q["frame"], q["relative_to"], q.get("times_ns"), q.get("time_ref"))
+                for q in queries]
+    answers = ask_weldx("get_cs_many", path=path, queries=requests)["answers"]
+    return [answer if "error" in answer else _as_arrays(answer) for answer in answers]
+
+
+def _query(frame: str, relative_to: str, times_ns: Any, time_ref: str | None) -> dict:
     times = None if times_ns is None else np.asarray(times_ns, dtype=np.int64).tolist()
-    answer = ask_weldx("get_cs", path=path, frame=frame, relative_to=relative_to,
-                       times_ns=times, time_ref=time_ref)
+    return {"frame": frame, "relative_to": relative_to, "times_ns": times,
+            "time_ref": time_ref}
+
+
+def _as_arrays(answer: dict[str, Any]) -> dict[str, Any]:
     reference = answer["reference_time"]
     return {"translation": np.asarray(answer["translation"], dtype=float).reshape(-1, 3),
             "rotation": np.asarray(answer["rotation"], dtype=float).reshape(-1, 3, 3),

@@ -8,6 +8,9 @@ string or null), rotations are (3, 3) matrices. Requests (``op``):
 - ``get_cs``: ``{path, frame, relative_to, times_ns (or null), time_ref (ISO or null)}`` ->
   ``{translation, rotation, times_ns, reference_time}``; times as timedeltas when no
   ``time_ref`` is given.
+- ``get_cs_many``: ``{path, queries: [get_cs requests without path]}`` -> ``{answers: [...]}``,
+  one answer per query in order, each as for ``get_cs`` or ``{error: message}`` where weldx
+  raised.
 - ``write``: ``{path, name, root, reference_time, frames: [{name, parent, translation_m,
   rotation, times_ns, reference_time}]}``: builds the hierarchy with weldx's API and writes it
   under the key ``hierarchy`` (weldx's own writer).
@@ -58,7 +61,21 @@ def hierarchy(request):
 
 
 def get_cs(request):
+    return _get_cs_in(_hierarchy_in(request["path"]), request)
+
+
+def get_cs_many(request):
     csm = _hierarchy_in(request["path"])
+    answers = []
+    for query in request["queries"]:
+        try:
+            answers.append(_get_cs_in(csm, query))
+        except Exception as exc:  # reported back to the test
+            answers.append({"error": f"{type(exc).__name__}: {exc}"})
+    return {"answers": answers}
+
+
+def _get_cs_in(csm, request):
     time = None
     if request.get("times_ns") is not None:
         time = pd.to_timedelta(np.asarray(request["times_ns"], dtype=np.int64), unit="ns")
@@ -86,5 +103,6 @@ def write(request):
 
 if __name__ == "__main__":
     request = json.load(sys.stdin)
-    json.dump({"hierarchy": hierarchy, "get_cs": get_cs, "write": write}[request["op"]](request),
+    json.dump({"hierarchy": hierarchy, "get_cs": get_cs, "get_cs_many": get_cs_many,
+               "write": write}[request["op"]](request),
               sys.stdout)
