@@ -19,9 +19,15 @@ from typing import Any
 import yaml
 
 from ..errors import FileFormatError
+from ._asdf_config import temporary_asdf_config
 from ._decode import weldx_tag
 
-__all__ = ["EXTENSION_URI", "SCHEMA_URI_PREFIX", "bound_schemas", "validate_hierarchy"]
+__all__ = [
+    "EXTENSION_URI",
+    "SCHEMA_URI_PREFIX",
+    "bound_schemas",
+    "validate_hierarchy",
+]
 
 SCHEMA_FOLDER = Path(__file__).with_name("schemas")
 SCHEMA_URI_PREFIX = "asdf://pinframes/schemas/weldx/"
@@ -34,9 +40,7 @@ _FRAME_TAGS = ("core/transformations/coordinate_transformation", "core/graph/di_
 @contextlib.contextmanager
 def bound_schemas() -> Iterator[None]:
     """Within this block asdf knows pinframes' weldx schemas and validates against them."""
-    import asdf
-
-    with asdf.config_context() as config:
+    with temporary_asdf_config() as config:
         config.add_resource_mapping(_schema_mapping())
         config.add_extension(_extension())
         yield

@@ -18,6 +18,7 @@ from ..errors import ArgumentTypeError, TreeStructureError, UnsupportedFeatureEr
 from ..pose import Pose
 from ..subsystem import Subsystem
 from ..tree import FrameTree
+from ._asdf_config import temporary_asdf_config
 from ._encode import CURRENT, LEGACY, SCHEMAS, Generation, encode_pose, encode_timestamp, tagged
 from ._extension import bound_schemas
 
@@ -75,7 +76,7 @@ def _write(hierarchy: Any, generation: Generation, path: str | os.PathLike[str],
            ) -> None:
     import asdf
 
-    with bound_schemas(), asdf.config_context() as config:
+    with bound_schemas(), temporary_asdf_config() as config:
         config.array_inline_threshold = _ARRAY_INLINE_THRESHOLD
         document = asdf.AsdfFile({key: hierarchy}, version=generation.asdf_standard)
         try:
