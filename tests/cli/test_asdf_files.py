@@ -10,10 +10,15 @@ import pinframes
 from conftest import SHARED_DATA
 from pinframes import FrameTree, Pose, read_scene
 
-pytestmark = pytest.mark.skipif(not hasattr(pinframes, "read_asdf"),
-                                reason="pinframes.read_asdf is not merged yet")
+
+def needs(*functions: str):
+    """Skip until every named pinframes ASDF function is merged."""
+    missing = [name for name in functions if not hasattr(pinframes, name)]
+    return pytest.mark.skipif(bool(missing), reason=f"pinframes.{', '.join(missing)} not merged")
 
 
+
+@needs("read_asdf", "write_asdf")
 def test_asdf_layer_keeps_its_absolute_times(tmp_path):
     layer = FrameTree(reference_time="2024-03-01T08:00:00")
     layer.add("cart", "world", Pose([[0.0, 0, 0], [1.0, 0, 0]], times=[0.0, 10.0]))
@@ -33,6 +38,7 @@ def test_asdf_layer_keeps_its_absolute_times(tmp_path):
     np.testing.assert_allclose(cart.translation, [[0.25, 5.0, 0.0]], atol=1e-12)
 
 
+@needs("read_asdf", "write_asdf")
 @pytest.mark.parametrize("schema", ["0.1.0", "1.0.0"])
 def test_convert_scene_to_asdf_keeps_the_motion(run_cli, turntable, tmp_path, schema):
     out = tmp_path / f"turntable-{schema}.asdf"
@@ -46,6 +52,7 @@ def test_convert_scene_to_asdf_keeps_the_motion(run_cli, turntable, tmp_path, sc
                                atol=1e-9)
 
 
+@needs("read_asdf")
 @pytest.mark.parametrize("name", ["legacy_time.asdf", "time_delta.asdf", "static_tree.asdf"])
 def test_info_on_real_weldx_files(run_cli, name):
     path = SHARED_DATA / "weldx-files" / name
