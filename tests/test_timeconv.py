@@ -6,6 +6,7 @@ import pytest
 from pinframes.errors import InvalidTimeError
 from pinframes.timeconv import (
     format_timedelta_iso,
+    format_timestamp_iso,
     parse_time_axis,
     parse_timedelta,
     parse_timestamp,
@@ -76,6 +77,17 @@ def test_iso_duration_formatting_round_trips():
         assert parse_time_axis(text).offsets[0] == ns
     assert format_timedelta_iso(-SECOND) == "P-1DT23H59M59S"
     assert format_timedelta_iso(4_400_000_000) == "P0DT0H0M4.4S"
+
+
+@pytest.mark.parametrize(("stamp", "text"), [
+    ("2024-03-01T08:00:05", "2024-03-01T08:00:05"),
+    ("2024-03-01T08:00:05.250", "2024-03-01T08:00:05.25"),
+    ("2024-03-01T08:00:05.000000001", "2024-03-01T08:00:05.000000001"),
+    ("1969-12-31T23:59:59.5", "1969-12-31T23:59:59.5"),  # before 1970: floor division
+])
+def test_iso_timestamp_formatting(stamp, text):
+    assert format_timestamp_iso(np.datetime64(stamp, "ns")) == text
+    assert parse_timestamp(text) == np.datetime64(stamp, "ns")
 
 
 def test_plain_number_strings_are_seconds():

@@ -64,13 +64,13 @@ from .frames_yaml import FramesYamlWarning, read_frames_yaml, write_frames_yaml
 __all__ += ["FramesYamlWarning", "read_frames_yaml", "write_frames_yaml"]
 
 # The ASDF functions load the asdf package: they are imported on first use.
-_ASDF_FUNCTIONS = ("read_asdf",)
+_ASDF_FUNCTIONS = ("read_asdf", "write_asdf")
 __all__ += list(_ASDF_FUNCTIONS)
 
 
-def __getattr__(name: str):
+def __getattr__(name: str) -> object:
     if name in _ASDF_FUNCTIONS:
-        from . import asdf
+        from . import asdf as _asdf_format
 
-        return getattr(asdf, name)
+        return getattr(_asdf_format, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -17,8 +17,7 @@ import numpy as np
 import yaml
 
 from ._atomic import atomic_write
-from .errors import UnsupportedFeatureError
-from .joint import mimic_chain
+from ._joint_steps import check_joint_steps
 from .pose import Pose
 from .scene import SCENE_FORMAT_KEY, SCENE_FORMAT_VERSION
 from .timeconv import format_timedelta_iso
@@ -58,7 +57,7 @@ def write_scene(tree: FrameTree, path: str | os.PathLike[str], time: Any = None)
     for name in tree.frames[1:]:
         parent = tree.parent(name)
         if time is None:
-            _check_joint_steps(tree, name)
+            check_joint_steps(tree, name)
             pose = tree.pose(name, relative_to=parent)
         else:
             pose = _at(tree.pose(name, relative_to=parent, times=[time]), 0)
@@ -126,16 +125,3 @@ def _time_value(nanoseconds: int) -> float | str:
 
 def _at(pose: Pose, index: int) -> Pose:
     return Pose(pose.translation[index], pose.rotation[index])
-
-
-def _check_joint_steps(tree: FrameTree, name: str) -> None:
-    joint = tree.joint_of(name)
-    if joint is None or joint.kind == "prismatic":
-        return
-    chain = mimic_chain(joint, tree.joints)
-    multiplier = float(np.prod([link.mimic.multiplier for link in chain[:-1]]))
-    track = tree.joint_track(chain[-1].name)
-    if track is not None and np.any(np.abs(np.diff(track.values) * multiplier) >= np.pi):
-        raise UnsupportedFeatureError(
-            "its joint turns by half a turn or more between two trajectory samples, which "
-            "keyframes cannot represent; resample the trajectory more densely", frame=name)

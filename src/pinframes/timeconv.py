@@ -28,6 +28,7 @@ from .errors import InvalidTimeError
 __all__ = [
     "TimeAxis",
     "format_timedelta_iso",
+    "format_timestamp_iso",
     "parse_time_axis",
     "parse_timedelta",
     "parse_timestamp",
@@ -124,6 +125,15 @@ def format_timedelta_iso(nanoseconds: int) -> str:
     seconds, fraction = divmod(rest, 1_000_000_000)
     text = f"{seconds}.{fraction:09d}".rstrip("0").rstrip(".") if fraction else str(seconds)
     return f"P{days}DT{hours}H{minutes}M{text}S"
+
+
+def format_timestamp_iso(stamp: np.datetime64) -> str:
+    """ISO 8601 timestamp without zone (naive UTC): ``2024-03-01T08:00:05``, with the
+    nanoseconds' trailing zeros dropped when there is a fraction (``2024-03-01T08:00:05.25``)."""
+    nanoseconds = int(np.datetime64(stamp, "ns").astype(np.int64))
+    seconds, fraction = divmod(nanoseconds, 1_000_000_000)
+    text = str(np.datetime64(seconds, "s"))
+    return f"{text}.{fraction:09d}".rstrip("0") if fraction else text
 
 
 def _as_time_array(values: Any, field: str) -> np.ndarray:

@@ -11,6 +11,7 @@ import pytest
 from asdf.tagged import TaggedDict
 
 import pinframes
+from pinframes.asdf._extension import bound_schemas
 from weldx_asdf.asdf_texts import (
     digraph_hierarchy,
     digraph_node,
@@ -184,7 +185,8 @@ def test_arrays_in_binary_blocks_read_like_inline_ones(tmp_path):
             "root_node": tagged("core/graph/di_node-0.1.0", {
                 "name": "w", "attributes": {"data": {}}, "edges": [edge]})})})
     path = tmp_path / "blocks.asdf"
-    asdf.AsdfFile({"deep": {"inside": [hierarchy]}}).write_to(path)
+    with bound_schemas():  # pinframes' schemas, not weldx's (if installed), check the write
+        asdf.AsdfFile({"deep": {"inside": [hierarchy]}}).write_to(path)
     assert b"source: 0" in path.read_bytes()
     tree = pinframes.read_asdf(path)
     pose = tree.local_pose("c")

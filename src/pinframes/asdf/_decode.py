@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 
 from ..errors import FileFormatError, PinframesError, ReadError
 from ..timeconv import parse_timedelta, parse_timestamp
+from ._asdf_config import temporary_asdf_config
 
 __all__ = [
     "as_list",
@@ -63,7 +64,7 @@ def open_raw_tree(path: str | os.PathLike[str]) -> Iterator[dict[str, Any]]:
     if not os.path.isfile(path):
         reason = "is a folder" if os.path.isdir(path) else "does not exist"
         raise ReadError(f"cannot read the file: it {reason}", file=path)
-    with asdf.config_context() as config, warnings.catch_warnings():
+    with temporary_asdf_config() as config, warnings.catch_warnings():
         for extension in config.extensions:
             if (extension.extension_uri or "").startswith(_WELDX_EXTENSION_PREFIX):
                 config.remove_extension(extension)

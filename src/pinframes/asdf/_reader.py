@@ -9,6 +9,7 @@ from ..errors import FileFormatError, PinframesError
 from ..tree import FrameTree
 from ._decode import open_raw_tree, weldx_tag
 from ._digraph import read_digraph_hierarchy
+from ._extension import validate_hierarchy
 from ._hierarchy import Hierarchy
 from ._legacy import read_legacy_hierarchy
 
@@ -47,7 +48,8 @@ def read_asdf(path: str | os.PathLike[str], key: str | None = None) -> FrameTree
         The file is missing or unreadable.
     FileFormatError
         Not an ASDF file, no hierarchy (or several, and no ``key``), an unknown ``key``, or
-        a hierarchy that breaks the format; the message names the frame and field.
+        a hierarchy that breaks the format or pinframes' weldx schemas (checked after
+        pinframes' own, more specific checks); the message names the frame and field.
     UnsupportedFeatureError
         Coordinates given as a math expression (``core/time_series``).
     InvalidPoseError, InvalidTimeError, ReferenceTimeError
@@ -58,7 +60,9 @@ def read_asdf(path: str | os.PathLike[str], key: str | None = None) -> FrameTree
     """
     try:
         with open_raw_tree(path) as tree:
-            hierarchy = _read_hierarchy(_find_hierarchy(tree, key))
+            node = _find_hierarchy(tree, key)
+            hierarchy = _read_hierarchy(node)
+            validate_hierarchy(node)
         return hierarchy.to_tree()
     except PinframesError as exc:
         raise exc.located(file=path) from None
