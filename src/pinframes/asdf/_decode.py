@@ -20,6 +20,7 @@ from numpy.typing import NDArray
 from ..errors import FileFormatError, PinframesError, ReadError
 from ..timeconv import parse_timedelta, parse_timestamp
 from ._asdf_config import temporary_asdf_config
+from ._depth import MAX_GRAPH_DEPTH, deepest_frame_in_yaml, recursion_room, too_deep
 
 __all__ = [
     "as_list",
@@ -58,6 +59,8 @@ def open_raw_tree(path: str | os.PathLike[str]) -> Iterator[dict[str, Any]]:
         The file is missing or cannot be read.
     FileFormatError
         The file is not ASDF (or its YAML is broken).
+    UnsupportedFeatureError
+        Its YAML nests too deeply for asdf (a weldx graph deeper than MAX_GRAPH_DEPTH).
     """
     import asdf
 
@@ -71,7 +74,10 @@ def open_raw_tree(path: str | os.PathLike[str]) -> Iterator[dict[str, Any]]:
         for message in _WELDX_WARNINGS:
             warnings.filterwarnings("ignore", message=message)
         try:
-            opened = asdf.open(path, lazy_tree=False, memmap=False)
+            with recursion_room(MAX_GRAPH_DEPTH):
+                opened = asdf.open(path, lazy_tree=False, memmap=False)
+        except RecursionError:
+            raise too_deep(*deepest_frame_in_yaml(path), path) from None
         except OSError as exc:
             raise ReadError(f"cannot read the file: {exc}", file=path) from None
         except Exception as exc:  # asdf and yaml raise many kinds for a non-ASDF file

@@ -8,6 +8,7 @@ from typing import Any
 from ..errors import FileFormatError, PinframesError
 from ..tree import FrameTree
 from ._decode import open_raw_tree, weldx_tag
+from ._depth import MAX_GRAPH_DEPTH, deepest_frame, recursion_room, too_deep
 from ._digraph import read_digraph_hierarchy
 from ._extension import validate_hierarchy
 from ._hierarchy import Hierarchy
@@ -51,7 +52,8 @@ def read_asdf(path: str | os.PathLike[str], key: str | None = None) -> FrameTree
         a hierarchy that breaks the format or pinframes' weldx schemas (checked after
         pinframes' own, more specific checks); the message names the frame and field.
     UnsupportedFeatureError
-        Coordinates given as a math expression (``core/time_series``).
+        Coordinates given as a math expression (``core/time_series``), or a graph with a
+        frame more than 400 frames below its root.
     InvalidPoseError, InvalidTimeError, ReferenceTimeError
         Rotations that are not rotations, non-finite values, times that do not increase,
         reference times that cannot be combined.
@@ -62,7 +64,11 @@ def read_asdf(path: str | os.PathLike[str], key: str | None = None) -> FrameTree
         with open_raw_tree(path) as tree:
             node = _find_hierarchy(tree, key)
             hierarchy = _read_hierarchy(node)
-            validate_hierarchy(node)
+            deepest, depth = deepest_frame((name, parent) for name, parent, _ in hierarchy.frames)
+            if depth > MAX_GRAPH_DEPTH:
+                raise too_deep(deepest, depth, path)
+            with recursion_room(depth):
+                validate_hierarchy(node)
         return hierarchy.to_tree()
     except PinframesError as exc:
         raise exc.located(file=path) from None

@@ -19,6 +19,7 @@ from ..pose import Pose
 from ..subsystem import Subsystem
 from ..tree import FrameTree
 from ._asdf_config import temporary_asdf_config
+from ._depth import MAX_GRAPH_DEPTH, deepest_frame, recursion_room, too_deep
 from ._encode import CURRENT, LEGACY, SCHEMAS, Generation, encode_pose, encode_timestamp, tagged
 from ._extension import bound_schemas
 
@@ -53,8 +54,9 @@ def write_asdf(tree: FrameTree, path: str | os.PathLike[str], schema: str = "1.0
     Raises
     ------
     UnsupportedFeatureError
-        An unknown ``schema``, or a revolute joint turning by half a turn or more between
-        two trajectory samples (resample it more densely).
+        An unknown ``schema``, a revolute joint turning by half a turn or more between
+        two trajectory samples (resample it more densely), or, for ``"0.1.0"``, a frame
+        more than 400 frames below the root (write ``"1.0.0"`` instead).
     TreeStructureError
         Subsystems that name unknown nested subsystems or nest in a cycle.
     WriteError
@@ -68,8 +70,16 @@ def write_asdf(tree: FrameTree, path: str | os.PathLike[str], schema: str = "1.0
         raise UnsupportedFeatureError(
             f"unknown schema {schema!r}: pinframes writes {' or '.join(map(repr, SCHEMAS))}",
             file=str(path), field="schema")
-    hierarchy = _legacy_hierarchy(tree) if generation is LEGACY else _graph_hierarchy(tree)
-    _write(hierarchy, generation, path, key)
+    depth = 0
+    if generation is LEGACY:
+        hierarchy = _legacy_hierarchy(tree)
+    else:
+        deepest, depth = deepest_frame((name, tree.parent(name)) for name in tree.frames[1:])
+        if depth > MAX_GRAPH_DEPTH:
+            raise too_deep(deepest, depth, path)
+        hierarchy = _graph_hierarchy(tree)
+    with recursion_room(depth):
+        _write(hierarchy, generation, path, key)
 
 
 def _write(hierarchy: Any, generation: Generation, path: str | os.PathLike[str], key: str

@@ -1,0 +1,87 @@
+"""Deep frame chains in weldx ASDF files: the 0.1.0 format nests each frame inside its
+parent, the 1.0.0 format lists frames flat. Poses are checked against a plain numpy
+composition of the chain."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from pinframes import FrameTree, Pose, UnsupportedFeatureError, read_asdf, write_asdf
+from pinframes.asdf._depth import MAX_GRAPH_DEPTH
+from weldx_asdf.weldx_env import weldx_pose
+
+from geometry import homogeneous, rot_x, rot_z
+
+
+def link(index: int) -> tuple[np.ndarray, np.ndarray]:
+    """(rotation, translation in m) of frame ``index`` in frame ``index - 1``."""
+    return rot_z(0.1 + 0.01 * index) @ rot_x(0.05), np.array([0.01, 0.002 * (index % 3), 0.0])
+
+
+def chain(depth: int) -> FrameTree:
+    tree = FrameTree("f0", name="deep")
+    for index in range(1, depth + 1):
+        rotation, translation = link(index)
+        tree.add(f"f{index}", f"f{index - 1}", Pose(translation, rotation))
+    return tree
+
+
+def tip_in_root_by_numpy(depth: int) -> np.ndarray:
+    matrix = np.eye(4)
+    for index in range(1, depth + 1):
+        matrix = matrix @ homogeneous(*link(index))
+    return matrix
+
+
+@pytest.mark.parametrize("schema", ["0.1.0", "1.0.0"])
+def test_deepest_supported_chain_round_trips(tmp_path, schema):
+    path = tmp_path / "deep.asdf"
+    write_asdf(chain(MAX_GRAPH_DEPTH), path, schema=schema)
+    back = read_asdf(path)
+    expected = tip_in_root_by_numpy(MAX_GRAPH_DEPTH)
+    pose = back.pose(f"f{MAX_GRAPH_DEPTH}", relative_to="f0")
+    np.testing.assert_allclose(pose.translation.reshape(3), expected[:3, 3], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(pose.rotation.reshape(3, 3), expected[:3, :3], rtol=0,
+                               atol=1e-12)
+
+
+def test_deeper_chain_is_refused_clearly_when_writing_0_1_0(tmp_path):
+    path = tmp_path / "too_deep.asdf"
+    with pytest.raises(UnsupportedFeatureError, match=r"1\.0\.0") as error:
+        write_asdf(chain(MAX_GRAPH_DEPTH + 1), path, schema="0.1.0")
+    assert error.value.frame == f"f{MAX_GRAPH_DEPTH + 1}"
+    assert str(MAX_GRAPH_DEPTH + 1) in str(error.value)
+    assert str(path) in str(error.value)
+    assert not path.exists()
+
+
+def test_deeper_chain_written_by_someone_else_is_refused_clearly(tmp_path):
+    """asdf itself writes the graph, with Python's recursion limit raised far enough."""
+    import subprocess
+    import sys
+
+    path = tmp_path / "foreign.asdf"
+    depth = 2 * MAX_GRAPH_DEPTH
+    script = ("import sys, asdf; sys.setrecursionlimit(200_000); "
+              "from test_asdf_deep import chain; "
+              "from pinframes.asdf._writer import _graph_hierarchy; "
+              "asdf.get_config().validate_on_write = False; "
+              f"asdf.AsdfFile({{'h': _graph_hierarchy(chain({depth}))}}).write_to({str(path)!r})")
+    subprocess.run([sys.executable, "-c", script], check=True, cwd=__file__.rsplit("/", 1)[0],
+                   env={"PYTHONPATH": ":".join(sys.path)})
+    with pytest.raises(UnsupportedFeatureError, match=r"1\.0\.0") as error:
+        read_asdf(path)
+    assert error.value.frame == f"f{depth}"
+    assert str(depth) in str(error.value)
+
+
+def test_weldx_reads_a_chain_as_deep_as_it_handles(tmp_path):
+    """weldx 0.8.2 itself stops (RecursionError) between 30 and 40 frames deep."""
+    depth = 25
+    path = tmp_path / "deep.asdf"
+    write_asdf(chain(depth), path, schema="0.1.0")
+    answer = weldx_pose(path, f"f{depth}", "f0")
+    expected = tip_in_root_by_numpy(depth)
+    np.testing.assert_allclose(answer["translation"][0], expected[:3, 3], rtol=0, atol=1e-9)
+    np.testing.assert_allclose(answer["rotation"][0], expected[:3, :3], rtol=0, atol=1e-9)
