@@ -42,7 +42,10 @@ _TAG = re.compile(r"^(?P<path>.+)-(?P<version>\d+\.\d+\.\d+)$")
 _PANDAS_FREQUENCY_ALIASES = {"H": "h", "T": "min", "S": "s", "L": "ms", "U": "us", "N": "ns",
                              "D": "d"}
 _FREQUENCY = re.compile(r"^\s*(\d*)\s*([A-Za-zµ]+)\s*$")
-_DECODING_ERRORS = (ValueError, TypeError, KeyError, IndexError, OSError, AttributeError)
+# What numpy and asdf's lazy block reading raise for broken arrays; a block header claiming
+# more bytes than any memory holds is a MemoryError.
+_DECODING_ERRORS = (ValueError, TypeError, KeyError, IndexError, OSError, AttributeError,
+                    MemoryError)
 
 
 @contextlib.contextmanager
