@@ -16,7 +16,7 @@ from numpy.typing import NDArray
 
 from ..errors import FileFormatError, PinframesError, UnsupportedFeatureError
 from ..pose import Pose
-from ._decode import float_array, required, time_index_ns, timestamp, weldx_tag
+from ._decode import float_array, raw_tag, required, time_index_ns, timestamp, weldx_tag
 from ._units import metres_per_unit
 
 __all__ = ["pose_from_lcs"]
@@ -38,7 +38,7 @@ def _pose(node: Any, field: str) -> Pose:
     if not isinstance(node, dict):
         raise FileFormatError(f"expected a local_coordinate_system mapping, got "
                               f"{type(node).__name__}", field=field)
-    tag = getattr(node, "_tag", None)
+    tag = raw_tag(node)
     if tag is not None and (weldx_tag(node) or ("",))[0] != _LCS_TAG:
         raise FileFormatError(f"expected a local_coordinate_system, got the tag {tag!r}",
                               field=field)
