@@ -449,6 +449,9 @@ ASDF = [
     Case("unknown-transformation-tag", "asdf",
          legacy_asdf(("a", "root", "!legacy!core/transformations/mystery-1.0.0 {}")),
          FileFormatError, "a", FIELD, "mystery-1.0.0"),
+    Case("unknown-edge-transformation-tag", "asdf",
+         digraph_asdf(("!weldx!core/transformations/mystery-0.1.0 {}", digraph_node("a"))),
+         FileFormatError, "a", "edge.attributes.transformation", "mystery-0.1.0"),
     Case("coordinates-nan", "asdf",
          legacy_asdf(("a", "root", legacy_lcs(coordinates=[7.5, 0, 0]).replace(
              "7.5", ".nan", 1))),
