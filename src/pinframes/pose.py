@@ -22,7 +22,7 @@ from .rotations import (
     rotation_matrix_defects,
     rpy_from_matrix,
 )
-from .timeconv import TimeAxis, parse_time_axis, parse_timestamp
+from .timeconv import TimeAxis, anchor_time_axis, parse_time_axis, parse_timestamp
 
 __all__ = ["Pose"]
 
@@ -331,11 +331,7 @@ def _time_axis(times: Any, reference_time: Any) -> TimeAxis | None:
             f"{position - 1}", field="times")
     if reference_time is None:
         return axis
-    reference = parse_timestamp(reference_time)
-    if axis.is_absolute:
-        shift = axis.reference.astype(np.int64) - reference.astype(np.int64)
-        return TimeAxis(axis.offsets + shift, reference)
-    return TimeAxis(axis.offsets, reference)
+    return anchor_time_axis(axis, parse_timestamp(reference_time))
 
 
 def _broadcast_part(

@@ -27,6 +27,7 @@ from .errors import InvalidTimeError
 
 __all__ = [
     "TimeAxis",
+    "anchor_time_axis",
     "format_timedelta_iso",
     "format_timestamp_iso",
     "parse_time_axis",
@@ -96,6 +97,23 @@ def parse_time_axis(values: Any, *, field: str = "times") -> TimeAxis:
             raise _beyond_nanoseconds(field)
         return TimeAxis(nanoseconds - first, reference)
     return TimeAxis(array.astype(np.int64), None)
+
+
+def anchor_time_axis(axis: TimeAxis, reference: np.datetime64, *,
+                     field: str = "times") -> TimeAxis:
+    """``axis`` counted from the timestamp ``reference`` (ns); absolute input keeps its instants.
+
+    Raises :class:`InvalidTimeError` when an offset or an absolute time would leave int64
+    nanoseconds (numpy would wrap it around without a word).
+    """
+    base = int(reference.astype("datetime64[ns]").astype(np.int64))
+    shift = int(axis.reference.astype("datetime64[ns]").astype(np.int64)) - base \
+        if axis.is_absolute else 0
+    ends = [int(axis.offsets.min()) + shift, int(axis.offsets.max()) + shift] \
+        if axis.offsets.size else []
+    if any(abs(end) > _NS_LIMIT or abs(base + end) > _NS_LIMIT for end in ends):
+        raise _beyond_nanoseconds(field)
+    return TimeAxis(axis.offsets + shift, reference)
 
 
 def parse_timestamp(value: Any, *, field: str = "reference_time") -> np.datetime64:

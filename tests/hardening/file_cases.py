@@ -13,11 +13,22 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from hardening.fuzz import small_asdf_file
 from pinframes.errors import (
     FileFormatError,
     FrameExistsError,
+    InvalidPoseError,
+    InvalidTimeError,
     ReadError,
     UnsupportedFeatureError,
+)
+from weldx_asdf.asdf_texts import (
+    asdf_text,
+    digraph_hierarchy,
+    digraph_node,
+    lcs,
+    legacy_hierarchy,
+    time_values,
 )
 
 MISSING = "<no file at this path>"
@@ -363,4 +374,148 @@ TRAJECTORY = [
     Case("npz-missing", "npz", MISSING, ReadError, None, None, "no such file"),
 ]
 
-FILE_CASES = FRAMES_YAML + URDF + SCENE + TRAJECTORY
+
+
+def legacy_asdf(*entries, **options) -> str:
+    """A 1.0.0 hierarchy ``h`` rooted at ``root``; entries are ``(name, reference, lcs)``."""
+    return asdf_text(legacy_hierarchy("h", "root", entries, **options))
+
+
+def legacy_lcs(**parts) -> str:
+    return lcs(version="1.0.0", **parts)
+
+
+def moving_legacy_asdf(coordinates, nanoseconds, **options) -> str:
+    """Frame ``a`` in ``root``, its coordinates at the given times."""
+    return legacy_asdf(("a", "root", legacy_lcs(
+        coordinates=coordinates, time=time_values(nanoseconds, legacy=True), **options)))
+
+
+def digraph_asdf(*edges, **options) -> str:
+    """A 0.1.0 hierarchy ``h``: ``root`` with edges ``(lcs, child node)`` to its children."""
+    return asdf_text(digraph_hierarchy(
+        "h", digraph_node("root", [("bwd", transformation, child)
+                                   for transformation, child in edges]), **options))
+
+
+def asdf_list(text: str) -> str:
+    """A legacy hierarchy whose ``coordinate_systems`` is ``text``."""
+    return legacy_asdf().replace("coordinate_systems: []", f"coordinate_systems: {text}")
+
+
+STATIC_ASDF = legacy_asdf(("a", "root", legacy_lcs(coordinates=[1, 2, 3])))
+LEGACY_ENTRY = "!legacy!core/transformations/coordinate_transformation-1.0.0"
+LEGACY_LCS = "!legacy!core/transformations/local_coordinate_system-1.0.0"
+FIELD = "coordinate_systems[0].transformation"
+BLOCKS = small_asdf_file("0.1.0")
+FIRST_BLOCK = BLOCKS.index(b"\xd3BLK")
+
+ASDF = [
+    Case("syntax-error", "asdf", asdf_text("csm: {a: [1, 2\n"), FileFormatError, None, None,
+         "not a readable ASDF file"),
+    Case("truncated", "asdf", STATIC_ASDF[:-60], FileFormatError, None, None,
+         "not a readable ASDF file"),
+    Case("empty", "asdf", "", FileFormatError, None, None, "not a readable ASDF file"),
+    Case("binary-garbage", "asdf", GARBAGE, FileFormatError, None, None,
+         "not a readable ASDF file"),
+    Case("missing", "asdf", MISSING, ReadError, None, None, "does not exist"),
+    Case("folder", "asdf", FOLDER, ReadError, None, None, "is a folder"),
+    Case("no-hierarchy", "asdf", asdf_text("csm: 1\n"), FileFormatError, None, None,
+         "no weldx coordinate system hierarchy"),
+    Case("several-hierarchies", "asdf",
+         asdf_text(legacy_hierarchy("h", "root", []) + "\n"
+                   + legacy_hierarchy("g", "root", []).replace("csm:", "other:")),
+         FileFormatError, None, None, "under the keys 'csm', 'other'"),
+    Case("legacy-without-root", "asdf",
+         asdf_text("csm: !legacy!core/transformations/coordinate_system_hierarchy-1.0.0 "
+                   "{name: h, coordinate_systems: []}"),
+         FileFormatError, None, "root_system_name", "'root_system_name' is missing"),
+    Case("digraph-without-graph", "asdf",
+         asdf_text("csm: !weldx!core/transformations/coordinate_system_hierarchy-0.1.0 "
+                   "{name: h}"),
+         FileFormatError, None, "graph", "'graph' is missing"),
+    Case("entry-without-name", "asdf",
+         asdf_list(f"[{LEGACY_ENTRY} {{reference_system: root, "
+                   f"transformation: {LEGACY_LCS} {{}}}}]"),
+         FileFormatError, None, "coordinate_systems[0]", "'name' is missing"),
+    Case("entries-not-a-list", "asdf", asdf_list("5"), FileFormatError, None,
+         "coordinate_systems", "expected a list, got int"),
+    Case("entry-not-a-mapping", "asdf", asdf_list("[5]"), FileFormatError, None,
+         "coordinate_systems[0]", "expected a mapping, got int"),
+    Case("coordinates-text", "asdf",
+         legacy_asdf(("a", "root", f"{LEGACY_LCS} {{coordinates: !legacy!core/variable-1.0.0 "
+                      "{name: coordinates, dimensions: [c], dtype: <f8, data: [a, b, c]}}")),
+         FileFormatError, "a", f"{FIELD}.coordinates.data", "cannot read the numbers"),
+    Case("unknown-transformation-tag", "asdf",
+         legacy_asdf(("a", "root", "!legacy!core/transformations/mystery-1.0.0 {}")),
+         FileFormatError, "a", FIELD, "mystery-1.0.0"),
+    Case("unknown-edge-transformation-tag", "asdf",
+         digraph_asdf(("!weldx!core/transformations/mystery-0.1.0 {}", digraph_node("a"))),
+         FileFormatError, "a", "edge.attributes.transformation", "mystery-0.1.0"),
+    Case("coordinates-nan", "asdf",
+         legacy_asdf(("a", "root", legacy_lcs(coordinates=[7.5, 0, 0]).replace(
+             "7.5", ".nan", 1))),
+         InvalidPoseError, "a", f"{FIELD}.coordinates", "finite"),
+    Case("coordinates-huge", "asdf",
+         legacy_asdf(("a", "root", legacy_lcs(coordinates=[7.5, 0, 0]).replace(
+             "7.5", "1e400", 1))),
+         InvalidPoseError, "a", f"{FIELD}.coordinates", "finite"),
+    Case("reflection", "asdf",
+         legacy_asdf(("a", "root", legacy_lcs(orientations=np.diag([1, 1, -1])))),
+         InvalidPoseError, "a", f"{FIELD}.orientations", "reflection"),
+    Case("non-orthonormal-rotation", "asdf",
+         legacy_asdf(("a", "root", legacy_lcs(orientations=[[1, 0.1, 0], [0, 1, 0],
+                                                            [0, 0, 1]]))),
+         InvalidPoseError, "a", f"{FIELD}.orientations", "not orthonormal"),
+    Case("orientations-wrong-shape", "asdf",
+         legacy_asdf(("a", "root", legacy_lcs(orientations=[1, 0, 0]))),
+         InvalidPoseError, "a", f"{FIELD}.orientations", "got shape (3,)"),
+    Case("times-not-increasing", "asdf", moving_legacy_asdf([[0, 0, 0], [1, 0, 0]], [2, 1]),
+         InvalidTimeError, "a", f"{FIELD}.time", "strictly increasing"),
+    Case("times-duplicate", "asdf", moving_legacy_asdf([[0, 0, 0], [1, 0, 0]], [1, 1]),
+         InvalidTimeError, "a", f"{FIELD}.time", "strictly increasing"),
+    Case("times-and-coordinates-differ", "asdf",
+         moving_legacy_asdf([[0, 0, 0], [1, 0, 0]], [1, 2, 3]),
+         InvalidPoseError, "a", f"{FIELD}.coordinates", "2 samples given for 3 times"),
+    Case("times-beyond-int64-after-reference", "asdf",
+         moving_legacy_asdf([[0, 0, 0], [1, 0, 0]], [0, 2**63 - 2],
+                            reference_time="2200-01-01T00:00:00"),
+         InvalidTimeError, "a", f"{FIELD}.time", "292 years"),
+    Case("reference-time-garbage", "asdf", legacy_asdf(reference_time="yesterday"),
+         InvalidTimeError, None, "reference_time", "cannot read a time"),
+    Case("entries-in-a-cycle", "asdf",
+         legacy_asdf(("a", "root", legacy_lcs()), ("b", "c", legacy_lcs()),
+                     ("c", "b", legacy_lcs())),
+         FileFormatError, "b", "coordinate_systems[1]", "not connected to the root"),
+    Case("entry-closes-a-loop", "asdf",
+         legacy_asdf(("a", "root", legacy_lcs()), ("a", "root", legacy_lcs())),
+         FileFormatError, "a", "coordinate_systems[1].transformation", "closes a loop"),
+    Case("duplicate-frame-name", "asdf",
+         digraph_asdf((lcs(coordinates=[1, 2, 3]), digraph_node("a")),
+                      (lcs(coordinates=[3, 2, 1]), digraph_node("a"))),
+         FileFormatError, "a", "edge.target_node", "appears twice"),
+    Case("unknown-unit", "asdf",
+         digraph_asdf((lcs(coordinates=[1, 2, 3], units="furlong"), digraph_node("a"))),
+         FileFormatError, "a", "edge.attributes.transformation.coordinates.units",
+         "unknown length unit 'furlong'"),
+    Case("unknown-subsystem-member", "asdf",
+         legacy_asdf(("a", "root", legacy_lcs()), extra=(
+             "subsystems:\n- !legacy!core/transformations/coordinate_system_hierarchy_subsystem"
+             "-1.0.0 {name: s, root_cs: a, members: [a, ghost]}\n")),
+         FileFormatError, "ghost", "subsystems.members", "'ghost'"),
+    Case("time-series-coordinates", "asdf",
+         digraph_asdf(("!weldx!core/transformations/local_coordinate_system-0.1.1 "
+                       "{coordinates: !weldx!core/time_series-0.1.0 {expression: "
+                       "!weldx!core/mathematical_expression-0.1.0 {expression: a*t}}}",
+                       digraph_node("a"))),
+         UnsupportedFeatureError, "a", "edge.attributes.transformation.coordinates",
+         "math expression 'a*t'"),
+    Case("broken-binary-block", "asdf",
+         BLOCKS[:FIRST_BLOCK] + b"XBLK" + BLOCKS[FIRST_BLOCK + 4:], FileFormatError, "torch",
+         "edge.attributes.transformation.orientations.data", "cannot read the numbers"),
+    Case("truncated-binary-block", "asdf", BLOCKS[:FIRST_BLOCK + 80], FileFormatError,
+         "torch", "edge.attributes.transformation.orientations.data",
+         "cannot read the numbers"),
+]
+
+FILE_CASES = FRAMES_YAML + URDF + SCENE + TRAJECTORY + ASDF

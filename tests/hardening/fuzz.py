@@ -10,7 +10,8 @@ Long runs (failing inputs are written to ``--out``, one file each, with a ``.jso
     PYTHONPATH=src python tests/hardening/fuzz.py --seconds 600 --seed 7 --out /tmp/fuzz
 
 A new reader is one line in :func:`readers` (its samples and the syntax its structure
-mutations parse: ``"yaml"``, ``"xml"``, ``"csv"`` or ``None`` for bytes only).
+mutations parse: ``"yaml"``, ``"xml"``, ``"csv"``, ``"asdf"`` (the YAML part, tags kept) or
+``None`` for bytes only).
 """
 
 from __future__ import annotations
@@ -35,6 +36,7 @@ from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
 import yaml
 
 import pinframes
@@ -128,6 +130,7 @@ def readers(shared_data: Path | None = None) -> dict[str, Reader]:
         "read_scene": Reader(pinframes.read_scene, "yaml", _scene_samples()),
         "read_joint_trajectory": Reader(pinframes.read_joint_trajectory, "csv",
                                         _trajectory_samples()),
+        "read_asdf": Reader(pinframes.read_asdf, "asdf", _asdf_samples(shared_data)),
     }
 
 
@@ -163,6 +166,41 @@ def _trajectory_samples() -> tuple[Sample, ...]:
     return (Sample("robot_motion.csv", _head(MODELS / "welding_cell" / "robot_motion.csv"),
                    "motion.csv"),
             Sample("iso_times.csv", _SMALL_ISO_CSV.encode(), "motion.csv"))
+
+
+def _asdf_samples(shared_data: Path | None) -> tuple[Sample, ...]:
+    """The small tree in both schemas, and the shared weldx files (read where they are)."""
+    samples = [Sample(f"small-{schema}.asdf", small_asdf_file(schema), "tree.asdf")
+               for schema in ("1.0.0", "0.1.0")]
+    weldx_files = shared_data / "weldx-files" if shared_data is not None else None
+    if weldx_files is not None and weldx_files.is_dir():
+        samples.extend(Sample(path.name, path.read_bytes(), "tree.asdf")
+                       for path in sorted(weldx_files.glob("*.asdf")))
+    return tuple(samples)
+
+
+def small_asdf_file(schema: str) -> bytes:
+    """The bytes of :func:`_small_asdf_tree` written by ``write_asdf`` in ``schema``."""
+    with tempfile.TemporaryDirectory() as scratch:
+        path = Path(scratch) / "small.asdf"
+        pinframes.write_asdf(_small_asdf_tree(), path, schema)
+        return path.read_bytes()
+
+
+def _small_asdf_tree() -> pinframes.FrameTree:
+    """Static frames (inline arrays), a moving frame of 30 samples (binary blocks) and a
+    subsystem."""
+    seconds = np.linspace(0.0, 2.9, 30)
+    tree = pinframes.FrameTree("base", "small", "2024-03-01T08:00:00")
+    tree.add("table", "base", pinframes.Pose([0.5, 0.2, 0.0], [0.0, 0.0, 0.38268343, 0.92387953]))
+    tree.add("part", "table", pinframes.Pose([0.1, 0.0, 0.02]))
+    tree.add("torch", "base", pinframes.Pose(
+        np.stack([0.01 * seconds, np.sin(seconds), 0.3 + 0 * seconds], axis=1),
+        np.stack([np.zeros(30), np.zeros(30), np.sin(seconds / 4), np.cos(seconds / 4)],
+                 axis=1),
+        times=seconds, reference_time="2024-03-01T08:00:01"))
+    tree.subsystems = [pinframes.Subsystem("fixture", "table", ("table", "part"), "small")]
+    return tree
 
 
 def _head(path: Path) -> bytes:
@@ -355,8 +393,96 @@ def _csv_mutation(content: bytes, rng: random.Random) -> bytes | None:
     return out.getvalue().encode()
 
 
+_ASDF_TAG_HANDLES = {"!": "tag:stsci.edu:asdf/", "!weldx!": "asdf://weldx.bam.de/weldx/tags/",
+                     "!legacy!": "tag:weldx.bam.de:weldx/"}
+_ODD_TAGS = ["tag:weldx.bam.de:weldx/core/transformations/mystery-1.0.0",
+             "asdf://weldx.bam.de/weldx/tags/core/time_series-0.1.0",
+             "tag:stsci.edu:asdf/core/ndarray-1.0.0", "tag:yaml.org,2002:str",
+             "tag:stsci.edu:asdf/core/complex-1.0.0", "tag:yaml.org,2002:binary"]
+
+
+def _asdf_mutation(content: bytes, rng: random.Random) -> bytes | None:
+    """Mutate the YAML tree of an ASDF file as nodes (tags kept); its blocks stay after it."""
+    yaml_part, end, blocks = content.partition(b"\n...\n")
+    if not end:
+        return None
+    try:
+        document = yaml.compose(yaml_part + end, Loader=yaml.SafeLoader)
+    except yaml.YAMLError:
+        return None
+    holders = [node for node in _nodes(document)
+               if isinstance(node, yaml.MappingNode | yaml.SequenceNode)]
+    if not holders:
+        return None
+    tags = sorted({node.tag for node in _nodes(document)} | set(_ODD_TAGS))
+    for _ in range(rng.choice((1, 1, 2, 3))):
+        _mutate_node(rng.choice(holders), holders, tags, rng)
+    headers = b"".join(line for line in yaml_part.splitlines(keepends=True)
+                       if line.startswith(b"#"))
+    text = yaml.serialize(document, version=(1, 1), tags=_ASDF_TAG_HANDLES,
+                          explicit_start=True, explicit_end=True,
+                          width=rng.choice((80, 10**6)))
+    return headers + text.encode() + blocks
+
+
+def _nodes(root: yaml.Node) -> Iterator[yaml.Node]:
+    stack, seen = [root], set()
+    while stack:
+        node = stack.pop()
+        if id(node) in seen:
+            continue
+        seen.add(id(node))
+        yield node
+        if isinstance(node, yaml.MappingNode):
+            stack.extend(part for pair in node.value for part in pair)
+        elif isinstance(node, yaml.SequenceNode):
+            stack.extend(node.value)
+
+
+def _odd_node(rng: random.Random) -> yaml.Node:
+    return yaml.compose(yaml.safe_dump(rng.choice(_ODD_VALUES)), Loader=yaml.SafeLoader)
+
+
+def _mutate_node(holder: yaml.Node, holders: list[yaml.Node], tags: list[str],
+                 rng: random.Random) -> None:
+    """One change of a mapping or sequence node: an entry dropped, doubled, replaced by an
+    odd value, swapped, moved from elsewhere, or a tag changed."""
+    items = holder.value
+    kind = rng.choice(("drop", "duplicate", "retype", "swap", "transplant", "retag"))
+    if kind == "retag":
+        rng.choice(holders).tag = rng.choice(tags)
+        return
+    if not items:
+        items.append((_odd_node(rng), _odd_node(rng)) if isinstance(holder, yaml.MappingNode)
+                     else _odd_node(rng))
+        return
+    index = rng.randrange(len(items))
+    mapping = isinstance(holder, yaml.MappingNode)
+    if kind == "drop":
+        del items[index]
+    elif kind == "duplicate":
+        items.insert(index, copy.deepcopy(items[index]))
+    elif kind == "retype":
+        items[index] = (items[index][0], _odd_node(rng)) if mapping else _odd_node(rng)
+    elif kind == "swap":
+        other = rng.randrange(len(items))
+        if mapping:
+            items[index], items[other] = ((items[index][0], items[other][1]),
+                                          (items[other][0], items[index][1]))
+        else:
+            items[index], items[other] = items[other], items[index]
+    else:
+        donor = rng.choice(holders)
+        if donor.value and donor is not holder:
+            taken = rng.choice(donor.value)
+            taken = taken[1] if isinstance(donor, yaml.MappingNode) else taken
+            items[index] = (items[index][0], copy.deepcopy(taken)) if mapping \
+                else copy.deepcopy(taken)
+
+
 _STRUCTURE: dict[str, Callable[[bytes, random.Random], bytes | None]] = {
-    "yaml": _yaml_mutation, "xml": _xml_mutation, "csv": _csv_mutation}
+    "yaml": _yaml_mutation, "xml": _xml_mutation, "csv": _csv_mutation,
+    "asdf": _asdf_mutation}
 
 
 # -- running -----------------------------------------------------------------------------------

@@ -1,7 +1,6 @@
 """The file readers the malformed-input corpus runs, and the file name each one reads.
 
-Adding a format is one line here (``"asdf": Reader(read_asdf, "tree.asdf")``) plus its cases
-in ``file_cases.py``.
+Adding a format is one line here plus its cases in ``file_cases.py``.
 """
 
 from __future__ import annotations
@@ -13,6 +12,7 @@ from typing import Any
 
 from pinframes import (
     FrameTree,
+    read_asdf,
     read_frames_yaml,
     read_joint_trajectory,
     read_scene,
@@ -41,4 +41,5 @@ READERS = {
     "scene": Reader(read_scene, "scene.yaml"),
     "csv": Reader(read_joint_trajectory, "motion.csv"),
     "npz": Reader(read_joint_trajectory, "motion.npz"),
+    "asdf": Reader(read_asdf, "tree.asdf"),
 }

@@ -9,14 +9,16 @@ from hardening import fuzz
 
 FUZZ_SEED = 20261123
 INPUTS_PER_READER = 120
+FEWER_INPUTS = {"read_asdf": 80}
+"""Readers slower per input (asdf opens a file in about 40 ms) get fewer in the suite."""
 READERS = fuzz.readers(SHARED_DATA)
 
 
 @pytest.mark.parametrize("name", sorted(READERS))
 def test_mutated_samples_give_pinframes_errors_only(name, tmp_path):
-    tried, failures = fuzz.fuzz({name: READERS[name]}, tmp_path, FUZZ_SEED,
-                                count=INPUTS_PER_READER)
-    assert tried[name] == INPUTS_PER_READER
+    count = FEWER_INPUTS.get(name, INPUTS_PER_READER)
+    tried, failures = fuzz.fuzz({name: READERS[name]}, tmp_path, FUZZ_SEED, count=count)
+    assert tried[name] == count
     assert not failures, "\n".join(
         f"{f.sample} input {f.index}: {f.error}" for f in failures[:10])
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 import tempfile
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -58,6 +59,10 @@ ROUND_TRIPS = {
                              frozenset(), names_are_paths=True),
     "urdf": RoundTrip(".urdf", pinframes.write_urdf, pinframes.read_urdf,
                       frozenset({"robots"}), drives_after_read=True),
+    "asdf-1.0.0": RoundTrip(".asdf", partial(pinframes.write_asdf, schema="1.0.0"),
+                            pinframes.read_asdf, frozenset({"moving"})),
+    "asdf-0.1.0": RoundTrip(".asdf", partial(pinframes.write_asdf, schema="0.1.0"),
+                            pinframes.read_asdf, frozenset({"moving"})),
 }
 
 

@@ -24,9 +24,14 @@ HEADER = """\
 """
 
 
+def asdf_text(body: str) -> str:
+    """The text of an ASDF file whose YAML tree is ``body`` (dedented)."""
+    return HEADER + textwrap.dedent(body).strip("\n") + "\n...\n"
+
+
 def write_asdf_text(path: Path, body: str) -> Path:
     """Write an ASDF file whose YAML tree is ``body`` (dedented); return its path."""
-    path.write_text(HEADER + textwrap.dedent(body).strip("\n") + "\n...\n")
+    path.write_text(asdf_text(body))
     return path
 
 

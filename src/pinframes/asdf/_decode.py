@@ -26,6 +26,7 @@ __all__ = [
     "as_list",
     "float_array",
     "open_raw_tree",
+    "raw_tag",
     "required",
     "time_index_ns",
     "timestamp",
@@ -43,7 +44,10 @@ _TAG = re.compile(r"^(?P<path>.+)-(?P<version>\d+\.\d+\.\d+)$")
 _PANDAS_FREQUENCY_ALIASES = {"H": "h", "T": "min", "S": "s", "L": "ms", "U": "us", "N": "ns",
                              "D": "d"}
 _FREQUENCY = re.compile(r"^\s*(\d*)\s*([A-Za-zµ]+)\s*$")
-_DECODING_ERRORS = (ValueError, TypeError, KeyError, IndexError, OSError, AttributeError)
+# What numpy and asdf's lazy block reading raise for broken arrays; a block header claiming
+# more bytes than any memory holds is a MemoryError.
+_DECODING_ERRORS = (ValueError, TypeError, KeyError, IndexError, OSError, AttributeError,
+                    MemoryError, OverflowError)
 
 
 @contextlib.contextmanager
@@ -89,8 +93,8 @@ def open_raw_tree(path: str | os.PathLike[str]) -> Iterator[dict[str, Any]]:
 
 def weldx_tag(node: Any) -> tuple[str, str] | None:
     """``(path, version)`` of a weldx tag, e.g. ``("time/timedelta", "0.1.0")``, else None."""
-    tag = getattr(node, "_tag", None)
-    if not isinstance(tag, str):
+    tag = raw_tag(node)
+    if tag is None:
         return None
     for prefix in _TAG_PREFIXES:
         if tag.startswith(prefix):
@@ -98,6 +102,17 @@ def weldx_tag(node: Any) -> tuple[str, str] | None:
             if match:
                 return match.group("path"), match.group("version")
     return None
+
+
+def raw_tag(node: Any) -> str | None:
+    """The YAML tag of a tagged mapping, list or string as asdf reads it, else None.
+
+    Arrays are never asked (their attributes would load their binary blocks).
+    """
+    from asdf.tagged import Tagged
+
+    tag = node._tag if isinstance(node, Tagged) else None
+    return tag if isinstance(tag, str) else None
 
 
 def required(node: Any, key: str, field: str) -> Any:

@@ -79,7 +79,8 @@ def _frame_on_path(node: Any, path: list[Any]) -> str | None:
         except (KeyError, IndexError, TypeError):
             break
         kind = (weldx_tag(node) or ("", ""))[0]
-        named = node.get("target_node") if kind == "core/graph/di_edge" else node
+        is_edge = kind == "core/graph/di_edge" and isinstance(node, dict)
+        named = node.get("target_node") if is_edge else node
         if kind in _FRAME_TAGS and isinstance(named, dict) and isinstance(named.get("name"), str):
             frame = named["name"]
     return frame

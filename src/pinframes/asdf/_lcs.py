@@ -16,13 +16,14 @@ from numpy.typing import NDArray
 
 from ..errors import FileFormatError, PinframesError, UnsupportedFeatureError
 from ..pose import Pose
-from ._decode import float_array, required, time_index_ns, timestamp, weldx_tag
+from ._decode import float_array, raw_tag, required, time_index_ns, timestamp, weldx_tag
 from ._units import metres_per_unit
 
 __all__ = ["pose_from_lcs"]
 
 # Field names of Pose errors, as the file calls them.
 _FILE_FIELDS = {"rotation": "orientations", "translation": "coordinates", "times": "time"}
+_LCS_TAG = "core/transformations/local_coordinate_system"
 
 
 def pose_from_lcs(node: Any, frame: str, field: str) -> Pose:
@@ -37,6 +38,10 @@ def _pose(node: Any, field: str) -> Pose:
     if not isinstance(node, dict):
         raise FileFormatError(f"expected a local_coordinate_system mapping, got "
                               f"{type(node).__name__}", field=field)
+    tag = raw_tag(node)
+    if tag is not None and (weldx_tag(node) or ("",))[0] != _LCS_TAG:
+        raise FileFormatError(f"expected a local_coordinate_system, got the tag {tag!r}",
+                              field=field)
     rotation = _variable_data(node.get("orientations"), f"{field}.orientations")
     translation = _coordinates_metres(node.get("coordinates"), f"{field}.coordinates")
     timed = ((rotation is not None and rotation.ndim == 3)
