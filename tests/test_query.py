@@ -231,6 +231,17 @@ def test_a_datetime_query_on_a_static_path_carries_its_own_reference():
     assert result.reference_time == np.datetime64("2024-01-01T00:00:04")
 
 
+def test_times_more_than_292_years_from_the_result_reference_are_an_error_not_a_wrap():
+    tree = tree_with("1700-01-01", ["2200-01-01", None])
+    with pytest.raises(ReferenceTimeError) as info:
+        tree.pose("a", "world")
+    assert info.value.field == "time_ref"
+    assert "292 years" in str(info.value)
+    nearer = tree.pose("a", "world", times=["2200-01-01T00:00:00.5"], time_ref="2200-01-01")
+    np.testing.assert_allclose(nearer.translation, [[0.5, 0, 0]])
+    assert nearer.times.astype("int64").tolist() == [500_000_000]
+
+
 # -- against Pinocchio called directly ------------------------------------------------------
 def test_whole_tree_model_matches_pinocchio_forward_kinematics(rng):
     tree = FrameTree()

@@ -13,8 +13,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from .errors import ReferenceTimeError
-from .timeconv import TimeAxis, parse_timestamp
+from .errors import InvalidTimeError, ReferenceTimeError
+from .timeconv import TimeAxis, parse_timestamp, shift_ns
 
 __all__ = ["QueryTimeline", "TimedSource", "plan_query_timeline"]
 
@@ -33,7 +33,7 @@ class TimedSource:
     def on_basis(self, absolute: bool) -> NDArray[np.int64]:
         """Keyframe times as absolute nanoseconds, or as plain offsets."""
         if absolute and self.reference is not None:
-            return self.times + self.reference.astype(np.int64)
+            return shift_ns(self.times, _ns(self.reference), field=f"times of {self.name!r}")
         return self.times
 
 
@@ -61,7 +61,13 @@ class QueryTimeline:
         """Times of the result relative to :attr:`reference`."""
         if self.evaluation_times is None or not self.absolute:
             return self.evaluation_times
-        return self.evaluation_times - self.reference.astype(np.int64)
+        try:
+            return shift_ns(self.evaluation_times, -_ns(self.reference))
+        except InvalidTimeError:
+            raise ReferenceTimeError(
+                f"the result's times lie more than 292 years from its reference time "
+                f"{self.reference}, beyond int64 nanoseconds; query at given times with "
+                f"a time_ref nearer to them", field="time_ref") from None
 
 
 def plan_query_timeline(
@@ -110,10 +116,9 @@ def plan_query_timeline(
          if r is not None),
         None,
     )
-    if times.is_absolute:
-        requested = times.offsets + times.reference.astype(np.int64)
-    elif reference is not None:
-        requested = times.offsets + reference.astype(np.int64)
+    if times.is_absolute or reference is not None:
+        requested = shift_ns(times.offsets, _ns(times.reference if times.is_absolute
+                                                else reference))
     else:
         return QueryTimeline(times.offsets, False, None)
     if sources and lowest_source_reference is None:
@@ -123,3 +128,8 @@ def plan_query_timeline(
             field="times")
     return QueryTimeline(requested, True, reference)
 
+
+
+def _ns(timestamp: np.datetime64) -> int:
+    """``timestamp`` as nanoseconds since 1970."""
+    return int(timestamp.astype("datetime64[ns]").astype(np.int64))

@@ -33,6 +33,7 @@ __all__ = [
     "parse_time_axis",
     "parse_timedelta",
     "parse_timestamp",
+    "shift_ns",
 ]
 
 _NS_LIMIT = 2**63 - 1
@@ -114,6 +115,15 @@ def anchor_time_axis(axis: TimeAxis, reference: np.datetime64, *,
     if any(abs(end) > _NS_LIMIT or abs(base + end) > _NS_LIMIT for end in ends):
         raise _beyond_nanoseconds(field)
     return TimeAxis(axis.offsets + shift, reference)
+
+
+def shift_ns(nanoseconds: NDArray[np.int64], shift: int, *,
+             field: str = "times") -> NDArray[np.int64]:
+    """``nanoseconds + shift``, or :class:`InvalidTimeError` where int64 would wrap around."""
+    if nanoseconds.size and (int(nanoseconds.min()) + shift < -_NS_LIMIT
+                             or int(nanoseconds.max()) + shift > _NS_LIMIT):
+        raise _beyond_nanoseconds(field)
+    return nanoseconds + np.int64(shift)
 
 
 def parse_timestamp(value: Any, *, field: str = "reference_time") -> np.datetime64:

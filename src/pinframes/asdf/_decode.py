@@ -46,7 +46,7 @@ _PANDAS_FREQUENCY_ALIASES = {"H": "h", "T": "min", "S": "s", "L": "ms", "U": "us
 _FREQUENCY = re.compile(r"^\s*(\d*)\s*([A-Za-zµ]+)\s*$")
 # What numpy and asdf's lazy block reading raise for broken arrays; a block header claiming
 # more bytes than any memory holds is a MemoryError.
-_DECODING_ERRORS = (ValueError, TypeError, KeyError, IndexError, OSError, AttributeError,
+DECODING_ERRORS = (ValueError, TypeError, KeyError, IndexError, OSError, AttributeError,
                     MemoryError, OverflowError)
 
 
@@ -85,7 +85,7 @@ def open_raw_tree(path: str | os.PathLike[str]) -> Iterator[dict[str, Any]]:
         except OSError as exc:
             raise ReadError(f"cannot read the file: {exc}", file=path) from None
         except Exception as exc:  # asdf and yaml raise many kinds for a non-ASDF file
-            raise FileFormatError(f"not a readable ASDF file: {_first_line(exc)}",
+            raise FileFormatError(f"not a readable ASDF file: {first_line(exc)}",
                                   file=path) from None
         with opened as asdf_file:
             yield asdf_file.tree
@@ -135,8 +135,8 @@ def float_array(value: Any, field: str) -> NDArray[np.float64]:
     """An ndarray (inline, in a binary block, or a plain number/list) as a float array."""
     try:
         return np.array(value, dtype=float)
-    except _DECODING_ERRORS as exc:
-        raise FileFormatError(f"cannot read the numbers: {_first_line(exc)}",
+    except DECODING_ERRORS as exc:
+        raise FileFormatError(f"cannot read the numbers: {first_line(exc)}",
                               field=field) from None
 
 
@@ -159,8 +159,8 @@ def time_index_ns(node: Any, field: str) -> NDArray[np.int64]:
     if isinstance(node, dict) and "values" in node:
         try:
             values = np.array(node["values"])
-        except _DECODING_ERRORS as exc:
-            raise FileFormatError(f"cannot read the times: {_first_line(exc)}",
+        except DECODING_ERRORS as exc:
+            raise FileFormatError(f"cannot read the times: {first_line(exc)}",
                                   field=f"{field}.values") from None
         if values.ndim != 1 or values.dtype.kind not in "iu":
             raise FileFormatError(
@@ -196,7 +196,7 @@ def _scalar_value(value: Any, field: str) -> Any:
     return value
 
 
-def _first_line(exc: BaseException) -> str:
+def first_line(exc: BaseException) -> str:
     if isinstance(exc, PinframesError):
         return exc.message
     text = str(exc).strip()

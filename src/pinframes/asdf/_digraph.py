@@ -65,7 +65,7 @@ def _edge_pose(edge: Any, child: str) -> Pose:
     """The pose of ``child`` in its parent stored on ``edge``."""
     try:
         direction = required(edge, "direction", "edge")
-        if direction not in _DIRECTIONS:
+        if not isinstance(direction, str) or direction not in _DIRECTIONS:
             raise FileFormatError(f"expected 'bwd' or 'fwd', got {direction!r}",
                                   field="edge.direction")
         transformation = required(required(edge, "attributes", "edge"), "transformation",

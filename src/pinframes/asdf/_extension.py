@@ -20,7 +20,7 @@ import yaml
 
 from ..errors import FileFormatError
 from ._asdf_config import temporary_asdf_config
-from ._decode import weldx_tag
+from ._decode import DECODING_ERRORS, first_line, weldx_tag
 
 __all__ = [
     "EXTENSION_URI",
@@ -62,7 +62,11 @@ def validate_hierarchy(hierarchy: Any) -> None:
     with bound_schemas():
         document = asdf.AsdfFile()
         try:
-            schema.validate(yamlutil.custom_tree_to_tagged_tree(hierarchy, document), document)
+            tagged = yamlutil.custom_tree_to_tagged_tree(hierarchy, document)
+        except DECODING_ERRORS as exc:  # arrays whose blocks decoded to what asdf cannot tag
+            raise FileFormatError(f"holds an array asdf cannot check: {first_line(exc)}") from None
+        try:
+            schema.validate(tagged, document)
         except asdf.ValidationError as exc:
             path = list(exc.absolute_path)
             raise FileFormatError(f"breaks its weldx schema: {exc.message}",
