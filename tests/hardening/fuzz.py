@@ -9,6 +9,10 @@ Long runs (failing inputs are written to ``--out``, one file each, with a ``.jso
 
     PYTHONPATH=src python tests/hardening/fuzz.py --seconds 600 --seed 7 --out /tmp/fuzz
 
+Once fixed, a failure is kept in ``fuzz_regressions/``: its record, and its input file too
+unless that was made from a shared sample file (others' files stay out of the project; such
+inputs are remade from the record, and skipped where the shared files are absent).
+
 A new reader is one line in :func:`readers` (its samples and the syntax its structure
 mutations parse: ``"yaml"``, ``"xml"``, ``"csv"``, ``"asdf"`` (the YAML part, tags kept) or
 ``None`` for bytes only).
@@ -585,16 +589,26 @@ def regression_inputs() -> list[Path]:
     return sorted(REGRESSIONS.glob("*.json"))
 
 
+class SampleMissing(LookupError):
+    """A kept input is remade from a shared sample file that is not on this machine."""
+
+
 def replay(reader_table: dict[str, Reader], record_path: Path, folder: Path) -> str | None:
     """Read a kept input again: the file beside its record, else remade from seed and index.
 
-    Remade inputs depend on the mutation code; large inputs are kept that way all the same.
+    Remade inputs depend on the mutation code. Inputs made from the shared sample files
+    (others' files, never copied into the project) and large inputs are kept that way.
+
+    Raises
+    ------
+    SampleMissing
+        The input is to be remade from a shared sample that is absent.
     """
     record = json.loads(record_path.read_text())
     reader = reader_table[record["reader"]]
     sample = next((s for s in reader.samples if s.name == record["sample"]), None)
     if sample is None:
-        sample = reader.samples[0]
+        raise SampleMissing(record["sample"])
     content_path = record_path.with_suffix("")
     if content_path.is_file():
         content = content_path.read_bytes()

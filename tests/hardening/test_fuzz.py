@@ -25,7 +25,11 @@ def test_mutated_samples_give_pinframes_errors_only(name, tmp_path):
 
 @pytest.mark.parametrize("record", fuzz.regression_inputs(), ids=lambda path: path.stem)
 def test_inputs_that_once_failed_give_pinframes_errors_only(record, tmp_path):
-    assert fuzz.replay(READERS, record, tmp_path) is None
+    try:
+        error = fuzz.replay(READERS, record, tmp_path)
+    except fuzz.SampleMissing as missing:
+        pytest.skip(f"remade from the shared sample {missing}, absent here")
+    assert error is None
 
 
 def test_the_regression_folder_holds_inputs():
