@@ -97,7 +97,8 @@ def test_reference_time_and_time_ref(run_cli, tmp_path):
 @pytest.mark.parametrize(
     ("args", "expected"),
     [
-        (["missing.yaml", "tip"], "missing.yaml: No such file"),
+        (["missing.yaml", "tip"], "missing.yaml: no such file"),
+        ([".", "tip"], ".: is a folder, not a file"),
         (["{scene}", "nope", "-r", "world"],
          "turntable.yaml: frame 'nope': no frame of this name"),
         (["{scene}", "tip", "-r", "nowhere"], "frame 'nowhere'"),

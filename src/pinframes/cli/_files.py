@@ -16,7 +16,7 @@ from typing import Any
 import pinframes
 
 from .._yaml_loader import load_yaml
-from ..errors import FileFormatError, FrameNotFoundError, UnsupportedFeatureError
+from ..errors import FileFormatError, FrameNotFoundError, ReadError, UnsupportedFeatureError
 from ..scene import SCENE_FORMAT_KEY
 from ..tree import FrameTree
 
@@ -51,7 +51,8 @@ def detect_format(path: str | Path, *, writing: bool = False) -> str:
 def read_tree(path: str | Path, fmt: str | None = None) -> FrameTree:
     """Read the tree in ``path``, in format ``fmt`` (default: told from the file)."""
     if not Path(path).is_file():
-        raise FileNotFoundError(2, "No such file", str(path))
+        raise ReadError("is a folder, not a file" if Path(path).is_dir() else "no such file",
+                        file=path)
     return _function("read", fmt or detect_format(path))(path)
 
 
