@@ -1,14 +1,18 @@
 import numpy as np
 import pytest
 
+from hardening.file_cases import joint, urdf
 from pinframes import FrameTree, Pose, Subsystem
 from pinframes.errors import (
     ArgumentTypeError,
     FrameExistsError,
     FrameNotFoundError,
+    JointError,
     ReferenceTimeError,
     TreeStructureError,
 )
+
+from geometry import rot_z
 
 
 def small_tree() -> FrameTree:
@@ -83,6 +87,21 @@ def test_remove_drops_members_from_subsystems():
     assert tree.subsystems[0].members == ("robot", "flange")
     tree.remove("robot", recursive=True)
     assert tree.subsystems == []
+
+
+def test_remove_refuses_to_leave_a_mimic_joint_without_the_joint_it_follows():
+    tree = FrameTree()
+    tree.attach_urdf(urdf(joint("j1", "a", "b")
+                          + joint("j2", "a", "c", inner='<mimic joint="j1" multiplier="2"/>'),
+                          "a b c"), "world")
+    with pytest.raises(JointError) as info:
+        tree.remove("b")
+    assert (info.value.frame, info.value.field) == ("c", "mimic")
+    assert tree.frames == ["world", "a", "b", "c"] and list(tree.joints) == ["j1", "j2"]
+    tree.set_joint_trajectory([0.0], [[0.25]])
+    np.testing.assert_allclose(tree.pose("c", "a").rotation[0], rot_z(0.5), atol=1e-15)
+    tree.remove("a", recursive=True)  # the mimic goes with the joint it follows
+    assert tree.frames == ["world"] and tree.joints == {}
 
 
 def test_moving_frames_must_agree_on_reference_times_when_the_tree_has_none():

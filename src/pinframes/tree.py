@@ -15,6 +15,7 @@ from .errors import (
     FrameExistsError,
     FrameNotFoundError,
     InvalidPoseError,
+    JointError,
     ReferenceTimeError,
     TreeStructureError,
 )
@@ -257,6 +258,7 @@ class FrameTree:
                 f"has children ({', '.join(self._children[name])}); pass recursive=True to "
                 "remove them too", frame=name)
         doomed = self._subtree(name)
+        self._refuse_orphaned_mimics(set(doomed))
         del self._children[self._parent[name]][name]
         for frame in doomed:
             pose = self._local.pop(frame)
@@ -276,6 +278,16 @@ class FrameTree:
             for s in self.subsystems if s.root not in gone
         ]
         self._invalidate()
+
+    def _refuse_orphaned_mimics(self, doomed: set[str]) -> None:
+        """Raise a :class:`JointError` if a joint kept mimics one on the ``doomed`` frames."""
+        leaving = {self._joints[frame].name for frame in doomed if frame in self._joints}
+        for frame, joint in self._joints.items():
+            if frame not in doomed and joint.mimic is not None and joint.mimic.joint in leaving:
+                raise JointError(
+                    f"its joint {joint.name!r} mimics joint {joint.mimic.joint!r}, which the "
+                    "removal would take away; remove the mimic joint's frame too",
+                    frame=frame, field="mimic")
 
     def rename(self, old: str, new: str) -> None:
         """Rename frame ``old`` to ``new``, keeping its place, pose and metadata."""
