@@ -17,6 +17,7 @@ import csv
 import io
 import os
 import zipfile
+import zlib
 from pathlib import Path
 
 import numpy as np
@@ -29,6 +30,10 @@ from .timeconv import parse_time_axis
 __all__ = ["read_joint_trajectory"]
 
 _TIME_COLUMNS = ("time_s", "time")
+# What a broken NPZ raises from numpy and zipfile: a bad header, a short file, a bad CRC or
+# deflate stream, a compression method or encryption that zipfile does not support.
+_ARCHIVE_ERRORS = (ValueError, EOFError, OSError, zipfile.BadZipFile, zlib.error,
+                   NotImplementedError, RuntimeError)
 
 
 def read_joint_trajectory(
@@ -127,9 +132,10 @@ def _csv_times(cells: list[str], column: str, rows: list[tuple[int, list[str]]],
 
 
 def _read_npz(path: str | os.PathLike[str]) -> tuple[np.ndarray, NDArray[np.float64], list[str]]:
+    content = read_bytes(path)
     try:
-        archive = np.load(io.BytesIO(read_bytes(path)), allow_pickle=False)
-    except (ValueError, EOFError, zipfile.BadZipFile) as exc:
+        archive = np.load(io.BytesIO(content), allow_pickle=False)
+    except _ARCHIVE_ERRORS as exc:
         raise FileFormatError(f"not a readable NPZ file: {exc}", file=path) from None
     if not isinstance(archive, np.lib.npyio.NpzFile):
         raise FileFormatError("not an NPZ archive (written by numpy.savez)", file=path)
@@ -142,7 +148,7 @@ def _read_npz(path: str | os.PathLike[str]) -> tuple[np.ndarray, NDArray[np.floa
         for key in ("times", "positions", "joint_names"):
             try:
                 arrays[key] = archive[key]
-            except (ValueError, OSError, zipfile.BadZipFile) as exc:
+            except _ARCHIVE_ERRORS as exc:
                 raise FileFormatError(f"cannot read the array: {exc}", file=path,
                                       field=key) from None
     times, positions, names = arrays["times"], arrays["positions"], arrays["joint_names"]

@@ -134,6 +134,8 @@ def readers(shared_data: Path | None = None) -> dict[str, Reader]:
         "read_scene": Reader(pinframes.read_scene, "yaml", _scene_samples()),
         "read_joint_trajectory": Reader(pinframes.read_joint_trajectory, "csv",
                                         _trajectory_samples()),
+        "read_joint_trajectory_npz": Reader(pinframes.read_joint_trajectory, None,
+                                            _npz_samples()),
         "read_asdf": Reader(pinframes.read_asdf, "asdf", _asdf_samples(shared_data)),
     }
 
@@ -170,6 +172,18 @@ def _trajectory_samples() -> tuple[Sample, ...]:
     return (Sample("robot_motion.csv", _head(MODELS / "welding_cell" / "robot_motion.csv"),
                    "motion.csv"),
             Sample("iso_times.csv", _SMALL_ISO_CSV.encode(), "motion.csv"))
+
+
+def _npz_samples() -> tuple[Sample, ...]:
+    """Three joints over five samples, stored plainly and compressed (bytes mutations only)."""
+    arrays = {"times": np.linspace(0.0, 2.0, 5), "positions": np.arange(15.0).reshape(5, 3),
+              "joint_names": np.array(["j1", "j2", "j3"])}
+    samples = []
+    for name, save in (("motion.npz", np.savez), ("compressed.npz", np.savez_compressed)):
+        buffer = io.BytesIO()
+        save(buffer, **arrays)
+        samples.append(Sample(name, buffer.getvalue(), "motion.npz"))
+    return tuple(samples)
 
 
 def _asdf_samples(shared_data: Path | None) -> tuple[Sample, ...]:

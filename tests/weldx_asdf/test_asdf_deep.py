@@ -57,17 +57,22 @@ def test_deeper_chain_is_refused_clearly_when_writing_0_1_0(tmp_path):
 
 
 def test_deeper_chain_written_by_someone_else_is_refused_clearly(tmp_path):
-    """asdf itself writes the graph, with Python's recursion limit raised far enough."""
+    """asdf itself writes the graph, with Python's recursion limit raised far enough and on a
+    thread with a stack large enough (asdf 5 overflows the main thread's C stack)."""
     import subprocess
     import sys
 
     path = tmp_path / "foreign.asdf"
     depth = 2 * MAX_GRAPH_DEPTH
-    script = ("import sys, asdf; sys.setrecursionlimit(200_000); "
+    script = ("import sys, threading, asdf; sys.setrecursionlimit(200_000); "
+              "threading.stack_size(512 * 2**20); "
               "from test_asdf_deep import chain; "
               "from pinframes.asdf._writer import _graph_hierarchy; "
               "asdf.get_config().validate_on_write = False; "
-              f"asdf.AsdfFile({{'h': _graph_hierarchy(chain({depth}))}}).write_to({str(path)!r})")
+              "write = lambda: asdf.AsdfFile("
+              f"{{'h': _graph_hierarchy(chain({depth}))}}).write_to({str(path)!r}); "
+              "thread = threading.Thread(target=write); thread.start(); thread.join(); "
+              f"sys.exit(not __import__('os').path.isfile({str(path)!r}))")
     subprocess.run([sys.executable, "-c", script], check=True, cwd=__file__.rsplit("/", 1)[0],
                    env={"PYTHONPATH": ":".join(sys.path)})
     with pytest.raises(UnsupportedFeatureError, match=r"1\.0\.0") as error:
