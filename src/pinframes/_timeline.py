@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .errors import InvalidTimeError, ReferenceTimeError
-from .timeconv import TimeAxis, parse_timestamp, shift_ns
+from .timeconv import TimeAxis, parse_timestamp, shift_ns, timestamp_ns
 
 __all__ = ["QueryTimeline", "TimedSource", "plan_query_timeline"]
 
@@ -33,7 +33,8 @@ class TimedSource:
     def on_basis(self, absolute: bool) -> NDArray[np.int64]:
         """Keyframe times as absolute nanoseconds, or as plain offsets."""
         if absolute and self.reference is not None:
-            return shift_ns(self.times, _ns(self.reference), field=f"times of {self.name!r}")
+            return shift_ns(self.times, timestamp_ns(self.reference),
+                            field=f"times of {self.name!r}")
         return self.times
 
 
@@ -62,7 +63,7 @@ class QueryTimeline:
         if self.evaluation_times is None or not self.absolute:
             return self.evaluation_times
         try:
-            return shift_ns(self.evaluation_times, -_ns(self.reference))
+            return shift_ns(self.evaluation_times, -timestamp_ns(self.reference))
         except InvalidTimeError:
             raise ReferenceTimeError(
                 f"the result's times lie more than 292 years from its reference time "
@@ -117,8 +118,8 @@ def plan_query_timeline(
         None,
     )
     if times.is_absolute or reference is not None:
-        requested = shift_ns(times.offsets, _ns(times.reference if times.is_absolute
-                                                else reference))
+        base = times.reference if times.is_absolute else reference
+        requested = shift_ns(times.offsets, timestamp_ns(base))
     else:
         return QueryTimeline(times.offsets, False, None)
     if sources and lowest_source_reference is None:
@@ -127,9 +128,3 @@ def plan_query_timeline(
             + ", ".join(s.name for s in sources) + ") have no reference time",
             field="times")
     return QueryTimeline(requested, True, reference)
-
-
-
-def _ns(timestamp: np.datetime64) -> int:
-    """``timestamp`` as nanoseconds since 1970."""
-    return int(timestamp.astype("datetime64[ns]").astype(np.int64))

@@ -22,7 +22,14 @@ from .rotations import (
     rotation_matrix_defects,
     rpy_from_matrix,
 )
-from .timeconv import TimeAxis, anchor_time_axis, parse_time_axis, parse_timestamp
+from .timeconv import (
+    TimeAxis,
+    anchor_time_axis,
+    parse_time_axis,
+    parse_timestamp,
+    shift_ns,
+    timestamp_ns,
+)
 
 __all__ = ["Pose"]
 
@@ -210,20 +217,16 @@ class Pose:
         reference = parse_timestamp(time_ref, field="time_ref") if time_ref is not None else None
         if reference is None:
             reference = self._reference if self._reference is not None else axis.reference
-        if axis.is_absolute:
-            absolute = axis.reference.astype(np.int64) + axis.offsets
-        elif reference is not None:
-            absolute = reference.astype(np.int64) + axis.offsets
-        else:
-            absolute = None
-        if absolute is None:
+        if not axis.is_absolute and reference is None:
             return self._sampled(axis.offsets, None)
+        base = axis.reference if axis.is_absolute else reference
+        absolute = shift_ns(axis.offsets, timestamp_ns(base))
         if self.is_time_dependent and self._reference is None:
             raise ReferenceTimeError(
                 "absolute times or a time_ref were given, but this pose has no reference time",
                 field="times",
             )
-        return self._sampled(absolute - reference.astype(np.int64), reference)
+        return self._sampled(shift_ns(absolute, -timestamp_ns(reference)), reference)
 
     def _sampled(self, times: NDArray[np.int64], reference: np.datetime64 | None) -> Pose:
         """Samples at ``times`` ns after ``reference`` (both on this pose's own basis)."""
@@ -234,8 +237,8 @@ class Pose:
                                  times, reference)
         shift = 0
         if reference is not None and self._reference is not None:
-            shift = int(reference.astype(np.int64) - self._reference.astype(np.int64))
-        translation, rotation = self.keyframes.sample(times + shift)
+            shift = timestamp_ns(reference) - timestamp_ns(self._reference)
+        translation, rotation = self.keyframes.sample(shift_ns(times, shift))
         return Pose._trusted(translation, rotation, times, reference)
 
     @property
@@ -271,10 +274,9 @@ def _union_timeline(a: Pose, b: Pose) -> tuple[NDArray[np.int64], np.datetime64 
     if a._reference is None:
         return np.union1d(a._times, b._times), None
     reference = min(a._reference, b._reference)
-    base = reference.astype(np.int64)
-    absolute = np.union1d(a._reference.astype(np.int64) + a._times,
-                          b._reference.astype(np.int64) + b._times)
-    return absolute - base, reference
+    absolute = np.union1d(shift_ns(a._times, timestamp_ns(a._reference)),
+                          shift_ns(b._times, timestamp_ns(b._reference)))
+    return shift_ns(absolute, -timestamp_ns(reference)), reference
 
 
 def _as_float_array(values: ArrayLike, field: str) -> FloatArray:

@@ -34,6 +34,7 @@ __all__ = [
     "parse_timedelta",
     "parse_timestamp",
     "shift_ns",
+    "timestamp_ns",
 ]
 
 _NS_LIMIT = 2**63 - 1
@@ -107,8 +108,8 @@ def anchor_time_axis(axis: TimeAxis, reference: np.datetime64, *,
     Raises :class:`InvalidTimeError` when an offset or an absolute time would leave int64
     nanoseconds (numpy would wrap it around without a word).
     """
-    base = int(reference.astype("datetime64[ns]").astype(np.int64))
-    shift = int(axis.reference.astype("datetime64[ns]").astype(np.int64)) - base \
+    base = timestamp_ns(reference)
+    shift = timestamp_ns(axis.reference) - base \
         if axis.is_absolute else 0
     ends = [int(axis.offsets.min()) + shift, int(axis.offsets.max()) + shift] \
         if axis.offsets.size else []
@@ -124,6 +125,11 @@ def shift_ns(nanoseconds: NDArray[np.int64], shift: int, *,
                              or int(nanoseconds.max()) + shift > _NS_LIMIT):
         raise _beyond_nanoseconds(field)
     return nanoseconds + np.int64(shift)
+
+
+def timestamp_ns(timestamp: np.datetime64) -> int:
+    """``timestamp`` as nanoseconds since 1970-01-01 (a Python int: no wrap-around)."""
+    return int(timestamp.astype("datetime64[ns]").astype(np.int64))
 
 
 def parse_timestamp(value: Any, *, field: str = "reference_time") -> np.datetime64:

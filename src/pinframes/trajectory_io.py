@@ -31,9 +31,9 @@ __all__ = ["read_joint_trajectory"]
 
 _TIME_COLUMNS = ("time_s", "time")
 # What a broken NPZ raises from numpy and zipfile: a bad header, a short file, a bad CRC or
-# deflate stream, a compression method or encryption that zipfile does not support.
-_ARCHIVE_ERRORS = (ValueError, EOFError, OSError, zipfile.BadZipFile, zlib.error,
-                   NotImplementedError, RuntimeError)
+# deflate stream, a compression method (NotImplementedError, a RuntimeError) or encryption
+# that zipfile does not support.
+_ARCHIVE_ERRORS = (ValueError, EOFError, OSError, zipfile.BadZipFile, zlib.error, RuntimeError)
 
 
 def read_joint_trajectory(
