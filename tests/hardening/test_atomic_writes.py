@@ -13,7 +13,7 @@ import pinocchio as pin
 import pytest
 
 from hardening.file_cases import joint, urdf
-from pinframes import FrameTree, Pose, write_frames_yaml, write_scene, write_urdf
+from pinframes import FrameTree, Joint, Mimic, Pose, write_frames_yaml, write_scene, write_urdf
 from pinframes._atomic import atomic_write
 from pinframes.cli import main
 from pinframes.cli._output import write_poses
@@ -92,11 +92,9 @@ def moving_tree() -> FrameTree:
 
 
 def tree_with_orphaned_mimic() -> FrameTree:
-    # j2 follows j1; removing j1's link leaves j2 pointing at a joint the output lacks.
+    # j2 follows j1, which was never attached (joints may be attached in any order).
     tree = FrameTree()
-    tree.attach_urdf(urdf(joint("j1", "a", "b") + joint("j2", "a", "c",
-                                                           inner='<mimic joint="j1"/>')), "world")
-    tree.remove("b")
+    tree.attach_joint("c", "world", Joint("j2", "revolute", mimic=Mimic("j1")))
     return tree
 
 
