@@ -242,6 +242,16 @@ def test_times_more_than_292_years_from_the_result_reference_are_an_error_not_a_
     assert nearer.times.astype("int64").tolist() == [500_000_000]
 
 
+def test_a_frame_500_years_from_the_query_times_is_an_error_not_sampled_at_a_wrapped_time():
+    tree = tree_with(None, ["2200-01-01", "1700-01-01"])
+    for query in ({}, {"times": ["2200-01-01T00:00:05"], "time_ref": "2200-01-01"}):
+        with pytest.raises(ReferenceTimeError) as info:
+            tree.pose("a", "b", **query)
+        assert (info.value.frame, info.value.field) == ("b", "reference_time")
+    np.testing.assert_allclose(tree.pose("a", "world", times=["2200-01-01T00:00:05"])
+                               .translation, [[5, 0, 0]])
+
+
 # -- against Pinocchio called directly ------------------------------------------------------
 def test_whole_tree_model_matches_pinocchio_forward_kinematics(rng):
     tree = FrameTree()

@@ -101,7 +101,7 @@ def plan_query_timeline(
         absolute = lowest_source_reference is not None
         union = np.unique(np.concatenate([s.on_basis(absolute) for s in sources]))
         reference = tree_reference if tree_reference is not None else lowest_source_reference
-        return QueryTimeline(union, absolute, reference)
+        return _within_reach_of_sources(QueryTimeline(union, absolute, reference), sources)
 
     query_reference = None
     if time_ref is not None:
@@ -127,4 +127,26 @@ def plan_query_timeline(
             "absolute times or a time_ref were given, but the moving frames on this path ("
             + ", ".join(s.name for s in sources) + ") have no reference time",
             field="times")
-    return QueryTimeline(requested, True, reference)
+    return _within_reach_of_sources(QueryTimeline(requested, True, reference), sources)
+
+
+def _within_reach_of_sources(timeline: QueryTimeline, sources: list[TimedSource]
+                             ) -> QueryTimeline:
+    """``timeline``, once each source can count its times from its own reference time.
+
+    Sources sample at timeline times minus their reference; numpy would wrap that around for
+    times more than 292 years from the reference, and the frame would be sampled at a
+    wrong time.
+    """
+    if not timeline.absolute:
+        return timeline
+    ends = np.array([timeline.evaluation_times.min(), timeline.evaluation_times.max()])
+    for source in (s for s in sources if s.reference is not None):
+        try:
+            shift_ns(ends, -timestamp_ns(source.reference))
+        except InvalidTimeError:
+            raise ReferenceTimeError(
+                f"the query's times lie more than 292 years from this frame's reference time "
+                f"{source.reference}, beyond int64 nanoseconds", frame=source.name,
+                field="reference_time") from None
+    return timeline
