@@ -244,10 +244,13 @@ def test_times_more_than_292_years_from_the_result_reference_are_an_error_not_a_
 
 def test_a_frame_500_years_from_the_query_times_is_an_error_not_sampled_at_a_wrapped_time():
     tree = tree_with(None, ["2200-01-01", "1700-01-01"])
-    for query in ({}, {"times": ["2200-01-01T00:00:05"], "time_ref": "2200-01-01"}):
-        with pytest.raises(ReferenceTimeError) as info:
-            tree.pose("a", "b", **query)
-        assert (info.value.frame, info.value.field) == ("b", "reference_time")
+    with pytest.raises(ReferenceTimeError) as info:  # the union: each frame is out of reach
+        tree.pose("a", "b")
+    assert (info.value.frame, info.value.field) in {("a", "reference_time"),
+                                                    ("b", "reference_time")}
+    with pytest.raises(ReferenceTimeError) as info:
+        tree.pose("a", "b", times=["2200-01-01T00:00:05"], time_ref="2200-01-01")
+    assert (info.value.frame, info.value.field) == ("b", "reference_time")
     np.testing.assert_allclose(tree.pose("a", "world", times=["2200-01-01T00:00:05"])
                                .translation, [[5, 0, 0]])
 
