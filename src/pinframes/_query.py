@@ -21,7 +21,7 @@ from .errors import ExtrapolationError, InvalidTimeError
 from .joint import Joint, mimic_chain
 from .pinocchio_model import CompiledJoint, CompiledModel
 from .pose import Pose
-from .timeconv import TimeAxis, parse_time_axis
+from .timeconv import TimeAxis, parse_time_axis, timestamp_ns
 
 if TYPE_CHECKING:
     from .tree import FrameTree
@@ -267,7 +267,7 @@ def _evaluate_model(
 def basis_shifts(sources: list[TimedSource], timeline: QueryTimeline) -> dict[str, int]:
     """Per source, what to subtract from timeline times to land on its own time basis."""
     return {
-        s.name: int(s.reference.astype(np.int64))
+        s.name: timestamp_ns(s.reference)
         if timeline.absolute and s.reference is not None else 0
         for s in sources
     }

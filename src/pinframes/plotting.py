@@ -14,7 +14,7 @@ import numpy as np
 
 from ._atomic import atomic_write
 from .errors import ReferenceTimeError, UnsupportedFeatureError
-from .timeconv import TimeAxis
+from .timeconv import TimeAxis, timestamp_ns
 from .tree import FrameTree
 from .urdf import URDF_METADATA_KEY
 
@@ -163,7 +163,7 @@ def _common_times(tree: FrameTree, frames: list[str], relative_to: str) -> Any:
 
 
 def _ns(axis: TimeAxis, index: int) -> int:
-    base = 0 if axis.reference is None else int(axis.reference.astype(np.int64))
+    base = 0 if axis.reference is None else timestamp_ns(axis.reference)
     return base + int(axis.offsets[index])
 
 

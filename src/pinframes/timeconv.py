@@ -92,12 +92,8 @@ def parse_time_axis(values: Any, *, field: str = "times") -> TimeAxis:
         raise InvalidTimeError("not-a-time (NaT) values", field=field)
     if array.dtype.kind == "M":
         reference = array[0]
-        nanoseconds = array.astype(np.int64)
-        first = int(nanoseconds[0])
-        span = max(int(nanoseconds.max()) - first, first - int(nanoseconds.min()))
-        if span > _NS_LIMIT:
-            raise _beyond_nanoseconds(field)
-        return TimeAxis(nanoseconds - first, reference)
+        return TimeAxis(shift_ns(array.astype(np.int64), -timestamp_ns(reference), field=field),
+                        reference)
     return TimeAxis(array.astype(np.int64), None)
 
 
@@ -109,13 +105,10 @@ def anchor_time_axis(axis: TimeAxis, reference: np.datetime64, *,
     nanoseconds (numpy would wrap it around without a word).
     """
     base = timestamp_ns(reference)
-    shift = timestamp_ns(axis.reference) - base \
-        if axis.is_absolute else 0
-    ends = [int(axis.offsets.min()) + shift, int(axis.offsets.max()) + shift] \
-        if axis.offsets.size else []
-    if any(abs(end) > _NS_LIMIT or abs(base + end) > _NS_LIMIT for end in ends):
-        raise _beyond_nanoseconds(field)
-    return TimeAxis(axis.offsets + shift, reference)
+    shift = timestamp_ns(axis.reference) - base if axis.is_absolute else 0
+    offsets = shift_ns(axis.offsets, shift, field=field)
+    shift_ns(offsets, base, field=field)  # the instants must fit as well
+    return TimeAxis(offsets, reference)
 
 
 def shift_ns(nanoseconds: NDArray[np.int64], shift: int, *,
@@ -164,8 +157,7 @@ def format_timedelta_iso(nanoseconds: int) -> str:
 def format_timestamp_iso(stamp: np.datetime64) -> str:
     """ISO 8601 timestamp without zone (naive UTC): ``2024-03-01T08:00:05``, with the
     nanoseconds' trailing zeros dropped when there is a fraction (``2024-03-01T08:00:05.25``)."""
-    nanoseconds = int(np.datetime64(stamp, "ns").astype(np.int64))
-    seconds, fraction = divmod(nanoseconds, 1_000_000_000)
+    seconds, fraction = divmod(timestamp_ns(stamp), 1_000_000_000)
     text = str(np.datetime64(seconds, "s"))
     return f"{text}.{fraction:09d}".rstrip("0") if fraction else text
 

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..errors import InvalidTimeError
 from ..pose import Pose
-from ..timeconv import TimeAxis, parse_time_axis, parse_timedelta, parse_timestamp
+from ..timeconv import TimeAxis, parse_time_axis, parse_timedelta, parse_timestamp, timestamp_ns
 from ..tree import FrameTree
 
 __all__ = ["add_time_arguments", "evaluate_poses", "requested_times", "terminal_stderr"]
@@ -91,7 +91,7 @@ def _grid_end(value: str | None, field: str, samples: TimeAxis | None, index: in
             else TimeAxis(samples.offsets[[index]], samples.reference))
     if axis.reference is None:
         return False, int(axis.offsets[0])
-    return True, int(axis.offsets[0]) + int(axis.reference.astype(np.int64))
+    return True, int(axis.offsets[0]) + timestamp_ns(axis.reference)
 
 
 def evaluate_poses(tree: FrameTree, frame: str, relative_to: str, times: TimeAxis | None,
