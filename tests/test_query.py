@@ -1,5 +1,9 @@
 """FrameTree.pose against hand-derived poses, plain numpy, and Pinocchio called directly."""
 
+import os
+import subprocess
+import sys
+
 import numpy as np
 import pinocchio as pin
 import pytest
@@ -282,6 +286,19 @@ def test_whole_tree_model_matches_pinocchio_forward_kinematics(rng):
                             * data.oMf[compiled.frame_ids[a]]).homogeneous
                 np.testing.assert_allclose(tree.pose(a, b, times=[t]).matrix[0], expected,
                                            atol=1e-12)
+
+
+def test_the_pinocchio_model_orders_its_joints_the_same_in_every_process():
+    # Sibling joints once followed set order, which string hashing changes per process.
+    script = ("from pinframes import FrameTree, Pose\n"
+              "tree = FrameTree()\n"
+              "for name in 'hgfedcba':\n"
+              "    tree.add(name, 'world', Pose([[0, 0, 0], [1, 0, 0]], times=[0, 1]))\n"
+              "print(' '.join(list(tree.to_pinocchio().model.names)[1:]))\n")
+    orders = {subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                             check=True, env={**os.environ, "PYTHONHASHSEED": str(seed)}
+                             ).stdout.strip() for seed in range(4)}
+    assert orders == {"a b c d e f g h"}
 
 
 # -- property tests on random trees -------------------------------------------------------

@@ -110,7 +110,8 @@ def compile_model(tree: FrameTree, root: str, frames: list[str]) -> CompiledMode
         while tree._depth[anchor] > root_depth and anchor not in joint_frames:
             joint_frames.add(anchor)
             anchor = tree._anchor(tree._parent[anchor])[0]
-    ordered = sorted(joint_frames, key=tree._depth.__getitem__)
+    # by depth (parents first), then name: the same joint order in every process
+    ordered = sorted(joint_frames, key=lambda frame: (tree._depth[frame], frame))
     index = {frame: position for position, frame in enumerate(ordered)}
 
     def placed(anchor: str, placement: Transform) -> tuple[int, Transform]:
