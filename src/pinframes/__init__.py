@@ -25,9 +25,10 @@ from .formats.urdf import read_urdf, write_urdf
 from .kinematics import PinocchioTree
 from .tree import FrameTree
 from .values.joint import Joint, Mimic
-from .values.joint_trajectory import JointTrack
+from .values.joint_trajectory import JointTrack, JointTrajectory
 from .values.pose import Pose
 from .values.subsystem import Subsystem
+from .values.timeconv import TimeAxis
 
 __version__ = "0.1.0"
 
@@ -45,6 +46,7 @@ __all__ = [
     "JointError",
     "JointLimitWarning",
     "JointTrack",
+    "JointTrajectory",
     "Mimic",
     "PinframesError",
     "PinocchioTree",
@@ -52,6 +54,7 @@ __all__ = [
     "ReadError",
     "ReferenceTimeError",
     "Subsystem",
+    "TimeAxis",
     "TreeStructureError",
     "UnsupportedFeatureError",
     "WriteError",

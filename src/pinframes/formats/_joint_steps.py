@@ -24,8 +24,8 @@ def check_joint_steps(tree: FrameTree, name: str) -> None:
         return
     chain = mimic_chain(joint, tree.joints)
     multiplier = float(np.prod([link.mimic.multiplier for link in chain[:-1]]))
-    track = tree.joint_track(chain[-1].name)
-    if track is not None and np.any(np.abs(np.diff(track.values) * multiplier) >= np.pi):
+    trajectory = tree.joint_trajectory(chain[-1].name)
+    if trajectory is not None and np.any(np.abs(np.diff(trajectory.values) * multiplier) >= np.pi):
         raise UnsupportedFeatureError(
             "its joint turns by half a turn or more between two trajectory samples, which "
             "sampled poses cannot represent (interpolation takes the short way); resample "

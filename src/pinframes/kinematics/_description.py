@@ -18,7 +18,7 @@ import numpy as np
 
 from ..values._se3 import IDENTITY, Transform, compose
 from ..values.joint import Joint
-from ..values.joint_trajectory import JointTrack
+from ..values.joint_trajectory import JointTrajectory
 from ..values.pose import Pose
 
 __all__ = ["TreeDescription", "paths_to_common_ancestor"]
@@ -43,7 +43,7 @@ class TreeDescription:
         Robot joint by the link frame it moves.
     joints_by_name : mapping of str to Joint
         The same joints by joint name.
-    joint_tracks : mapping of str to JointTrack
+    joint_trajectories : mapping of str to JointTrajectory
         Trajectories of driven joints by joint name.
     reference_time : numpy.datetime64 or None
         The tree's reference time.
@@ -57,7 +57,7 @@ class TreeDescription:
     local_poses: Mapping[str, Pose]
     joints: Mapping[str, Joint]
     joints_by_name: Mapping[str, Joint]
-    joint_tracks: Mapping[str, JointTrack]
+    joint_trajectories: Mapping[str, JointTrajectory]
     reference_time: np.datetime64 | None
     has_frame_references: bool
     _anchors: dict[str, tuple[str, Transform]] = field(
@@ -69,12 +69,12 @@ class TreeDescription:
     def freeze(
         cls, root: str, parents: Mapping[str, str], depths: Mapping[str, int],
         local_poses: Mapping[str, Pose], joints: Mapping[str, Joint],
-        joints_by_name: Mapping[str, Joint], joint_tracks: Mapping[str, JointTrack],
+        joints_by_name: Mapping[str, Joint], joint_trajectories: Mapping[str, JointTrajectory],
         reference_time: np.datetime64 | None, has_frame_references: bool,
     ) -> TreeDescription:
         """A description holding read-only copies of the given tables."""
         return cls(root, *(MappingProxyType(dict(table)) for table in (
-            parents, depths, local_poses, joints, joints_by_name, joint_tracks)),
+            parents, depths, local_poses, joints, joints_by_name, joint_trajectories)),
             reference_time, has_frame_references)
 
     @property

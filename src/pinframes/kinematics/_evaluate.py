@@ -8,6 +8,7 @@ rooted at that ancestor, so the cost of a query depends on its path, not on the 
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -17,12 +18,12 @@ from numpy.typing import NDArray
 from ..errors import ExtrapolationError, InvalidTimeError
 from ..values._interpolation import Keyframes
 from ..values._se3 import IDENTITY, Transform, compose, inverse
+from ..values._timeline import QueryTimeline, TimedSource, plan_query_timeline
 from ..values.joint import Joint, mimic_chain
 from ..values.pose import Pose
 from ..values.timeconv import TimeAxis, parse_time_axis, timestamp_ns
 from ._description import TreeDescription, paths_to_common_ancestor
 from ._model import CompiledModel, compile_model
-from ._timeline import QueryTimeline, TimedSource, plan_query_timeline
 
 __all__ = [
     "Evaluation",
@@ -32,6 +33,7 @@ __all__ = [
     "model_sources",
     "plan_timeline",
     "sample_joint_values",
+    "sample_joints",
 ]
 
 _EXTRAPOLATION_POLICIES = ("clamp", "error")
@@ -75,13 +77,13 @@ def evaluate_pose(
         rotation, translation = _evaluate_in_chunks(tree, evaluation, sources, timeline)
     offsets = timeline.result_offsets
     if offsets is None:
-        return Pose._trusted(translation, rotation)
+        return Pose._trusted(rotation, translation)
     count = offsets.shape[0]
     if rotation.ndim == 2:
         rotation = np.broadcast_to(rotation, (count, 3, 3)).copy()
     if translation.ndim == 1:
         translation = np.broadcast_to(translation, (count, 3)).copy()
-    return Pose._trusted(translation, rotation, offsets, timeline.reference)
+    return Pose._trusted(rotation, translation, offsets, timeline.reference)
 
 
 def default_times(tree: TreeDescription, frame: str, relative_to: str) -> TimeAxis | None:
@@ -122,7 +124,7 @@ def _placed_keyframes(keyframes: Keyframes, placement: Transform) -> Keyframes:
     if placement is IDENTITY:
         return keyframes
     rotations, translations = compose(placement, (keyframes.rotations, keyframes.translations))
-    return Keyframes(keyframes.times, translations, rotations)
+    return Keyframes(keyframes.times, rotations, translations)
 
 
 def plan_timeline(
@@ -134,7 +136,7 @@ def plan_timeline(
 
 
 def model_sources(tree: TreeDescription, model: CompiledModel) -> list[TimedSource]:
-    """The moving frames and tracked joints whose values a compiled model needs."""
+    """The moving frames and driven joints whose values a compiled model needs."""
     sources: dict[str, TimedSource] = {}
     for joint in model.joints:
         if joint.joint is None:
@@ -144,11 +146,11 @@ def model_sources(tree: TreeDescription, model: CompiledModel) -> list[TimedSour
             sources[joint.frame] = TimedSource(joint.frame, pose._times, reference)
             continue
         for name in _driving_joints(tree, joint.joint):
-            track = tree.joint_tracks.get(name)
-            if track is not None:
-                reference = track.reference if track.reference is not None else (
+            trajectory = tree.joint_trajectories.get(name)
+            if trajectory is not None:
+                reference = trajectory.reference if trajectory.reference is not None else (
                     tree.reference_time)
-                sources[name] = TimedSource(name, track.times, reference)
+                sources[name] = TimedSource(name, trajectory.times, reference)
     return list(sources.values())
 
 
@@ -206,23 +208,41 @@ def _evaluate_model(
 ) -> Transform:
     """The pose of the query frame in the reference frame at ``times`` (timeline basis)."""
     model = evaluation.model
-    shifts = basis_shifts(sources, timeline)
+    assert model is not None
+    samples = sample_joints(tree, model, evaluation.placed_keyframes, times,
+                            basis_shifts(sources, timeline))
     local: list[Transform] = []
-    values_cache: dict[str, NDArray[np.float64] | float] = {}
-    for position, joint in enumerate(model.joints):
-        keyframes = evaluation.placed_keyframes[position]
-        if keyframes is not None:
-            shift = shifts[joint.frame]
-            sampled = keyframes.sample(times - shift)
-            local.append((sampled[1], sampled[0]))
+    for joint, placement, sample in zip(model.joints, model.joint_placements, samples,
+                                        strict=True):
+        if joint.joint is None:
+            local.append(sample)  # the placement is folded into the keyframes
             continue
-        values = sample_joint_values(tree, joint.joint, times, shifts, values_cache)
-        rotation, translation = joint.joint.placed_motion(
-            model.joint_placements[position], np.atleast_1d(values))
-        local.append((rotation, translation) if np.ndim(values) else (rotation[0], translation[0]))
+        rotation, translation = joint.joint.placed_motion(placement, np.atleast_1d(sample))
+        local.append((rotation, translation) if np.ndim(sample) else (rotation[0], translation[0]))
     frame_pose, reference_pose = model.forward_kinematics(
         local, [evaluation.frame, evaluation.relative_to])
     return compose(inverse(reference_pose), frame_pose)
+
+
+def sample_joints(
+    tree: TreeDescription, model: CompiledModel, keyframes: Sequence[Keyframes | None],
+    times: NDArray[np.int64] | None, shifts: dict[str, int],
+) -> list[Any]:
+    """Every joint of ``model`` at ``times`` (timeline basis): the one sampling step of a
+    query and of :meth:`PinocchioTree.configurations`.
+
+    A free-flyer gets its moving frame's ``(rotation, translation)`` from ``keyframes[i]``;
+    a robot joint its value(s) (radians or metres): its trajectory, its mimic primary's, or 0.
+    """
+    cache: dict[str, NDArray[np.float64] | float] = {}
+    samples: list[Any] = []
+    for joint, frames in zip(model.joints, keyframes, strict=True):
+        if joint.joint is None:
+            assert frames is not None and times is not None
+            samples.append(frames.sample(times - shifts[joint.frame]))
+        else:
+            samples.append(sample_joint_values(tree, joint.joint, times, shifts, cache))
+    return samples
 
 
 def basis_shifts(sources: list[TimedSource], timeline: QueryTimeline) -> dict[str, int]:
@@ -238,16 +258,16 @@ def sample_joint_values(
     tree: TreeDescription, joint: Joint, times: NDArray[np.int64] | None,
     shifts: dict[str, int], cache: dict[str, NDArray[np.float64] | float],
 ) -> NDArray[np.float64] | float:
-    """Values of ``joint`` at ``times``: its track, its mimic primary's, or 0."""
+    """Values of ``joint`` at ``times``: its trajectory, its mimic primary's, or 0."""
     if joint.name in cache:
         return cache[joint.name]
-    track = tree.joint_tracks.get(joint.name)
+    trajectory = tree.joint_trajectories.get(joint.name)
     if joint.mimic is not None:
         primary = sample_joint_values(tree, tree.joints_by_name[joint.mimic.joint], times, shifts,
                                       cache)
         value = joint.mimic.multiplier * primary + joint.mimic.offset
-    elif track is not None:
-        value = track.sample(times - shifts[joint.name])
+    elif trajectory is not None:
+        value = trajectory.sample(times - shifts[joint.name])
     else:
         value = 0.0
     cache[joint.name] = value

@@ -98,15 +98,6 @@ class CompiledModel:
         """Per joint, its static placement in the parent joint frame, read from the model."""
         return tuple(self._joint_placements)
 
-    def joint_transforms(self, motions: Sequence[Transform]) -> list[Transform]:
-        """Per joint, ``placement @ motion``: its child in the parent joint frame (``liMi``).
-
-        ``motions[i]`` is the moving frame's pose for a free-flyer, or the robot joint's
-        rotation / translation, static or batched over samples.
-        """
-        return [compose(placement, motion) for placement, motion in
-                zip(self._joint_placements, motions, strict=True)]
-
     def forward_kinematics(
         self, local_transforms: Sequence[Transform], frames: Sequence[str]
     ) -> list[Transform]:

@@ -56,21 +56,14 @@ class PinocchioTree:
         evaluation_times = timeline.evaluation_times
         if evaluation_times is None:
             evaluation_times = np.zeros(1, dtype=np.int64)
-        shifts = _evaluate.basis_shifts(sources, timeline)
-        cache: dict[str, Any] = {}
-        motions, values = [], []
-        for joint in compiled.joints:
-            if joint.joint is None:
-                moving = tree.local_poses[joint.frame]
-                translation, rotation = moving.keyframes.sample(
-                    evaluation_times - shifts.get(joint.frame, 0))
-                motions.append((rotation, translation))
-                values.append(None)
-            else:
-                motions.append(None)
-                values.append(np.broadcast_to(_evaluate.sample_joint_values(
-                    tree, joint.joint, evaluation_times, shifts, cache),
-                    evaluation_times.shape))
+        keyframes = [tree.local_poses[joint.frame].keyframes if joint.joint is None else None
+                     for joint in compiled.joints]
+        samples = _evaluate.sample_joints(tree, compiled, keyframes, evaluation_times,
+                                          _evaluate.basis_shifts(sources, timeline))
+        motions = [sample if joint.joint is None else None
+                   for joint, sample in zip(compiled.joints, samples, strict=True)]
+        values = [None if joint.joint is None else np.broadcast_to(sample, evaluation_times.shape)
+                  for joint, sample in zip(compiled.joints, samples, strict=True)]
         if not compiled.joints:
             return np.zeros((evaluation_times.shape[0], 0))
         return compiled.configuration(motions, values)

@@ -25,7 +25,7 @@ from ..kinematics import (
     paths_to_common_ancestor,
 )
 from ..values.joint import Joint
-from ..values.joint_trajectory import JointTrack, joint_tracks_from_samples
+from ..values.joint_trajectory import JointTrajectory, joint_trajectories_from_samples
 from ..values.pose import Pose
 from ..values.subsystem import Subsystem
 from ..values.timeconv import TimeAxis, parse_timestamp
@@ -66,7 +66,7 @@ class FrameTree:
         self._local: dict[str, Pose] = {}
         self._joints: dict[str, Joint] = {}
         self._joint_frames: dict[str, str] = {}
-        self._joint_tracks: dict[str, JointTrack] = {}
+        self._joint_trajectories: dict[str, JointTrajectory] = {}
         self._timed_with_reference = 0
         self._timed_without_reference = 0
         self._frame_metadata: dict[str, dict[str, Any]] = {}
@@ -139,9 +139,9 @@ class FrameTree:
         """Robot joints by joint name, in the order they were added."""
         return {name: self._joints[frame] for name, frame in self._joint_frames.items()}
 
-    def joint_track(self, joint_name: str) -> JointTrack | None:
+    def joint_trajectory(self, joint_name: str) -> JointTrajectory | None:
         """The trajectory of a robot joint, or None when it was never set."""
-        return self._joint_tracks.get(joint_name)
+        return self._joint_trajectories.get(joint_name)
 
     def frame_metadata(self, name: str) -> dict[str, Any]:
         """A free dictionary kept with frame ``name`` (formats keep their extras there)."""
@@ -226,27 +226,32 @@ class FrameTree:
         round) and held outside them; the sample times join the default time union of
         :meth:`pose`. Values outside the URDF limits warn (``JointLimitWarning``).
         """
-        tracks = joint_tracks_from_samples(self.joints, times, positions, joint_names)
-        for name, track in tracks.items():
-            self.set_joint_track(name, track)
+        trajectories = joint_trajectories_from_samples(self.joints, times, positions, joint_names)
+        for name, trajectory in trajectories.items():
+            self.replace_joint_trajectory(name, trajectory)
 
-    def set_joint_track(self, joint_name: str, track: JointTrack | None) -> None:
+    def replace_joint_trajectory(self, joint_name: str, trajectory: JointTrajectory | None
+                                 ) -> None:
         """Set (or with None, clear) the trajectory of a robot joint."""
         if not isinstance(joint_name, str) or joint_name not in self._joint_frames:
             raise FrameNotFoundError(f"no joint named {joint_name!r}", field="joint_names")
-        previous = self._joint_tracks.pop(joint_name, None)
+        previous = self._joint_trajectories.pop(joint_name, None)
         if previous is not None:
             self._uncount_reference(previous.reference)
-        if track is not None:
+        if trajectory is not None:
             try:
-                self._count_reference(track.reference, joint_name)
+                self._count_reference(trajectory.reference, joint_name)
             except ReferenceTimeError:
                 if previous is not None:  # leave the tree as it was
                     self._count_reference(previous.reference, joint_name)
-                    self._joint_tracks[joint_name] = previous
+                    self._joint_trajectories[joint_name] = previous
                 raise
-            self._joint_tracks[joint_name] = track
+            self._joint_trajectories[joint_name] = trajectory
         self._invalidate()
+
+    # the names of the two methods above before 0.2 (kept for existing code)
+    joint_track = joint_trajectory
+    set_joint_track = replace_joint_trajectory
 
     def remove(self, name: str, recursive: bool = False) -> None:
         """Remove frame ``name``; with ``recursive``, its whole subtree too."""
@@ -267,9 +272,9 @@ class FrameTree:
             joint = self._joints.pop(frame, None)
             if joint is not None:
                 del self._joint_frames[joint.name]
-                track = self._joint_tracks.pop(joint.name, None)
-                if track is not None:
-                    self._uncount_reference(track.reference)
+                trajectory = self._joint_trajectories.pop(joint.name, None)
+                if trajectory is not None:
+                    self._uncount_reference(trajectory.reference)
             for table in (self._parent, self._children, self._depth, self._frame_metadata):
                 table.pop(frame, None)
         gone = set(doomed)
@@ -377,8 +382,9 @@ class FrameTree:
     def sample_times(self, frame: str, relative_to: str | None = None) -> TimeAxis | None:
         """The times :meth:`pose` evaluates at when given none, without evaluating.
 
-        Every keyframe and joint sample time on the path, as nanosecond offsets after the
-        reference time the result would carry; None when nothing on the path moves.
+        Every keyframe and joint sample time on the path, as a :class:`~pinframes.TimeAxis`
+        (int64 nanosecond ``offsets`` after the ``reference`` time the result would carry);
+        None when nothing on the path moves.
         """
         self._require(frame, "frame")
         relative_to = self._default_reference(frame, relative_to)
@@ -409,7 +415,7 @@ class FrameTree:
         if self._description is None:
             self._description = TreeDescription.freeze(
                 self._root, self._parent, self._depth, self._local, self._joints,
-                self.joints, self._joint_tracks, self._reference,
+                self.joints, self._joint_trajectories, self._reference,
                 self._timed_with_reference > 0)
         return self._description
 

@@ -48,30 +48,30 @@ class Keyframes:
     ----------
     times : ndarray of int64, shape (K,)
         Strictly increasing keyframe times, nanoseconds.
-    translations : ndarray, shape (K, 3)
-        Metres.
     rotations : ndarray, shape (K, 3, 3)
         Rotation matrices.
+    translations : ndarray, shape (K, 3)
+        Metres.
     """
 
     times: NDArray[np.int64]
-    translations: NDArray[np.float64]
     rotations: NDArray[np.float64]
+    translations: NDArray[np.float64]
     _slerp: tuple[NDArray[np.float64], ...] | None = field(default=None, repr=False)
 
     def sample(
         self, times: NDArray[np.int64]
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """Translations ``(N, 3)`` and rotation matrices ``(N, 3, 3)`` at ``times`` (ns)."""
+        """Rotation matrices ``(N, 3, 3)`` and translations ``(N, 3)`` at ``times`` (ns)."""
         if self.times.shape[0] == 1:
             count = times.shape[0]
-            return (np.broadcast_to(self.translations[0], (count, 3)).copy(),
-                    np.broadcast_to(self.rotations[0], (count, 3, 3)).copy())
+            return (np.broadcast_to(self.rotations[0], (count, 3, 3)).copy(),
+                    np.broadcast_to(self.translations[0], (count, 3)).copy())
         index, fraction = segment_positions(self.times, times)
         before = 1.0 - fraction
         translations = (before[:, None] * self.translations[index]
                         + fraction[:, None] * self.translations[index + 1])
-        return translations, matrix_from_quaternion(self._slerp_quaternions(index, fraction))
+        return matrix_from_quaternion(self._slerp_quaternions(index, fraction)), translations
 
     def _slerp_quaternions(
         self, index: NDArray[np.intp], fraction: NDArray[np.float64]

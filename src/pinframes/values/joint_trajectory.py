@@ -1,4 +1,4 @@
-"""Joint trajectories: `JointTrack`, one joint's values over time, and building them."""
+"""Joint trajectories: `JointTrajectory`, one joint's values over time, and building them."""
 
 from __future__ import annotations
 
@@ -15,11 +15,11 @@ from ._interpolation import segment_positions
 from .joint import Joint
 from .timeconv import parse_time_axis
 
-__all__ = ["JointTrack", "joint_tracks_from_samples"]
+__all__ = ["JointTrack", "JointTrajectory", "joint_trajectories_from_samples"]
 
 
 @dataclass(frozen=True)
-class JointTrack:
+class JointTrajectory:
     """Values of one joint at strictly increasing times.
 
     Attributes
@@ -38,18 +38,22 @@ class JointTrack:
     values: NDArray[np.float64]
 
     def sample(self, times: NDArray[np.int64]) -> NDArray[np.float64]:
-        """Values at ``times`` (ns on this track's own basis), held outside the samples."""
+        """Values at ``times`` (ns on this trajectory's own basis), held outside the samples."""
         index, fraction = segment_positions(self.times, times)
         if self.values.shape[0] == 1:
             return np.full(times.shape, self.values[0])
         return (1.0 - fraction) * self.values[index] + fraction * self.values[index + 1]
 
 
-def joint_tracks_from_samples(
+JointTrack = JointTrajectory
+"""The name :class:`JointTrajectory` had before 0.2 (kept for existing code)."""
+
+
+def joint_trajectories_from_samples(
     joints: Mapping[str, Joint], times: Any, positions: Any,
     joint_names: Sequence[str] | None = None,
-) -> dict[str, JointTrack]:
-    """One track per named joint from ``positions`` (T, n) at T ``times``, checked.
+) -> dict[str, JointTrajectory]:
+    """One trajectory per named joint from ``positions`` (T, n) at T ``times``, checked.
 
     ``joints`` are the tree's joints by name; see
     :meth:`pinframes.FrameTree.set_joint_trajectory` for the rules.
@@ -74,15 +78,15 @@ def joint_tracks_from_samples(
     if count > 1 and np.any(np.diff(axis.offsets) <= 0):
         raise InvalidTimeError("joint sample times must be strictly increasing", field="times")
     values = _positions(positions, count, joint_names)
-    tracks = {}
+    trajectories = {}
     for column, name in enumerate(joint_names):
         joint = joints[name]
         column_values = values[:, column]
         _warn_outside_limits(name, joint.lower, joint.upper, column_values)
         if joint.kind == "continuous":
             column_values = np.unwrap(column_values)
-        tracks[name] = JointTrack(axis.offsets, axis.reference, column_values)
-    return tracks
+        trajectories[name] = JointTrajectory(axis.offsets, axis.reference, column_values)
+    return trajectories
 
 
 def _positions(positions: Any, count: int, joint_names: list[str]) -> np.ndarray:

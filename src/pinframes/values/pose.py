@@ -14,6 +14,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InvalidPoseError, InvalidTimeError, ReferenceTimeError
 from ._interpolation import Keyframes
+from ._se3 import compose, inverse
+from ._timeline import QueryTimeline, TimedSource, plan_query_timeline
 from .rotations import (
     ROTATION_TOLERANCE,
     matrix_from_quaternion,
@@ -82,8 +84,8 @@ class Pose:
     @classmethod
     def _trusted(
         cls,
-        translation: FloatArray,
         rotation: FloatArray,
+        translation: FloatArray,
         times: NDArray[np.int64] | None = None,
         reference: np.datetime64 | None = None,
     ) -> Pose:
@@ -99,7 +101,7 @@ class Pose:
     @classmethod
     def identity(cls) -> Pose:
         """The static identity pose."""
-        return cls._trusted(np.zeros(3), np.eye(3))
+        return cls._trusted(np.eye(3), np.zeros(3))
 
     @classmethod
     def from_matrix(
@@ -125,7 +127,7 @@ class Pose:
         ``R = Rz(yaw) @ Ry(pitch) @ Rx(roll)``, as in URDF.
         """
         values = _as_float_array([x, y, z, roll, pitch, yaw], "xyz_rpy")
-        return cls._trusted(values[:3].copy(), matrix_from_rpy(values[3:]))
+        return cls._trusted(matrix_from_rpy(values[3:]), values[:3].copy())
 
     # -- attributes ----------------------------------------------------------------------
     @property
@@ -186,9 +188,8 @@ class Pose:
     # -- algebra -------------------------------------------------------------------------
     def inverse(self) -> Pose:
         """The inverse transform: the pose of B in A for a pose of A in B."""
-        rotation_t = np.swapaxes(self._rotation, -1, -2)
-        translation = -np.einsum("...ij,...j->...i", rotation_t, self._translation)
-        return Pose._trusted(translation, rotation_t, self._times, self._reference)
+        rotation, translation = inverse((self._rotation, self._translation))
+        return Pose._trusted(rotation, translation, self._times, self._reference)
 
     def __matmul__(self, other: Pose) -> Pose:
         """``pose_b_in_c @ pose_a_in_b`` is ``pose_a_in_c``, on one common timeline."""
@@ -196,14 +197,13 @@ class Pose:
             return NotImplemented
         left, right = self, other
         if left.is_time_dependent and right.is_time_dependent and not _same_timeline(left, right):
-            times, reference = _union_timeline(left, right)
-            left = left._sampled(times, reference)
-            right = right._sampled(times, reference)
-        rotation = left._rotation @ right._rotation
-        translation = np.einsum("...ij,...j->...i", left._rotation, right._translation)
-        translation = translation + left._translation
+            timeline = _union_timeline(left, right)
+            left = left._sampled(timeline.result_offsets, timeline.reference)
+            right = right._sampled(timeline.result_offsets, timeline.reference)
+        rotation, translation = compose((left._rotation, left._translation),
+                                        (right._rotation, right._translation))
         timed = left if left.is_time_dependent else right
-        return Pose._trusted(translation, rotation, timed._times, timed._reference)
+        return Pose._trusted(rotation, translation, timed._times, timed._reference)
 
     def at(self, times: Any, time_ref: Any = None) -> Pose:
         """This pose interpolated at ``times``: one pose per requested time.
@@ -213,33 +213,30 @@ class Pose:
         reference time, else the first of absolute ``times``. Outside its keyframes a pose
         is held at the first or last keyframe.
         """
-        axis = parse_time_axis(times)
-        reference = parse_timestamp(time_ref, field="time_ref") if time_ref is not None else None
-        if reference is None:
-            reference = self._reference if self._reference is not None else axis.reference
-        if not axis.is_absolute and reference is None:
-            return self._sampled(axis.offsets, None)
-        base = axis.reference if axis.is_absolute else reference
-        absolute = shift_ns(axis.offsets, timestamp_ns(base))
-        if self.is_time_dependent and self._reference is None:
-            raise ReferenceTimeError(
-                "absolute times or a time_ref were given, but this pose has no reference time",
-                field="times",
-            )
-        return self._sampled(shift_ns(absolute, -timestamp_ns(reference)), reference)
+        # the rules of a tree query (SPEC 4) with this pose as the one moving thing; a
+        # time_ref is never ambiguous here, as for a tree whose frames have references
+        timeline = plan_query_timeline(self._sources(), parse_time_axis(times), time_ref,
+                                       None, True)
+        return self._sampled(timeline.result_offsets, timeline.reference)
 
     def _sampled(self, times: NDArray[np.int64], reference: np.datetime64 | None) -> Pose:
         """Samples at ``times`` ns after ``reference`` (both on this pose's own basis)."""
         if not self.is_time_dependent:
             count = times.shape[0]
-            return Pose._trusted(np.broadcast_to(self._translation, (count, 3)).copy(),
-                                 np.broadcast_to(self._rotation, (count, 3, 3)).copy(),
+            return Pose._trusted(np.broadcast_to(self._rotation, (count, 3, 3)).copy(),
+                                 np.broadcast_to(self._translation, (count, 3)).copy(),
                                  times, reference)
         shift = 0
         if reference is not None and self._reference is not None:
             shift = timestamp_ns(reference) - timestamp_ns(self._reference)
-        translation, rotation = self.keyframes.sample(shift_ns(times, shift))
-        return Pose._trusted(translation, rotation, times, reference)
+        rotation, translation = self.keyframes.sample(shift_ns(times, shift))
+        return Pose._trusted(rotation, translation, times, reference)
+
+    def _sources(self) -> list[TimedSource]:
+        """This pose as the moving thing of a timeline plan (none when static)."""
+        if self._times is None:
+            return []
+        return [TimedSource("pose", self._times, self._reference)]
 
     @property
     def keyframes(self) -> Keyframes:
@@ -247,7 +244,7 @@ class Pose:
         if self._times is None:
             raise InvalidTimeError("a static pose has no keyframes", field="times")
         if self._keyframes is None:
-            self._keyframes = Keyframes(self._times, self._translation, self._rotation)
+            self._keyframes = Keyframes(self._times, self._rotation, self._translation)
         return self._keyframes
 
     def __repr__(self) -> str:
@@ -266,17 +263,13 @@ def _same_timeline(a: Pose, b: Pose) -> bool:
             and bool(np.array_equal(a._times, b._times)))
 
 
-def _union_timeline(a: Pose, b: Pose) -> tuple[NDArray[np.int64], np.datetime64 | None]:
+def _union_timeline(a: Pose, b: Pose) -> QueryTimeline:
+    """The union of two poses' times, by the rules of a tree query without times."""
     if (a._reference is None) != (b._reference is None):
         raise ReferenceTimeError(
             "cannot combine a pose with a reference time and one without", field="times"
         )
-    if a._reference is None:
-        return np.union1d(a._times, b._times), None
-    reference = min(a._reference, b._reference)
-    absolute = np.union1d(shift_ns(a._times, timestamp_ns(a._reference)),
-                          shift_ns(b._times, timestamp_ns(b._reference)))
-    return shift_ns(absolute, -timestamp_ns(reference)), reference
+    return plan_query_timeline([*a._sources(), *b._sources()], None, None, None, True)
 
 
 def _as_float_array(values: ArrayLike, field: str) -> FloatArray:

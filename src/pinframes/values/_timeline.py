@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InvalidTimeError, ReferenceTimeError
-from ..values.timeconv import TimeAxis, parse_timestamp, shift_ns, timestamp_ns
+from .timeconv import TimeAxis, parse_timestamp, shift_ns, timestamp_ns
 
 __all__ = ["QueryTimeline", "TimedSource", "plan_query_timeline"]
 
