@@ -22,7 +22,7 @@ from .formats import read, read_joint_trajectory, write
 from .formats.frames_yaml import read_frames_yaml, write_frames_yaml
 from .formats.scene import read_scene, write_scene
 from .formats.urdf import read_urdf, write_urdf
-from .kinematics import PinocchioTree
+from .kinematics import PinocchioTree, Snapshot
 from .tree import FrameTree
 from .values.joint import Joint, Mimic
 from .values.joint_trajectory import JointTrack, JointTrajectory
@@ -53,6 +53,7 @@ __all__ = [
     "Pose",
     "ReadError",
     "ReferenceTimeError",
+    "Snapshot",
     "Subsystem",
     "TimeAxis",
     "TreeStructureError",

@@ -6,12 +6,15 @@ query path (``_model``), plans its times (``_timeline``) and evaluates it (``_ev
 
 from ._description import TreeDescription, paths_to_common_ancestor
 from ._evaluate import default_times, evaluate_pose
+from ._snapshot import Snapshot, snapshot
 from .pinocchio_tree import PinocchioTree
 
 __all__ = [
     "PinocchioTree",
+    "Snapshot",
     "TreeDescription",
     "default_times",
     "evaluate_pose",
     "paths_to_common_ancestor",
+    "snapshot",
 ]

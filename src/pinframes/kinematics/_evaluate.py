@@ -143,7 +143,7 @@ def model_sources(tree: TreeDescription, model: CompiledModel) -> list[TimedSour
             pose = tree.local_poses[joint.frame]
             reference = pose.reference_time if pose.reference_time is not None else (
                 tree.reference_time)
-            sources[joint.frame] = TimedSource(joint.frame, pose._times, reference)
+            sources[joint.frame] = TimedSource(joint.frame, pose.keyframes.times, reference)
             continue
         for name in _driving_joints(tree, joint.joint):
             trajectory = tree.joint_trajectories.get(name)
@@ -169,7 +169,7 @@ def _requested_times(tree: TreeDescription, times: Any) -> TimeAxis | None:
         pose = tree.local_poses[times]
         reference = pose.reference_time if pose.reference_time is not None else (
             tree.reference_time)
-        return TimeAxis(pose._times, reference)
+        return TimeAxis(pose.keyframes.times, reference)
     return parse_time_axis(times, field="times")
 
 

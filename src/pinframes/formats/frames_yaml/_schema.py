@@ -90,7 +90,8 @@ def key_ancestors(key: str) -> list[str]:
 
 
 def locate_in(section: str):
-    """A locator for :func:`~pinframes._yaml_loader.load_yaml`: ``section.<key>.<field>``."""
+    """A locator for :func:`~pinframes.formats._yaml_loader.load_yaml`:
+    ``section.<key>.<field>``."""
 
     def locate(path: KeyPath) -> tuple[str | None, str | None]:
         if len(path) >= 2 and path[0] == section:
