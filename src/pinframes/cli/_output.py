@@ -6,10 +6,10 @@ pose); ``x y z`` metres; ``qx qy qz qw`` a unit quaternion.
 
 from __future__ import annotations
 
-import io
 import json
 import sys
 from pathlib import Path
+from typing import IO
 
 import numpy as np
 
@@ -38,7 +38,7 @@ def pose_rows(pose: Pose) -> tuple[np.ndarray, np.ndarray]:
     """Seconds (T,) (NaN for a static pose) and ``x y z qx qy qz qw`` (T, 7)."""
     if not pose.is_time_dependent:
         return np.array([np.nan]), np.concatenate([pose.translation, pose.quaternion])[None]
-    seconds = pose.times.astype(np.int64) / 1e9
+    seconds = pose.keyframes.times / 1e9
     return seconds, np.concatenate([pose.translation, pose.quaternion], axis=1)
 
 
@@ -86,7 +86,7 @@ def _json_text(pose: Pose, frame: str, relative_to: str) -> str:
     return json.dumps(document, indent=1) + "\n"
 
 
-def _write_npz(handle: io.BufferedWriter, pose: Pose, frame: str, relative_to: str) -> None:
+def _write_npz(handle: IO[bytes], pose: Pose, frame: str, relative_to: str) -> None:
     seconds, values = pose_rows(pose)
     np.savez(handle, time_s=seconds, translation=values[:, :3], quaternion=values[:, 3:],
              frame=np.array(frame), relative_to=np.array(relative_to),

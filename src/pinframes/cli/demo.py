@@ -88,7 +88,7 @@ class PathSummary:
 
 def summarize(pose: Pose) -> PathSummary:
     """Travel of the origin of ``pose`` (a time-dependent pose) along its samples."""
-    seconds = pose.times.astype(np.int64) / 1e9
+    seconds = pose.keyframes.times / 1e9
     steps = np.linalg.norm(np.diff(pose.translation, axis=0), axis=1)
     durations = np.diff(seconds)
     length = float(steps.sum())
@@ -132,7 +132,7 @@ def _plot(tree: FrameTree, pose: Pose, summary: PathSummary, tool: str, workpiec
     labelled = [frame for frame in tree.frames if frame not in robot and frame != tool]
     plot_frames(tree, ax=cell, labels=labelled, skeleton=robot | {tool})
     cell.set_title(f"{tree.name or 'cell'}: frames at the start, paths of moving frames")
-    seconds = pose.times.astype(np.int64) / 1e9
+    seconds = pose.keyframes.times / 1e9
     millimetres = 1000 * pose.translation
     tip = figure.add_subplot(grid[0, 1])
     scatter = tip.scatter(millimetres[:, 0], millimetres[:, 1], c=seconds, s=4, cmap="viridis")

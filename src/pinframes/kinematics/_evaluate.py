@@ -20,7 +20,7 @@ from ..values._interpolation import Keyframes
 from ..values._se3 import IDENTITY, Transform, compose, inverse
 from ..values._timeline import QueryTimeline, TimedSource, plan_query_timeline
 from ..values.joint import Joint, mimic_chain
-from ..values.pose import Pose
+from ..values.pose import Pose, trusted_pose
 from ..values.timeconv import TimeAxis, parse_time_axis, timestamp_ns
 from ._description import TreeDescription, paths_to_common_ancestor
 from ._model import CompiledModel, compile_model
@@ -77,22 +77,23 @@ def evaluate_pose(
         rotation, translation = _evaluate_in_chunks(tree, evaluation, sources, timeline)
     offsets = timeline.result_offsets
     if offsets is None:
-        return Pose._trusted(rotation, translation)
+        return trusted_pose(rotation, translation)
     count = offsets.shape[0]
     if rotation.ndim == 2:
         rotation = np.broadcast_to(rotation, (count, 3, 3)).copy()
     if translation.ndim == 1:
         translation = np.broadcast_to(translation, (count, 3)).copy()
-    return Pose._trusted(rotation, translation, offsets, timeline.reference)
+    return trusted_pose(rotation, translation, offsets, timeline.reference)
 
 
 def default_times(tree: TreeDescription, frame: str, relative_to: str) -> TimeAxis | None:
     """The times ``tree.pose(frame, relative_to)`` evaluates at when given none."""
     evaluation = _evaluation(tree, frame, relative_to)
     timeline = plan_timeline(tree, list(evaluation.sources), None, None)
-    if timeline.evaluation_times is None:
+    offsets = timeline.result_offsets
+    if offsets is None:
         return None
-    return TimeAxis(timeline.result_offsets, timeline.reference)
+    return TimeAxis(offsets, timeline.reference)
 
 
 def _evaluation(tree: TreeDescription, frame: str, relative_to: str) -> Evaluation:
@@ -175,6 +176,7 @@ def _requested_times(tree: TreeDescription, times: Any) -> TimeAxis | None:
 
 def _check_within_keyframes(sources: list[TimedSource], timeline: QueryTimeline) -> None:
     requested = timeline.evaluation_times
+    assert requested is not None  # checked only for queries at times
     first, last = requested.min(), requested.max()
     for source in sources:
         keyframes = source.on_basis(timeline.absolute)
@@ -267,6 +269,7 @@ def sample_joint_values(
                                       cache)
         value = joint.mimic.multiplier * primary + joint.mimic.offset
     elif trajectory is not None:
+        assert times is not None  # a driven joint is a source: the query has times
         value = trajectory.sample(times - shifts[joint.name])
     else:
         value = 0.0

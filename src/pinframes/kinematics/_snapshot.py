@@ -14,6 +14,7 @@ import numpy as np
 
 from ..errors import InvalidTimeError
 from ..values._timeline import TimedSource
+from ..values.joint import mimic_chain
 from ._description import TreeDescription
 from ._evaluate import basis_shifts, plan_timeline, sample_joint_values
 
@@ -49,6 +50,8 @@ def snapshot(tree: TreeDescription, time: Any, time_ref: Any = None) -> Snapshot
     timeline = plan_timeline(tree, sources, None if time is None else [time], time_ref)
     times = timeline.evaluation_times
     shifts = basis_shifts(sources, timeline)
+    for joint in tree.joints_by_name.values():
+        mimic_chain(joint, tree.joints_by_name)  # a JointError for a mimic of a missing joint
     cache: dict[str, Any] = {}
     values = {name: float(np.ravel(sample_joint_values(tree, joint, times, shifts, cache))[0])
               for name, joint in tree.joints_by_name.items()}

@@ -8,6 +8,7 @@ metres.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -135,7 +136,7 @@ class Joint:
         return "XYZ"[index] if abs(self.axis[index] - 1.0) < _AXIS_TOLERANCE else None
 
 
-def mimic_chain(joint: Joint, joints: dict[str, Joint]) -> list[Joint]:
+def mimic_chain(joint: Joint, joints: Mapping[str, Joint]) -> list[Joint]:
     """``joint``, the joint it mimics, and so on up to a joint that mimics none.
 
     Raises :class:`~pinframes.errors.JointError` when a joint in the chain mimics one that is

@@ -72,7 +72,7 @@ def frame_keys(tree: FrameTree) -> dict[str, str]:
     keys: dict[str, str] = {}
     owners: dict[str, str] = {}
     for name in tree.frames[1:]:
-        parent_key = keys.get(tree.parent(name), "")
+        parent_key = keys.get(tree.parent(name) or "", "")
         head, _, last = name.rpartition("/")
         if _kept(tree, name).get("key") == name or (head and head == parent_key):
             segment = last

@@ -389,4 +389,4 @@ def _graft(tree: FrameTree, layer: FrameTree, mount: str, prefix: str) -> None:
                 and layer.reference_time is not None):
             pose = Pose(pose.translation, pose.rotation, times=pose.times,
                         reference_time=layer.reference_time)
-        tree.add(prefix + name, mount if parent == layer.root else prefix + parent, pose)
+        tree.add(prefix + name, mount if parent == layer.root else prefix + str(parent), pose)

@@ -58,6 +58,7 @@ def write_scene(tree: FrameTree, path: str | os.PathLike[str], time: Any = None)
     frames = []
     for name in tree.frames[1:]:
         parent = tree.parent(name)
+        assert parent is not None  # every frame but the root has one
         if instant is None:
             check_joint_steps(tree, name)
             pose = tree.pose(name, relative_to=parent)
@@ -105,7 +106,7 @@ def _frame_entry(name: str, parent: str, pose: Pose, tree_reference: np.datetime
     entry["keyframes"] = [
         _Keyframe(time=_time_value(int(offset)), **_pose_fields(translation, quaternion))
         for offset, translation, quaternion in zip(
-            pose.times.astype(np.int64), pose.translation, quaternions, strict=True)
+            pose.keyframes.times, pose.translation, quaternions, strict=True)
     ]
     return entry
 

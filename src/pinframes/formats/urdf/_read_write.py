@@ -146,7 +146,7 @@ def _driven_elements(element: ET.Element, joint: Joint, joints: dict[str, Joint]
         limits["velocity"] = limits["velocity"] or 0.0
     written = {key: repr(float(value)) for key, value in limits.items() if value is not None}
     if written:
-        ET.SubElement(element, "limit", **written)
+        ET.SubElement(element, "limit", written)
     if joint.mimic is not None:
         primary, multiplier, offset = _mimic_of_driven_joint(joint, joints)
         ET.SubElement(element, "mimic", joint=primary, multiplier=repr(multiplier),
@@ -163,8 +163,10 @@ def _mimic_of_driven_joint(joint: Joint, joints: dict[str, Joint]) -> tuple[str,
     chain = mimic_chain(joint, joints)
     multiplier, offset = 1.0, 0.0
     for link in reversed(chain[:-1]):
-        multiplier, offset = (link.mimic.multiplier * multiplier,
-                              link.mimic.multiplier * offset + link.mimic.offset)
+        mimic = link.mimic
+        assert mimic is not None  # every joint but the chain's last mimics the next
+        multiplier, offset = (mimic.multiplier * multiplier,
+                              mimic.multiplier * offset + mimic.offset)
     return chain[-1].name, float(multiplier), float(offset)
 
 
