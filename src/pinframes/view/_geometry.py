@@ -121,6 +121,19 @@ def _robot_geometry(urdf_path: Path, frames: dict[str, str], collision: bool,
         for fname, link_name in meshes.items():
             _check_readable(urdf_path, link_name, fname, mesh_files)
         scene = _scene(yourdfpy, parsed, collision, mesh_files)
+    nodes_of_links: dict[str, int] = {}
+    for node in scene.graph.nodes_geometry:
+        link = scene.graph.transforms.parents[node]
+        nodes_of_links[link] = nodes_of_links.get(link, 0) + 1
+    for link in parsed.robot.links:  # an empty mesh file gives no node at all
+        elements = link.collisions if collision else link.visuals
+        loadable = [e for e in elements if e.geometry is not None and (
+            e.geometry.mesh is None or mesh_files(e.geometry.mesh.filename))]
+        if nodes_of_links.get(link.name, 0) < len(loadable):
+            for element in loadable:
+                if element.geometry.mesh is not None:
+                    _check_readable(urdf_path, link.name, element.geometry.mesh.filename,
+                                    mesh_files)
     result = []
     for node in scene.graph.nodes_geometry:
         link = scene.graph.transforms.parents[node]
@@ -129,10 +142,7 @@ def _robot_geometry(urdf_path: Path, frames: dict[str, str], collision: bool,
         files = files_of_links.get(link, set())
         source = (next(iter(files)) if len(files) == 1 and type(mesh).__name__ == "Trimesh"
                   else mesh.metadata.get("file_name", type(mesh).__name__.lower()))
-        if len(mesh.faces) == 0:
-            _warn(urdf_path, link, source, "has no triangles (unreadable or empty)")
-            continue
-        if link in frames:
+        if link in frames and len(mesh.faces) > 0:
             result.append(LinkGeometry(
                 frames[link], link, np.asarray(pose_in_link, dtype=float),
                 np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64),
@@ -157,10 +167,14 @@ def _check_readable(urdf_path: Path, link: str, fname: str, mesh_files: MeshFile
     if not path:
         return
     try:
-        trimesh.load(path, force="mesh")
+        mesh = trimesh.load(path, force="mesh")
     except Exception as exc:  # noqa: BLE001
         mesh_files.skip(fname)
         _warn(urdf_path, link, fname, f"cannot be read ({type(exc).__name__}: {exc})")
+        return
+    if len(getattr(mesh, "faces", ())) == 0:
+        mesh_files.skip(fname)
+        _warn(urdf_path, link, fname, "has no triangles (unreadable or empty)")
 
 
 def _colours(mesh: Any) -> np.ndarray:

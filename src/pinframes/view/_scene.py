@@ -74,7 +74,7 @@ class SceneCommands:
         path = f"{node_path(drawn_in)}/paths/{frame.replace('/', chr(0x2215))}"
         geometry = {"type": "BufferGeometry",
                     "data": {"attributes": {"position": _attribute(points.astype(np.float32))}}}
-        material = {"type": "LineBasicMaterial", "color": 0x202020, "linewidth": 2}
+        material = {"type": "LineBasicMaterial", "color": 0xCC00CC, "linewidth": 2}
         self.commands.append(_set_object(path, {"type": "Line", "geometry": geometry,
                                                 "material": material}))
 

@@ -13,6 +13,8 @@
   const THREE = MeshCat.THREE;
   const animator = viewer.animator;
   const duration = data.duration;
+  // meshcat schedules its actions only when playing starts; seeking needs them scheduled
+  for (const action of animator.actions) action.play();
 
   // camera: z up in meshcat's "rotated" camera frame, whose (x, y, z) is world (x, z, -y)
   const c = data.centre, r = data.radius;
@@ -61,6 +63,7 @@
   function setPlaying(on) {
     if (on) {
       if (currentTime() >= duration) seek(0);
+      for (const action of animator.actions) action.paused = false;  // clamped at the end
       animator.play();
     } else {
       animator.pause();
