@@ -10,17 +10,17 @@ import itertools
 from pathlib import Path
 
 import pytest
-from conftest import SHARED_DATA
 
+from conftest import SHARED_DATA
 from pinframes import read_frames_yaml, read_scene
 from pinframes.cli import main
 
 pytest.importorskip("matplotlib")
-from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
-from matplotlib.text import Text  # noqa: E402
-from mpl_toolkits.mplot3d import proj3d  # noqa: E402
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.text import Text
+from mpl_toolkits.mplot3d import proj3d
 
-from pinframes.plotting import new_figure, plot_frames  # noqa: E402
+from pinframes.plotting import new_figure, plot_frames
 
 MAPS = sorted((SHARED_DATA / "duckietown-maps").glob("*/frames.yaml"))
 CELL = Path(__file__).resolve().parents[1] / "models" / "welding_cell" / "scene.yaml"

@@ -63,7 +63,8 @@ def test_view_finds_packages_in_package_dir(run_cli, tmp_path):
                     tmp_path / "workspace")
     assert found.returncode == 0 and "GeometryWarning" not in found.stderr
     _, decoded = commands(tmp_path / "b.html")
-    assert [c["path"] for c in decoded if "/geometry/" in c["path"]][0].endswith("base/geometry/0")
+    meshes = [c["path"] for c in decoded if c["type"] == "set_object" and "/geometry/" in c["path"]]
+    assert meshes == ["/pinframes/frames/base/geometry/0"]
 
 
 def test_demo_without_meshcat_writes_the_rest_and_says_what_the_extra_adds(

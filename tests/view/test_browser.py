@@ -15,11 +15,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from headless_chromium import Chromium, available
 from PIL import Image
 
 from pinframes.cli import main
 from pinframes.cli.demo import VIEW_FILE
+
+from headless_chromium import Chromium, available
 
 if not available() and os.environ.get("CI"):
     pytest.fail("CI needs Debian's chromium for the browser tests", pytrace=False)

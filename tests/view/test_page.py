@@ -111,3 +111,13 @@ def test_without_meshcat_the_page_is_refused_with_the_extra_to_install(monkeypat
     monkeypatch.setattr(page_module.importlib.util, "find_spec", lambda name: None)
     with pytest.raises(UnsupportedFeatureError, match=r"pinframes\[view\]"):
         view_html(turning_tree())
+
+
+def test_absolute_times_start_at_their_timestamp():
+    tree = FrameTree(root="world", reference_time="2024-03-01T08:00:00")
+    tree.add("cart", "world", Pose(translation=[[0.0, 0, 0], [3.0, 0, 0]], times=[10.0, 13.0]))
+    data = page_data(view_html(tree))
+    assert data["start"].startswith("2024-03-01T08:00:10")
+    assert data["duration"] == pytest.approx(3.0)
+    positions = floats(tracks(data)[node_path("cart")][".position"]["values"]).reshape(-1, 3)
+    np.testing.assert_allclose(positions, [[0, 0, 0], [3, 0, 0]])

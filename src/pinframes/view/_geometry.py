@@ -117,7 +117,7 @@ def _robot_geometry(urdf_path: Path, frames: dict[str, str], collision: bool,
                           + f"); {HOW_TO_SEARCH}")
     try:
         scene = _scene(yourdfpy, parsed, collision, mesh_files)
-    except Exception:  # noqa: BLE001  (trimesh and pycollada raise many kinds)
+    except Exception:
         for fname, link_name in meshes.items():
             _check_readable(urdf_path, link_name, fname, mesh_files)
         scene = _scene(yourdfpy, parsed, collision, mesh_files)
@@ -161,14 +161,14 @@ def _scene(yourdfpy: Any, parsed: Any, collision: bool, mesh_files: MeshFiles) -
 
 def _check_readable(urdf_path: Path, link: str, fname: str, mesh_files: MeshFiles) -> None:
     """Load one mesh alone; skip it with a warning when it cannot be read."""
-    import trimesh
+    import trimesh  # type: ignore[import-untyped]
 
     path = mesh_files(fname)
     if not path:
         return
     try:
         mesh = trimesh.load(path, force="mesh")
-    except Exception as exc:  # noqa: BLE001
+    except Exception as exc:
         mesh_files.skip(fname)
         _warn(urdf_path, link, fname, f"cannot be read ({type(exc).__name__}: {exc})")
         return
@@ -197,7 +197,7 @@ def _warn(urdf_path: Path, link: str, fname: str, problem: str) -> None:
 
 def _yourdfpy() -> Any:
     try:
-        import yourdfpy
+        import yourdfpy  # type: ignore[import-untyped]
     except ImportError:
         raise UnsupportedFeatureError("loading robot geometry needs yourdfpy: pip install "
                                       "yourdfpy") from None

@@ -141,7 +141,8 @@ def _page_times(tree: FrameTree, frames: list[str], relative_to: str, times: Any
                                  "their times cannot be shown together")
     if axes[0].reference is None:
         return np.unique(np.concatenate([a.offsets for a in axes])).astype("m8[ns]"), None
-    stamps = np.unique(np.concatenate([a.offsets + timestamp_ns(a.reference) for a in axes]))
+    stamps = np.unique(np.concatenate([a.offsets + timestamp_ns(a.reference) for a in axes
+                                       if a.reference is not None]))
     return stamps.astype("M8[ns]"), None
 
 
@@ -154,15 +155,16 @@ def _pose(tree: FrameTree, frame: str, relative_to: str, values: Any, time_ref: 
 def _animation_seconds(poses: Iterable[Pose]) -> tuple[np.ndarray, str]:
     """Seconds from the first sample, and that sample's time as text for the page."""
     for pose in poses:
-        if pose.is_time_dependent:
-            if len(pose) > MAX_PAGE_SAMPLES:
-                raise InvalidTimeError(f"{len(pose)} times are more than a page animates "
+        times = pose.times
+        if times is not None:
+            if len(times) > MAX_PAGE_SAMPLES:
+                raise InvalidTimeError(f"{len(times)} times are more than a page animates "
                                        f"({MAX_PAGE_SAMPLES}); choose fewer (a larger step)",
                                        field="times")
-            nanoseconds = pose.times.astype(np.int64)
+            nanoseconds = times.astype(np.int64)
             seconds = (nanoseconds - nanoseconds[0]) / 1e9
             if pose.reference_time is not None:
-                first = pose.reference_time + pose.times[0]
+                first = pose.reference_time + times[0]
                 return seconds, format_timestamp_iso(first.astype("M8[ns]"))
             return seconds, f"{nanoseconds[0] / 1e9:g} s"
     return np.zeros(1), "static"
@@ -193,7 +195,7 @@ def _is_link(tree: FrameTree, frame: str) -> bool:
 
 def _html(title: str, commands: list[dict[str, Any]], settings: dict[str, Any]) -> str:
     """The page: meshcat's viewer, the commands, our controls."""
-    import umsgpack
+    import umsgpack  # type: ignore[import-untyped]
 
     encoded = [base64.b64encode(umsgpack.packb(command)).decode("ascii")
                for command in commands]

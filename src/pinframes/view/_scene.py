@@ -123,7 +123,7 @@ def _axes(length: float) -> dict[str, Any]:
 
 def _attribute(values: np.ndarray) -> dict[str, Any]:
     """A three.js buffer attribute (rows are items) as meshcat packs it."""
-    import umsgpack
+    import umsgpack  # type: ignore[import-untyped]
 
     codes = {np.dtype(np.float32): ("Float32Array", _FLOAT32),
              np.dtype(np.uint32): ("Uint32Array", 0x16)}
@@ -134,7 +134,7 @@ def _attribute(values: np.ndarray) -> dict[str, Any]:
 
 
 def _float32(values: np.ndarray) -> Any:
-    import umsgpack
+    import umsgpack  # type: ignore[import-untyped]
 
     return umsgpack.Ext(_FLOAT32, np.ascontiguousarray(values, dtype=np.float32).tobytes())
 
@@ -144,5 +144,5 @@ def _column_major(matrix: np.ndarray) -> list[float]:
 
 
 def _hex_colour(rgba: np.ndarray) -> int:
-    red, green, blue = (int(round(255 * float(channel))) for channel in rgba[:3])
+    red, green, blue = (round(255 * float(channel)) for channel in rgba[:3])
     return (red << 16) + (green << 8) + blue
