@@ -20,12 +20,12 @@ from typing import Any
 
 import numpy as np
 
-from ..formats._atomic import atomic_write
 from ..errors import InvalidTimeError, ReferenceTimeError, UnsupportedFeatureError
+from ..formats._atomic import atomic_write
+from ..formats.urdf import URDF_METADATA_KEY
+from ..tree import FrameTree
 from ..values.pose import Pose
 from ..values.timeconv import TimeAxis, format_timestamp_iso, timestamp_ns
-from ..tree import FrameTree
-from ..formats.urdf import URDF_METADATA_KEY
 from ._geometry import LinkGeometry, load_geometry
 from ._scene import SceneCommands, node_path
 
