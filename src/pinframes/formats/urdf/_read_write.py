@@ -48,9 +48,12 @@ def write_urdf(tree: FrameTree, path: str | os.PathLike[str], time: Any = None, 
     """
     instant = one_instant(tree, time, path, "URDF")
     robot = ET.Element("robot", name=tree.name or tree.root)
+    written: set[str] = set()
     for kept in tree.metadata.get(URDF_METADATA_KEY, {}).values():
         for text in kept.get("extra_xml", ()):
-            robot.append(ET.fromstring(text))
+            if text not in written:  # robots sharing a material define it once
+                written.add(text)
+                robot.append(ET.fromstring(text))
     used_joint_names = {name for name in tree.joints}
     for frame in tree.frames:
         robot.append(_link(tree, frame))
