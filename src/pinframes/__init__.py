@@ -6,6 +6,7 @@ from .errors import (
     FileFormatError,
     FrameExistsError,
     FrameNotFoundError,
+    InvalidDataError,
     InvalidPoseError,
     InvalidTimeError,
     JointError,
@@ -22,6 +23,7 @@ from .pinocchio_tree import PinocchioTree
 from .pose import Pose
 from .scene import read_scene
 from .scene_writer import write_scene
+from .spatial_data import SpatialData
 from .subsystem import Subsystem
 from .trajectory_io import read_joint_trajectory
 from .tree import FrameTree
@@ -36,6 +38,7 @@ __all__ = [
     "FrameExistsError",
     "FrameNotFoundError",
     "FrameTree",
+    "InvalidDataError",
     "InvalidPoseError",
     "InvalidTimeError",
     "Joint",
@@ -47,6 +50,7 @@ __all__ = [
     "Pose",
     "ReadError",
     "ReferenceTimeError",
+    "SpatialData",
     "Subsystem",
     "TreeStructureError",
     "UnsupportedFeatureError",

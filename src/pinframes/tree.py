@@ -15,6 +15,7 @@ from .errors import (
     FrameExistsError,
     FrameNotFoundError,
     InvalidPoseError,
+    InvalidTimeError,
     JointError,
     ReferenceTimeError,
     TreeStructureError,
@@ -23,6 +24,7 @@ from .joint import Joint
 from .joint_track import JointTrack
 from .pinocchio_tree import PinocchioTree
 from .pose import Pose
+from .spatial_data import SpatialData, apply_pose
 from .subsystem import Subsystem
 from .timeconv import TimeAxis, parse_timestamp
 
@@ -69,6 +71,7 @@ class FrameTree:
         self._frame_metadata: dict[str, dict[str, Any]] = {}
         self.metadata: dict[str, Any] = {}
         self.subsystems: list[Subsystem] = []
+        self._data: dict[str, tuple[str, SpatialData]] = {}
         self._anchors: dict[str, tuple[str, Transform]] = {root: (root, IDENTITY)}
         self._evaluations: dict[tuple[str, str], _query.Evaluation] = {}
 
@@ -248,8 +251,11 @@ class FrameTree:
             self._joint_tracks[joint_name] = track
         self._invalidate()
 
-    def remove(self, name: str, recursive: bool = False) -> None:
-        """Remove frame ``name``; with ``recursive``, its whole subtree too."""
+    def remove(self, name: str, recursive: bool = False, drop_data: bool = False) -> None:
+        """Remove frame ``name``; with ``recursive``, its whole subtree too.
+
+        Data attached to a removed frame is an error unless ``drop_data`` (then it goes too).
+        """
         self._require(name)
         if name == self._root:
             raise TreeStructureError("the root frame cannot be removed", frame=name)
@@ -259,6 +265,13 @@ class FrameTree:
                 "remove them too", frame=name)
         doomed = self._subtree(name)
         self._refuse_orphaned_mimics(set(doomed))
+        attached = [data for data, (frame, _) in self._data.items() if frame in set(doomed)]
+        if attached and not drop_data:
+            raise TreeStructureError(
+                f"data is attached to the frames it would remove ({', '.join(attached)}); pass "
+                "drop_data=True to remove the data too", frame=name, field="drop_data")
+        for data in attached:
+            del self._data[data]
         del self._children[self._parent[name]][name]
         for frame in doomed:
             pose = self._local.pop(frame)
@@ -290,7 +303,7 @@ class FrameTree:
                     frame=frame, field="mimic")
 
     def rename(self, old: str, new: str) -> None:
-        """Rename frame ``old`` to ``new``, keeping its place, pose and metadata."""
+        """Rename frame ``old`` to ``new``, keeping its place, pose, metadata and data."""
         self._require(old)
         _check_name(new)
         if new in self._children:
@@ -305,6 +318,7 @@ class FrameTree:
         for table in ("_depth", "_local", "_joints", "_frame_metadata"):
             setattr(self, table, {renamed(k): v for k, v in getattr(self, table).items()})
         self._joint_frames = {k: renamed(v) for k, v in self._joint_frames.items()}
+        self._data = {k: (renamed(frame), data) for k, (frame, data) in self._data.items()}
         if old == self._root:
             self._root = new
         self.subsystems = [
@@ -332,6 +346,58 @@ class FrameTree:
                 raise
         self._local[name] = pose
         self._invalidate()
+
+    # -- data attached to frames (weldx assign_data / get_data) -----------------------------
+    @property
+    def data_names(self) -> list[str]:
+        """Names of the data attached to frames, in the order they were assigned."""
+        return list(self._data)
+
+    def assign_data(self, name: str, data: SpatialData | Any, frame: str) -> None:
+        """Attach ``data`` (a :class:`SpatialData`, or ``(M, 3)`` points in metres) to ``frame``
+        under ``name``; its coordinates are given in ``frame``."""
+        if not isinstance(name, str) or not name:
+            raise ArgumentTypeError("data names are non-empty strings", field="name")
+        if name in self._data:
+            raise FrameExistsError(f"the tree already has data named {name!r}", field="name")
+        self._require(frame, "frame")
+        self._data[name] = (frame, data if isinstance(data, SpatialData) else SpatialData(data))
+
+    def data_frame(self, name: str) -> str:
+        """The frame data ``name`` is attached to."""
+        if name not in self._data:
+            raise FrameNotFoundError(f"no data named {name!r}", field="name")
+        return self._data[name][0]
+
+    def delete_data(self, name: str) -> None:
+        """Detach and forget data ``name``."""
+        self.data_frame(name)
+        del self._data[name]
+
+    def get_data(self, name: str, relative_to: str | None = None, times: Any = None,
+                 time_ref: Any = None) -> SpatialData:
+        """Data ``name`` with its points in ``relative_to`` (default: as stored).
+
+        Time-dependent data is transformed at its own times (``times`` must be None). Static
+        data follows :meth:`pose`: with ``times`` None, at the union of the path's keyframe
+        times (static points if nothing on the path moves), else at ``times``; moving points
+        come back ``(T, M, 3)`` with the pose's times and reference time.
+        """
+        frame = self.data_frame(name)
+        data = self._data[name][1]
+        if (relative_to is None or relative_to == frame) and times is None:
+            return data
+        target = frame if relative_to is None else relative_to
+        if data.is_time_dependent:
+            if times is not None:
+                raise InvalidTimeError(f"data {name!r} has times of its own; pass times=None",
+                                       frame=frame, field="times")
+            reference = data.reference_time
+            times = data.times if reference is None else reference + data.times
+            time_ref = None
+        pose = self.pose(frame, target, times, time_ref)
+        offsets = None if pose.times is None else pose.times.astype(np.int64)
+        return data.with_points(apply_pose(pose, data.points), offsets, pose.reference_time)
 
     # -- queries ---------------------------------------------------------------------------
     def pose(
