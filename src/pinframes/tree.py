@@ -323,7 +323,7 @@ class FrameTree:
             self._root = new
         self.subsystems = [
             Subsystem(s.name, renamed(s.root), tuple(renamed(m) for m in s.members),
-                      s.parent, s.reference_time, s.subsystems)
+                      s.parent, s.reference_time, s.subsystems, s.data)
             for s in self.subsystems
         ]
         self._invalidate()
@@ -598,4 +598,4 @@ def _checked_pose(pose: object, frame: str, field: str) -> Pose:
 
 def _replace_members(subsystem: Subsystem, members: tuple[str, ...]) -> Subsystem:
     return Subsystem(subsystem.name, subsystem.root, members, subsystem.parent,
-                     subsystem.reference_time, subsystem.subsystems)
+                     subsystem.reference_time, subsystem.subsystems, subsystem.data)
