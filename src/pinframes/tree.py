@@ -218,6 +218,33 @@ class FrameTree:
 
         return mount_robot(self, parse_urdf(urdf), parent, pose, prefix)
 
+    def graft(self, other: FrameTree, at: str | None = None, prefix: str = "",
+              name: str | None = None, record: bool = True) -> Subsystem | None:
+        """Mount tree ``other`` here: its root becomes frame ``at``, every other frame of it
+        (moving frames, robot links with joints and trajectories, attached data) is added
+        with ``prefix`` before its name (joints and data too), as weldx's ``merge`` does.
+
+        ``at`` defaults to ``prefix + other.root``, which must be a frame of this tree.
+        Keyframes counting from ``other``'s reference time keep their absolute times. A
+        :class:`Subsystem` named ``name`` (default: ``prefix + other.name``) records the graft; the
+        subsystems of ``other`` come along nested in it (with ``record=False`` there is no
+        record, and they nest in nothing). A name taken twice is a
+        :class:`~pinframes.errors.FrameExistsError`, and any failure leaves both trees as
+        they were. Returns the record.
+        """
+        from .grafting import graft
+
+        return graft(self, other, at, prefix, name, record)
+
+    def subtree(self, frame: str) -> FrameTree:
+        """A new tree rooted at ``frame`` with copies of everything below it: poses, joints
+        and their trajectories, data, frame metadata and the subsystems inside it. A subsystem
+        recording exactly this part (a :meth:`graft`) names the copy, gives its reference
+        time and is not kept, so ``subtree`` undoes ``graft``."""
+        from .grafting import subtree
+
+        return subtree(self, frame)
+
     def set_joint_trajectory(
         self, times: Any, positions: Any, joint_names: Sequence[str] | None = None
     ) -> None:
@@ -388,12 +415,13 @@ class FrameTree:
         if (relative_to is None or relative_to == frame) and times is None:
             return data
         target = frame if relative_to is None else relative_to
-        if data.is_time_dependent:
+        own = data.times
+        if own is not None:
             if times is not None:
                 raise InvalidTimeError(f"data {name!r} has times of its own; pass times=None",
                                        frame=frame, field="times")
             reference = data.reference_time
-            times = data.times if reference is None else reference + data.times
+            times = own if reference is None else reference + own
             time_ref = None
         pose = self.pose(frame, target, times, time_ref)
         offsets = None if pose.times is None else pose.times.astype(np.int64)

@@ -33,14 +33,14 @@ from ._decode import (
     weldx_tag,
 )
 from ._encode import Generation, tagged
-from ._units import DEFAULT_LENGTH_UNIT, metres_per_unit
+from ._units import DEFAULT_LENGTH_UNIT, METRES_PER_UNIT, metres_per_unit
 
 __all__ = ["encode_data", "read_data"]
 
 _SPATIAL = "core/geometry/spatial_data"
 _ARRAY = "core/data_array"
 _QUANTITY = "units/quantity"
-_MILLIMETRES_PER_METRE = 1.0 / metres_per_unit(DEFAULT_LENGTH_UNIT)
+_MILLIMETRES_PER_METRE = 1.0 / METRES_PER_UNIT[DEFAULT_LENGTH_UNIT]
 
 
 def read_data(node: Any, frame: str, name: str, field: str) -> SpatialData:
@@ -148,10 +148,10 @@ def encode_data(generation: Generation, data: SpatialData) -> Any:
     time), millimetres."""
     millimetres = np.ascontiguousarray(data.points * _MILLIMETRES_PER_METRE, dtype="<f8")
     unit = tagged(generation, "units/units", DEFAULT_LENGTH_UNIT)
-    if not data.is_time_dependent:
+    offsets = data.times
+    if offsets is None:
         coordinates = tagged(generation, _QUANTITY, {"value": millimetres, "units": unit})
     else:
-        offsets = data.times
         stamps = offsets if data.reference_time is None else data.reference_time + offsets
         time = stamps.astype(np.int64)
         coordinates = tagged(generation, _ARRAY, {
