@@ -25,7 +25,7 @@ from .subsystem import Subsystem
 if TYPE_CHECKING:
     from .tree import FrameTree
 
-__all__ = ["graft", "subtree"]
+__all__ = ["copy_tree", "graft", "subtree"]
 
 
 def graft(tree: FrameTree, other: FrameTree, at: str | None = None, prefix: str = "",
@@ -88,6 +88,19 @@ def subtree(tree: FrameTree, frame: str) -> FrameTree:
     _copy_frames(tree, copy_tree, lambda name: name, "", anchor, frame)
     copy_tree.subsystems = [s for s in kept if s is not record]
     return copy_tree
+
+
+def copy_tree(tree: FrameTree) -> FrameTree:
+    """An independent copy of ``tree``: frames, joints, trajectories, data, subsystems and
+    metadata (deep-copied)."""
+    from .tree import FrameTree
+
+    copied = FrameTree(tree.root, name=tree.name, reference_time=tree.reference_time)
+    _copy_frames(tree, copied, lambda name: name, "", None)
+    copied.frame_metadata(tree.root).update(copy.deepcopy(tree.frame_metadata(tree.root)))
+    copied.subsystems = list(tree.subsystems)
+    copied.metadata = copy.deepcopy(tree.metadata)
+    return copied
 
 
 def _copy_frames(source: FrameTree, target: FrameTree, renamed, prefix: str,

@@ -245,6 +245,31 @@ class FrameTree:
 
         return subtree(self, frame)
 
+    def copy(self) -> FrameTree:
+        """An independent copy: frames, joints, trajectories, data, subsystems, metadata."""
+        from .grafting import copy_tree
+
+        return copy_tree(self)
+
+    def time_union(self, frames: Sequence[str] | None = None) -> TimeAxis | None:
+        """Every keyframe and joint sample time of ``frames`` (default: the whole tree), as
+        weldx's ``time_union``: ns offsets after the tree's reference time (else the earliest
+        frame reference time); None when none of them moves."""
+        from .tree_times import time_union
+
+        return time_union(self, frames)
+
+    def resampled(self, times: Any, time_ref: Any = None) -> FrameTree:
+        """A copy whose moving frames and joint trajectories hold samples at ``times`` only
+        (interpolated as :meth:`pose` does, held outside), as weldx's ``interp_time``.
+
+        Relative ``times`` count from ``time_ref``, else from the tree's reference time;
+        static frames and data stay as they are; frames keep their own reference times.
+        """
+        from .tree_times import resampled
+
+        return resampled(self, times, time_ref)
+
     def set_joint_trajectory(
         self, times: Any, positions: Any, joint_names: Sequence[str] | None = None
     ) -> None:
