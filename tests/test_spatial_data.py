@@ -141,3 +141,16 @@ def test_bad_data_names_the_field(arguments, field):
     with pytest.raises(InvalidDataError) as caught:
         SpatialData(**arguments)
     assert caught.value.field == field
+
+
+def test_deleting_data_takes_it_off_the_subsystems():
+    from pinframes import Subsystem
+
+    tree = _tree()
+    tree.assign_data("cloud", POINTS, "tool")
+    tree.assign_data("mesh", POINTS, "table")
+    tree.subsystems = [Subsystem("rig", "arm", ("arm", "tool"), data=("cloud", "mesh"))]
+    tree.delete_data("mesh")
+    assert tree.subsystems[0].data == ("cloud",)
+    tree.remove("tool", drop_data=True)
+    assert tree.subsystems[0] == Subsystem("rig", "arm", ("arm",))

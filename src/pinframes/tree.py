@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from collections.abc import Iterator, Sequence
 from typing import Any
@@ -317,7 +318,8 @@ class FrameTree:
                 "remove them too", frame=name)
         doomed = self._subtree(name)
         self._refuse_orphaned_mimics(set(doomed))
-        attached = [data for data, (frame, _) in self._data.items() if frame in set(doomed)]
+        gone = set(doomed)
+        attached = [data for data, (frame, _) in self._data.items() if frame in gone]
         if attached and not drop_data:
             raise TreeStructureError(
                 f"data is attached to the frames it would remove ({', '.join(attached)}); pass "
@@ -337,11 +339,11 @@ class FrameTree:
                     self._uncount_reference(track.reference)
             for table in (self._parent, self._children, self._depth, self._frame_metadata):
                 table.pop(frame, None)
-        gone = set(doomed)
         self.subsystems = [
             _replace_members(s, tuple(m for m in s.members if m not in gone))
             for s in self.subsystems if s.root not in gone
         ]
+        self._forget_data(attached)
         self._invalidate()
 
     def _refuse_orphaned_mimics(self, doomed: set[str]) -> None:
@@ -425,6 +427,14 @@ class FrameTree:
         """Detach and forget data ``name``."""
         self.data_frame(name)
         del self._data[name]
+        self._forget_data([name])
+
+    def _forget_data(self, names: list[str]) -> None:
+        """Take data ``names`` off the subsystems' data lists (weldx ``delete_data``)."""
+        if names:
+            self.subsystems = [dataclasses.replace(s, data=tuple(d for d in s.data
+                                                                 if d not in names))
+                               for s in self.subsystems]
 
     def get_data(self, name: str, relative_to: str | None = None, times: Any = None,
                  time_ref: Any = None) -> SpatialData:
