@@ -20,7 +20,7 @@ from pinframes import (
     read_asdf,
     write_asdf,
 )
-from pinframes.asdf._decode import open_raw_tree
+from pinframes.formats.asdf._decode import open_raw_tree
 from weldx_asdf.weldx_env import ask_weldx, needs_weldx
 
 from geometry import rot_x, rot_z
