@@ -11,7 +11,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 
 import numpy as np
-import pyarrow as pa
+import pyarrow as pa  # type: ignore[import-untyped]
 
 from ..errors import FrameNotFoundError, InvalidTimeError
 from ..pose import Pose
@@ -35,11 +35,10 @@ def pose_chunks(tree: FrameTree, run_id: str, options: BatchOptions) -> Iterator
     for name in (options.frame, options.relative_to):
         if name is not None and name not in tree:
             raise FrameNotFoundError("no frame of this name in this run", frame=name)
-    relative_to = options.relative_to
+    relative_to = options.relative_to or tree.parent(options.frame)
     if relative_to is None:
-        relative_to = tree.parent(options.frame)
-        if relative_to is None:
-            tree.pose(options.frame)  # the error for the root, which has no parent
+        tree.pose(options.frame)  # raises the error for the root, which has no parent
+        raise AssertionError("unreachable: the root has no pose in its parent")
     values, time_ref = _query_times(tree, options.frame, relative_to, options)
     for start in range(0, values.shape[0], options.chunk_size):
         pose = tree.pose(options.frame, relative_to=relative_to,
@@ -50,14 +49,11 @@ def pose_chunks(tree: FrameTree, run_id: str, options: BatchOptions) -> Iterator
 def _query_times(tree: FrameTree, frame: str, relative_to: str, options: BatchOptions
                  ) -> tuple[np.ndarray, np.datetime64 | None]:
     """The times to evaluate (timedelta64 or datetime64 [ns]) and the query's time_ref."""
-    if options.times is not None:
-        axis, time_ref = options.times, options.time_ref
-    else:
-        axis = tree.sample_times(frame, relative_to)
-        if axis is None:
-            raise InvalidTimeError(f"nothing moves between {frame!r} and {relative_to!r} in "
-                                   "this run: give explicit times", field="times")
-        time_ref = axis.reference
+    axis = options.times if options.times is not None else tree.sample_times(frame, relative_to)
+    if axis is None:
+        raise InvalidTimeError(f"nothing moves between {frame!r} and {relative_to!r} in "
+                               "this run: give explicit times", field="times")
+    time_ref = options.time_ref if options.times is not None else axis.reference
     offsets = axis.offsets
     if options.step_ns is not None:
         offsets = np.arange(offsets[0], offsets[-1] + 1, options.step_ns, dtype=np.int64)

@@ -100,7 +100,7 @@ def run_batch(runs: Iterable[str | os.PathLike[str]], out: str | os.PathLike[str
         try:
             with dask_client(scheduler, workers, log) as client:
                 futures = client.map(process_run, tasks, pure=False)
-                task_of = dict(zip(futures, tasks))
+                task_of = dict(zip(futures, tasks, strict=True))
                 with _progress(futures, progress_bar):
                     for future in as_completed(futures):
                         result = _result(future, task_of.pop(future))
@@ -150,7 +150,7 @@ def _exclusive(out: Path) -> Iterator[None]:
     """Hold ``out``'s lock file: a second batch into the same folder is refused."""
     try:
         out.mkdir(parents=True, exist_ok=True)
-        handle = open(out / _LOCK_NAME, "a")  # noqa: SIM115 (closed below)
+        handle = open(out / _LOCK_NAME, "a")  # closed below
     except OSError as exc:
         raise WriteError(f"cannot use this output folder: {exc.strerror or exc}",
                          file=out) from exc

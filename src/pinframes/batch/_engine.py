@@ -34,7 +34,7 @@ def dask_client(scheduler: str | None = None, workers: int | None = None,
     dashboard = importlib.util.find_spec("bokeh") is not None
     with LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
                       processes=True, host="127.0.0.1",
-                      dashboard_address="127.0.0.1:0" if dashboard else None,
+                      dashboard_address="127.0.0.1:0",
                       env=SINGLE_THREAD_ENV) as cluster, Client(cluster) as client:
         _say_dashboard(cluster.dashboard_link if dashboard else None, log)
         yield client

@@ -10,30 +10,42 @@ from __future__ import annotations
 
 import hashlib
 import os
+from dataclasses import dataclass
 from pathlib import Path
 
 import yaml
 
-__all__ = ["MISSING", "checksums", "input_files"]
+__all__ = ["MISSING", "RunInputs", "checksums", "run_inputs"]
 
 MISSING = "missing"
 _SCENE_KEY = "pinframes_scene"
 _BLOCK_BYTES = 1 << 20
+# libyaml when PyYAML has it: a scene of a recorded run can hold thousands of keyframes
+_LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
 
-def input_files(path: Path) -> list[Path]:
-    """``path`` and the files reading it reads, in a stable order (absolute paths)."""
+@dataclass(frozen=True)
+class RunInputs:
+    """The files a run reads (absolute paths, the run's own file first), and whether the
+    run's file is a scene (so it is read as one without telling its format again)."""
+
+    files: list[Path]
+    is_scene: bool
+
+
+def run_inputs(path: Path) -> RunInputs:
+    """The inputs of the run whose file is ``path``."""
     path = path.resolve()
     if path.suffix.lower() not in (".yaml", ".yml"):
-        return [path]
+        return RunInputs([path], is_scene=False)
     try:
-        content = yaml.safe_load(path.read_bytes())
+        content = yaml.load(path.read_bytes(), Loader=_LOADER)  # a safe loader
     except (OSError, yaml.YAMLError):
-        return [path]  # reading the run will fail and say why
+        return RunInputs([path], is_scene=False)  # reading the run will fail and say why
     if not isinstance(content, dict):
-        return [path]
+        return RunInputs([path], is_scene=False)
     if _SCENE_KEY not in content:
-        return [path, path.parent / "tile_maps.yaml"]
+        return RunInputs([path, path.parent / "tile_maps.yaml"], is_scene=False)
     files = [path]
     for section, keys in (("layers", ("file",)), ("robots", ("urdf", "trajectory"))):
         entries = content.get(section)
@@ -41,9 +53,9 @@ def input_files(path: Path) -> list[Path]:
             for key in keys:
                 value = entry.get(key) if isinstance(entry, dict) else None
                 if isinstance(value, str):
-                    files.extend(input_files(path.parent / value) if key == "file"
+                    files.extend(run_inputs(path.parent / value).files if key == "file"
                                  else [(path.parent / value).resolve()])
-    return list(dict.fromkeys(files))
+    return RunInputs(list(dict.fromkeys(files)), is_scene=True)
 
 
 def checksums(files: list[Path]) -> dict[str, str]:

@@ -21,8 +21,8 @@ from pathlib import Path
 from types import TracebackType
 from urllib.parse import quote
 
-import pyarrow as pa
-import pyarrow.parquet as pq
+import pyarrow as pa  # type: ignore[import-untyped]
+import pyarrow.parquet as pq  # type: ignore[import-untyped]
 
 from ._compute import POSE_SCHEMA
 
@@ -57,7 +57,7 @@ class PartitionWriter:
     def __init__(self, out: Path, run_id: str) -> None:
         self.target = partition_path(out, run_id)
         self._staged = out / _STAGING_FOLDER / f"{uuid.uuid4().hex}.parquet"
-        self._file = open(self._staged, "wb")  # noqa: SIM115 (closed in __exit__)
+        self._file = open(self._staged, "wb")  # closed in __exit__
         self._writer = pq.ParquetWriter(self._file, POSE_SCHEMA)
         self.rows = 0
 

@@ -76,7 +76,7 @@ def _named_by_path(paths: list[Path]) -> list[Run]:
     common = Path(os.path.commonpath([path.parent for path in absolute]))
     same_name = len({path.name for path in absolute}) == 1 and len(absolute) > 1
     runs = []
-    for path, full in zip(paths, absolute):
+    for path, full in zip(paths, absolute, strict=True):
         relative = full.parent.relative_to(common) if same_name else (
             full.relative_to(common).with_suffix(""))
         runs.append(Run(relative.as_posix() if relative.parts else full.stem, path))

@@ -15,10 +15,12 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from .. import read_scene
 from ..cli._files import read_tree
 from ..errors import PinframesError
+from ..tree import FrameTree
 from ._compute import pose_chunks
-from ._inputs import checksums, input_files
+from ._inputs import checksums, run_inputs
 from ._options import BatchOptions
 from ._partition import PartitionWriter, partition_path
 from ._runs import Run
@@ -54,7 +56,8 @@ class RunResult:
 
 def process_run(task: RunTask) -> RunResult:
     """Bring one run's output up to date (see the module docstring)."""
-    files = checksums(input_files(task.run.path))
+    inputs = run_inputs(task.run.path)
+    files = checksums(inputs.files)
     if _unchanged(task, files):
         assert task.previous is not None
         return RunResult(task.previous, computed=False)
@@ -63,7 +66,8 @@ def process_run(task: RunTask) -> RunResult:
         "run": task.run.run_id, "file": os.fspath(task.run.path), "status": "ok",
         "samples": None, "error": None, "checksums": files, "options": task.options_digest}
     try:
-        record["samples"] = _write_poses(task)
+        tree = read_scene(task.run.path) if inputs.is_scene else read_tree(task.run.path)
+        record["samples"] = _write_poses(tree, task)
     except PinframesError as exc:
         record.update(status="error", error=_located(exc, task.run.path))
     except Exception as exc:  # a bug or the machine, not the input: try again next time
@@ -84,8 +88,7 @@ def _unchanged(task: RunTask, files: dict[str, str]) -> bool:
                  or partition_path(task.out, task.run.run_id).is_file()))
 
 
-def _write_poses(task: RunTask) -> int:
-    tree = read_tree(task.run.path)
+def _write_poses(tree: FrameTree, task: RunTask) -> int:
     with PartitionWriter(task.out, task.run.run_id) as writer:
         for table in pose_chunks(tree, task.run.run_id, task.options):
             writer.write(table)
