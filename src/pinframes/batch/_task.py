@@ -56,12 +56,12 @@ class RunResult:
 
 def process_run(task: RunTask) -> RunResult:
     """Bring one run's output up to date (see the module docstring)."""
+    started = time.perf_counter()
     inputs = run_inputs(task.run.path)
     files = checksums(inputs.files)
     if _unchanged(task, files):
         assert task.previous is not None
         return RunResult(task.previous, computed=False)
-    started = time.perf_counter()
     record: dict[str, Any] = {
         "run": task.run.run_id, "file": os.fspath(task.run.path), "status": "ok",
         "samples": None, "error": None, "checksums": files, "options": task.options_digest}
