@@ -29,9 +29,9 @@ START = np.datetime64("2024-03-01T08:00:00", "s")
 def make_campaign(out: Path, runs: int, samples: int, seed: int = 0) -> list[Path]:
     """Write ``runs`` run folders into ``out``; return their scene files."""
     scene = yaml.safe_load((HERE / "scene.yaml").read_text(encoding="utf-8"))
-    robot = scene["robots"][0]
-    robot["urdf"] = str((HERE / robot["urdf"]).resolve())
-    robot["trajectory"] = "motion.csv"
+    for robot in scene["robots"]:  # the welding robot, and the cell's geometry
+        robot["urdf"] = str((HERE / robot["urdf"]).resolve())
+    scene["robots"][0]["trajectory"] = "motion.csv"
     times, positions, names = read_joint_trajectory(HERE / "robot_motion.csv")
     seconds = np.asarray(times, dtype=float)  # time_s column: seconds
     grid = np.linspace(seconds[0], seconds[-1], samples)

@@ -13,9 +13,8 @@ from collections.abc import Iterator
 import numpy as np
 import pyarrow as pa  # type: ignore[import-untyped]
 
+from .. import FrameTree, Pose
 from ..errors import FrameNotFoundError, InvalidTimeError
-from ..pose import Pose
-from ..tree import FrameTree
 from ._options import BatchOptions
 
 __all__ = ["POSE_SCHEMA", "pose_chunks"]

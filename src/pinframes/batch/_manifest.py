@@ -19,7 +19,7 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
-from .._atomic import atomic_write
+from ..formats._atomic import atomic_write
 
 __all__ = ["MANIFEST_NAME", "Manifest"]
 

@@ -11,7 +11,7 @@ import numpy as np
 
 from .. import __version__
 from ..errors import ArgumentTypeError, InvalidTimeError
-from ..timeconv import TimeAxis, parse_time_axis, parse_timedelta, parse_timestamp
+from ..values.timeconv import TimeAxis, parse_time_axis, parse_timedelta, parse_timestamp
 
 __all__ = ["DEFAULT_CHUNK_SIZE", "OUTPUT_VERSION", "BatchOptions"]
 

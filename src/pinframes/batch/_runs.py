@@ -18,8 +18,8 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
-from .._reading import read_text
 from ..errors import FileFormatError, ReadError
+from ..formats._reading import read_text
 
 __all__ = ["RUNS_LIST_SUFFIX", "Run", "find_runs"]
 

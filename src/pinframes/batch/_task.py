@@ -15,10 +15,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from .. import read_scene
-from ..cli._files import read_tree
+from .. import FrameTree, read
 from ..errors import PinframesError
-from ..tree import FrameTree
 from ._compute import pose_chunks
 from ._inputs import checksums, run_inputs
 from ._options import BatchOptions
@@ -66,7 +64,7 @@ def process_run(task: RunTask) -> RunResult:
         "run": task.run.run_id, "file": os.fspath(task.run.path), "status": "ok",
         "samples": None, "error": None, "checksums": files, "options": task.options_digest}
     try:
-        tree = read_scene(task.run.path) if inputs.is_scene else read_tree(task.run.path)
+        tree = read(task.run.path, format="scene" if inputs.is_scene else None)
         record["samples"] = _write_poses(tree, task)
     except PinframesError as exc:
         record.update(status="error", error=_located(exc, task.run.path))
