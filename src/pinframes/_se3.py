@@ -1,9 +1,14 @@
 """Rigid transforms as ``(rotation, translation)`` pairs, batched over time.
 
 A rotation is ``(3, 3)`` (static) or ``(N, 3, 3)`` (one per sample); a translation is
-``(3,)`` or ``(N, 3)``. Static and batched parts mix freely; the functions pick the cheapest
-numpy route for each combination (a static factor becomes one matrix product over all
-samples instead of N small ones).
+``(3,)`` or ``(N, 3)``. Static and batched parts mix freely.
+
+No kernel here hands BLAS a large product with an inner dimension of 3: OpenBLAS splits such
+products across threads, and beside one busy process they ran 3-25x slower than with one
+thread. Rotations multiply as stacks of 3 x 3 matrices (``np.matmul`` calls one small,
+single-threaded product per sample), vectors rotate with ``np.einsum`` (numpy's own loops).
+Measured with one thread and with the default threads next to a spinning process
+(benchmarks/README.md).
 """
 
 from __future__ import annotations
@@ -17,8 +22,6 @@ FloatArray = NDArray[np.float64]
 Transform = tuple[FloatArray, FloatArray]
 IDENTITY: Transform = (np.eye(3), np.zeros(3))
 """The identity; :func:`compose` skips it by object identity, so share this one object."""
-
-_SMALL_BATCH = 64
 
 
 def canonical(transform: Transform) -> Transform:
@@ -51,21 +54,14 @@ def inverse(transform: Transform) -> Transform:
 
 
 def _rotate(left: FloatArray, right: FloatArray) -> FloatArray:
-    """Products of rotation matrices, with static factors done as one matrix product."""
-    if left.ndim == 2 and right.ndim == 3 and right.shape[0] > _SMALL_BATCH:
-        # (S @ A[n]) for all n: contract S's columns with A's rows in one BLAS call.
-        return np.tensordot(right, left, axes=([1], [1])).transpose(0, 2, 1)
-    if left.ndim == 3 and right.ndim == 2 and left.shape[0] > _SMALL_BATCH:
-        count = left.shape[0]
-        return (np.ascontiguousarray(left).reshape(count * 3, 3) @ right).reshape(count, 3, 3)
-    return left @ right
+    """Products of rotation matrices, static or batched, as stacked 3 x 3 products."""
+    return np.matmul(left, right)
 
 
 def _apply(rotation: FloatArray, vector: FloatArray) -> FloatArray:
     """Rotated vectors ``R @ v`` for static or batched ``R`` and ``v``."""
-    if rotation.ndim == 2:
-        return vector @ rotation.T
     if vector.ndim == 1:
-        return rotation @ vector
-    return (rotation[:, :, 0] * vector[:, 0, None] + rotation[:, :, 1] * vector[:, 1, None]
-            + rotation[:, :, 2] * vector[:, 2, None])
+        return np.matmul(rotation, vector)
+    if rotation.ndim == 2:
+        return np.einsum("ij,nj->ni", rotation, vector)
+    return np.einsum("nij,nj->ni", rotation, vector)

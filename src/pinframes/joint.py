@@ -86,7 +86,8 @@ class Joint:
 
         For a rotation, Rodrigues' formula ``R(q) = I + sin q K + (1 - cos q) K^2`` (``K`` the
         cross-product matrix of the axis) turns ``P @ R(q)`` into
-        ``P + sin q (P K) + (1 - cos q) (P K^2)``: one (N, 3) x (3, 9) matrix product.
+        ``P + sin q (P K) + (1 - cos q) (P K^2)``: two outer products and two sums, element
+        by element (no BLAS product with an inner dimension of 3, which threads badly).
         """
         rotation, translation = placement
         axis = np.asarray(self.axis)
@@ -97,14 +98,9 @@ class Joint:
         cross = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]],
                           [-axis[1], axis[0], 0.0]])
         rotation_cross = rotation @ cross
-        basis = np.stack([rotation.ravel(), rotation_cross.ravel(),
-                          (rotation_cross @ cross).ravel()])
-        weights = np.empty((count, 3))
-        weights[:, 0] = 1.0
-        np.sin(values, out=weights[:, 1])
-        np.cos(values, out=weights[:, 2])
-        np.subtract(1.0, weights[:, 2], out=weights[:, 2])
-        rotated = (weights @ basis).reshape(count, 3, 3)
+        rotated = np.multiply.outer(np.sin(values), rotation_cross)
+        rotated += np.multiply.outer(1.0 - np.cos(values), rotation_cross @ cross)
+        rotated += rotation
         return rotated, np.broadcast_to(translation, (count, 3))
 
     def pinocchio_joint_model(self) -> pin.JointModel:
