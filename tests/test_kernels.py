@@ -34,15 +34,24 @@ def test_matrix_from_quaternion_of_a_batch_with_leading_axes(rng):
 def test_compose_and_inverse_match_pinocchio_se3(rng, left_batched, right_batched):
     count = 200  # above any small-batch threshold, so every route runs
     def random_transform(batched):
+        """Samples last: rotations (3, 3, N) and translations (3, N), or one static pose."""
         rotations = np.array([pin_rotation(q) for q in random_quaternions(rng, count)])
         translations = rng.normal(size=(count, 3))
-        return (rotations, translations) if batched else (rotations[0], translations[0])
+        if not batched:
+            return rotations[0], translations[0]
+        return np.moveaxis(rotations, 0, -1), translations.T
+
     first, second = random_transform(left_batched), random_transform(right_batched)
     rotation, translation = compose(first, second)
     inverse_rotation, inverse_translation = inverse(first)
+    if left_batched or right_batched:  # back to one pose per row, to index by sample
+        rotation, translation = np.moveaxis(rotation, -1, 0), translation.T
+    if left_batched:
+        inverse_rotation = np.moveaxis(inverse_rotation, -1, 0)
+        inverse_translation = inverse_translation.T
     for n in range(count):
-        a = pin.SE3(*(part[n] if left_batched else part for part in first))
-        b = pin.SE3(*(part[n] if right_batched else part for part in second))
+        a = pin.SE3(*(part[..., n] if left_batched else part for part in first))
+        b = pin.SE3(*(part[..., n] if right_batched else part for part in second))
         product = a * b
         batched = left_batched or right_batched
         np.testing.assert_allclose(rotation[n] if batched else rotation, product.rotation,
@@ -145,6 +154,12 @@ def test_placed_joint_motion_matches_pinocchio(rng, kind, axis):
     values = np.concatenate([rng.uniform(-7, 7, size=50), [0.0, np.pi, -np.pi]])
     rotations, translations = joint.placed_motion(
         (placement.rotation, placement.translation), values)
+    # samples last, one side static: back to one pose per row
+    rotations = np.broadcast_to(rotations[..., None] if rotations.ndim == 2 else rotations,
+                                (3, 3, values.size))
+    translations = np.broadcast_to(
+        translations[:, None] if translations.ndim == 1 else translations, (3, values.size))
+    rotations, translations = np.moveaxis(rotations, -1, 0), translations.T
     unit = np.asarray(axis) / np.linalg.norm(axis)
     for value, rotation, translation in zip(values, rotations, translations, strict=True):
         if kind == "prismatic":

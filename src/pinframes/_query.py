@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ._interpolation import Keyframes
-from ._se3 import IDENTITY, Transform, compose, inverse
+from ._se3 import IDENTITY, Transform, compose, inverse, to_stacks
 from ._timeline import QueryTimeline, TimedSource, plan_query_timeline
 from .errors import ExtrapolationError, InvalidTimeError
 from .joint import Joint, mimic_chain
@@ -38,8 +38,8 @@ __all__ = [
 ]
 
 _EXTRAPOLATION_POLICIES = ("clamp", "error")
-_CHUNK = 1 << 15
-"""Samples evaluated at once: bounds the temporaries of long queries (about 2 MB each)."""
+_CHUNK = 1 << 14
+"""Samples evaluated at once: bounds the temporaries of long queries (about 1 MB each)."""
 
 
 @dataclass(frozen=True)
@@ -72,18 +72,16 @@ def evaluate_pose(
     timeline = plan_timeline(tree, sources, times, time_ref)
     if extrapolation == "error" and timeline.evaluation_times is not None:
         _check_within_keyframes(sources, timeline)
-    if evaluation.static is not None:
+    offsets = timeline.result_offsets
+    if evaluation.static is not None and offsets is None:
         rotation, translation = evaluation.static
+        return Pose._trusted(translation, rotation)
+    if evaluation.static is not None:
+        rotation, translation = to_stacks(evaluation.static, offsets.shape[0])
     else:
         rotation, translation = _evaluate_in_chunks(tree, evaluation, sources, timeline)
-    offsets = timeline.result_offsets
     if offsets is None:
-        return Pose._trusted(translation, rotation)
-    count = offsets.shape[0]
-    if rotation.ndim == 2:
-        rotation = np.broadcast_to(rotation, (count, 3, 3)).copy()
-    if translation.ndim == 1:
-        translation = np.broadcast_to(translation, (count, 3)).copy()
+        return Pose._trusted(translation[0], rotation[0])
     return Pose._trusted(translation, rotation, offsets, timeline.reference)
 
 
@@ -161,8 +159,9 @@ def _placed_keyframes(keyframes: Keyframes, placement: Transform) -> Keyframes:
     linear interpolation and SLERP, so it can be applied to the keyframes once."""
     if placement is IDENTITY:
         return keyframes
-    rotations, translations = compose(placement, (keyframes.rotations, keyframes.translations))
-    return Keyframes(keyframes.times, translations, rotations)
+    rotation, translation = placement
+    return Keyframes(keyframes.times, keyframes.translations @ rotation.T + translation,
+                     rotation @ keyframes.rotations)
 
 
 def plan_timeline(
@@ -229,14 +228,15 @@ def _evaluate_in_chunks(
     """:func:`_evaluate_model` over slices of the timeline, so that the temporary arrays of
     a long query stay small (and cache-friendly) while the result is filled in place."""
     times = timeline.evaluation_times
-    if times is None or times.shape[0] <= _CHUNK:
-        return _evaluate_model(tree, evaluation, sources, times, timeline)
+    if times is None:  # nothing on the path is sampled: one static pose
+        return to_stacks(_evaluate_model(tree, evaluation, sources, times, timeline), 1)
     count = times.shape[0]
     rotation, translation = np.empty((count, 3, 3)), np.empty((count, 3))
     for start in range(0, count, _CHUNK):
         part = slice(start, start + _CHUNK)
-        rotation[part], translation[part] = _evaluate_model(
-            tree, evaluation, sources, times[part], timeline)
+        rotation[part], translation[part] = to_stacks(
+            _evaluate_model(tree, evaluation, sources, times[part], timeline),
+            min(count, start + _CHUNK) - start)
     return rotation, translation
 
 
@@ -252,14 +252,15 @@ def _evaluate_model(
     for position, joint in enumerate(model.joints):
         keyframes = evaluation.placed_keyframes[position]
         if keyframes is not None:
-            shift = shifts[joint.frame]
-            sampled = keyframes.sample(times - shift)
-            local.append((sampled[1], sampled[0]))
+            local.append(keyframes.transform_at(times - shifts[joint.frame]))
             continue
         values = sample_joint_values(tree, joint.joint, times, shifts, values_cache)
         rotation, translation = joint.joint.placed_motion(
             model.joint_placements[position], np.atleast_1d(values))
-        local.append((rotation, translation) if np.ndim(values) else (rotation[0], translation[0]))
+        if not np.ndim(values):  # an untracked joint: one static value
+            rotation = rotation[..., 0] if rotation.ndim == 3 else rotation
+            translation = translation[..., 0] if translation.ndim == 2 else translation
+        local.append((rotation, translation))
     frame_pose, reference_pose = model.forward_kinematics(
         local, [evaluation.frame, evaluation.relative_to])
     return compose(inverse(reference_pose), frame_pose)
