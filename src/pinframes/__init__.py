@@ -20,6 +20,7 @@ from .joint import Joint, Mimic
 from .joint_track import JointTrack
 from .pinocchio_tree import PinocchioTree
 from .pose import Pose
+from .pose_stack import PoseStack
 from .scene import read_scene
 from .scene_writer import write_scene
 from .subsystem import Subsystem
@@ -45,6 +46,7 @@ __all__ = [
     "PinframesError",
     "PinocchioTree",
     "Pose",
+    "PoseStack",
     "ReadError",
     "ReferenceTimeError",
     "Subsystem",
