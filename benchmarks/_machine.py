@@ -83,10 +83,10 @@ def run_in_settings(script: str, arguments: list[str]) -> dict[str, list[dict]]:
         if setting == "busy":
             with busy_core():
                 output = subprocess.run(command, env=environment, check=True,
-                                        capture_output=True, text=True).stdout
+                                        stdout=subprocess.PIPE, text=True).stdout
         else:
             output = subprocess.run(command, env=environment, check=True,
-                                    capture_output=True, text=True).stdout
+                                    stdout=subprocess.PIPE, text=True).stdout
         results[setting] = json.loads(output.strip().splitlines()[-1])
     return results
 

@@ -61,7 +61,7 @@ def to_stacks(transform: Transform, count: int) -> Transform:
     rotation, translation = transform
     rotations = np.empty((count, 3, 3))
     translations = np.empty((count, 3))
-    rotations[...] = np.moveaxis(rotation, -1, 0) if rotation.ndim == 3 else rotation
+    rotations[...] = rotation.transpose(2, 0, 1) if rotation.ndim == 3 else rotation
     translations[...] = translation.T
     return rotations, translations
 
