@@ -14,10 +14,10 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numpy.typing import NDArray
 
 from ._query import evaluate_pose
 from .errors import InvalidTimeError
+from .pose import Pose
 from .pose_stack import PoseStack
 
 if TYPE_CHECKING:
@@ -63,23 +63,23 @@ def evaluate_poses(
             np.repeat(rotation[:, None], samples, axis=1),
             timeline._times, timeline.reference_time)
     groups, members = np.unique(pair_anchors[moving], return_inverse=True)
+    betweens = []  # per group: its two anchors and the pose of one in the other
+    for code in groups:
+        anchor_a = anchor_names[code // len(anchor_names)]
+        anchor_b = anchor_names[code % len(anchor_names)]
+        betweens.append((anchor_a, anchor_b, evaluate_pose(tree, anchor_a, anchor_b, times,
+                                                           time_ref, extrapolation)))
+    timeline = betweens[0][2]
+    for anchor_a, anchor_b, between in betweens[1:]:
+        _check_same_timeline(timeline, between, anchor_a, anchor_b)
+    samples = len(timeline)
+    translation = np.empty((count, samples, 3))
+    rotation = np.empty((count, samples, 3, 3))
     moving_pairs = np.flatnonzero(moving)
-    timeline = None
-    translation, rotation = None, None
-    for group, code in enumerate(groups):
-        anchor_a, anchor_b = anchor_names[code // len(anchor_names)], anchor_names[
-            code % len(anchor_names)]
-        between = evaluate_pose(tree, anchor_a, anchor_b, times, time_ref, extrapolation)
-        if timeline is None:
-            timeline = between
-            samples = len(between)
-            translation = np.empty((count, samples, 3))
-            rotation = np.empty((count, samples, 3, 3))
-        else:
-            _check_same_timeline(timeline, between, anchor_a, anchor_b)
+    for group, (_, _, between) in enumerate(betweens):
         pairs = moving_pairs[members == group]
         # inv(P_b) @ M(t) @ P_a for every pair of the group and every time
-        rotation_m = np.asarray(between.rotation)
+        rotation_m = between.rotation
         placed = np.matmul(rotation_m[None], rotation_a[pairs, None])
         rotation[pairs] = np.matmul(rotation_b_t[pairs, None], placed)
         moved = np.einsum("tij,pj->pti", rotation_m, translation_a[pairs])
@@ -92,11 +92,9 @@ def evaluate_poses(
     return PoseStack(translation, rotation, timeline._times, timeline.reference_time)
 
 
-def _check_same_timeline(first: Any, other: Any, anchor_a: str, anchor_b: str) -> None:
-    times_1: NDArray[np.int64] | None = first._times
-    times_2: NDArray[np.int64] | None = other._times
-    same = (first.reference_time == other.reference_time and times_1 is not None
-            and times_2 is not None and np.array_equal(times_1, times_2))
+def _check_same_timeline(first: Pose, other: Pose, anchor_a: str, anchor_b: str) -> None:
+    same = (first.reference_time == other.reference_time and first._times is not None
+            and other._times is not None and np.array_equal(first._times, other._times))
     if not same:
         raise InvalidTimeError(
             f"the pairs move on different timelines (the path from {anchor_a!r} to "
