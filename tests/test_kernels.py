@@ -6,10 +6,10 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from pinframes._interpolation import Keyframes
-from pinframes._se3 import IDENTITY, compose, inverse
-from pinframes.joint import Joint
-from pinframes.rotations import matrix_from_quaternion
+from pinframes.values._interpolation import Keyframes
+from pinframes.values._se3 import IDENTITY, compose, inverse
+from pinframes.values.joint import Joint
+from pinframes.values.rotations import matrix_from_quaternion
 
 
 def random_quaternions(rng, count):
@@ -76,8 +76,8 @@ def slerp_by_log(rotation_0, rotation_1, fraction):
 
 def keyframes_of(quaternions, translations):
     times = np.arange(len(quaternions), dtype=np.int64) * 1_000_000_000
-    return Keyframes(times, np.asarray(translations, dtype=float),
-                     matrix_from_quaternion(np.asarray(quaternions)))
+    return Keyframes(times, matrix_from_quaternion(np.asarray(quaternions)),
+                     np.asarray(translations, dtype=float))
 
 
 def test_slerp_and_linear_translation_match_exp_log_on_random_keyframes(rng):
@@ -85,7 +85,7 @@ def test_slerp_and_linear_translation_match_exp_log_on_random_keyframes(rng):
     translations = rng.normal(size=(30, 3))
     keyframes = keyframes_of(quaternions, translations)
     times = np.sort(rng.integers(-2_000_000_000, 31_000_000_000, size=500))
-    sampled_translations, sampled_rotations = keyframes.sample(times)
+    sampled_rotations, sampled_translations = keyframes.sample(times)
     for t, translation, rotation in zip(times, sampled_translations, sampled_rotations,
                                         strict=True):
         seconds = min(max(t / 1e9, 0.0), 29.0)
@@ -106,7 +106,7 @@ def test_slerp_between_nearly_identical_quaternions_is_smooth_and_orthonormal(rn
         other /= np.linalg.norm(other)
         keyframes = keyframes_of([base, other], np.zeros((2, 3)))
         times = np.linspace(0, 1_000_000_000, 11).astype(np.int64)
-        _, rotations = keyframes.sample(times)
+        rotations, _ = keyframes.sample(times)
         for fraction, rotation in zip(np.linspace(0, 1, 11), rotations, strict=True):
             expected = slerp_by_log(pin_rotation(base), pin_rotation(other), fraction)
             np.testing.assert_allclose(rotation, expected, atol=1e-12)
@@ -116,7 +116,7 @@ def test_slerp_between_nearly_identical_quaternions_is_smooth_and_orthonormal(rn
 def test_antipodal_keyframes_are_the_same_rotation_and_stay_put(rng):
     q = random_quaternions(rng, 1)[0]
     keyframes = keyframes_of([q, -q, q], np.zeros((3, 3)))
-    _, rotations = keyframes.sample(np.linspace(0, 2e9, 41).astype(np.int64))
+    rotations, _ = keyframes.sample(np.linspace(0, 2e9, 41).astype(np.int64))
     for rotation in rotations:
         np.testing.assert_allclose(rotation, pin_rotation(q), atol=1e-14)
 
@@ -133,7 +133,7 @@ def test_slerp_through_a_half_turn_turns_about_the_keyframes_axis(rng, axis):
     q1 = np.array([q1_pin.x, q1_pin.y, q1_pin.z, q1_pin.w])
     keyframes = keyframes_of([q0, q1], np.zeros((2, 3)))
     fractions = np.linspace(0, 1, 9)
-    _, rotations = keyframes.sample((fractions * 1e9).astype(np.int64))
+    rotations, _ = keyframes.sample((fractions * 1e9).astype(np.int64))
 
     def turned(sign):
         k = sign * np.array([[0, -unit[2], unit[1]], [unit[2], 0, -unit[0]],
