@@ -10,9 +10,11 @@
   pairs at 100 times), and the build time per frame.
 
 Runs with one BLAS/OpenMP thread (``OMP_NUM_THREADS=OPENBLAS_NUM_THREADS=1``, set for the
-child processes); medians. Writes ``cost_curves.md`` (the table) and ``cost_curves.png``
-beside this file. ``--quick`` stops every curve early (a minute or so); the full run takes
-about 10 minutes on two cores.
+child processes). Each point is the *minimum* over repeats: on a shared machine load only
+ever adds time, and a curve of medians there shows the neighbours more than the code.
+Writes ``cost_curves.md`` (the table) and ``cost_curves.png`` beside this file.
+``--quick`` stops every curve early (a minute or so); the full run takes about 10 minutes
+on two cores.
 
 Run: ``python benchmarks/bench_curves.py [--quick]``.
 """
@@ -31,10 +33,21 @@ from pathlib import Path
 
 import numpy as np
 
-from _machine import THREAD_VARIABLES, describe_machine, median_time
+from _machine import THREAD_VARIABLES, describe_machine
 from pinframes import FrameTree, Pose
 
 HERE = Path(__file__).resolve().parent
+
+
+def fastest(call, repeats: int) -> float:
+    """The minimum wall time of ``call`` in seconds over ``repeats`` runs (after a warm-up)."""
+    call()
+    samples = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        call()
+        samples.append(time.perf_counter() - start)
+    return min(samples)
 
 
 def random_quaternions(rng, count):
@@ -53,8 +66,8 @@ def samples_point(samples: int) -> dict:
     tree, times = built[0], built[2]
     del built  # the joint positions now live in the tree's joint tracks only
     resident = resident_bytes()
-    repeats = 5 if samples <= 100_000 else 1
-    seconds = median_time(lambda: tree.pose("panda_hand", "world", times=times), repeats)
+    repeats = 7 if samples <= 100_000 else 3 if samples <= 1_000_000 else 1
+    seconds = fastest(lambda: tree.pose("panda_hand", "world", times=times), repeats)
     tracemalloc.start()
     tree.pose("panda_hand", "world", times=times)
     _, peak = tracemalloc.get_traced_memory()
@@ -90,7 +103,7 @@ def chain_tree(rng, depth, keyframes, moving_every=2):
 def keyframes_point(keyframes: int) -> dict:
     tree, last = chain_tree(np.random.default_rng(1), 6, keyframes)
     times = np.sort(np.random.default_rng(2).uniform(-5, 105, size=100_000))
-    seconds = median_time(lambda: tree.pose(last, "world", times=times), 5)
+    seconds = fastest(lambda: tree.pose(last, "world", times=times), 7)
     return {"keyframes": keyframes, "per_sample": seconds / times.size}
 
 
@@ -100,7 +113,7 @@ def depth_point(depth: int) -> dict:
     start = time.perf_counter()
     tree.pose(last, "world", times=times)
     first = time.perf_counter() - start
-    seconds = median_time(lambda: tree.pose(last, "world", times=times), 5)
+    seconds = fastest(lambda: tree.pose(last, "world", times=times), 7)
     return {"depth": depth, "per_sample": seconds / times.size, "first_query": first}
 
 
@@ -125,10 +138,8 @@ def tree_point(size: int) -> dict:
     for a, b in pairs:  # first queries: each compiles its path
         tree.pose(names[a], names[b], times=times)
     first = (time.perf_counter() - start) / len(pairs)
-    start = time.perf_counter()
-    for a, b in pairs:
-        tree.pose(names[a], names[b], times=times)
-    again = (time.perf_counter() - start) / len(pairs)
+    again = fastest(lambda: [tree.pose(names[a], names[b], times=times) for a, b in pairs],
+                    5) / len(pairs)
     return {"frames": size, "build_per_frame": build / size, "first_query": first,
             "query": again}
 
@@ -198,7 +209,7 @@ def plot(results: dict[str, list[dict]], path: Path) -> None:
         axis.set_ylabel(label)
         axis.set_title(title)
         axis.grid(True, which="both", alpha=0.3)
-    figure.suptitle("pinframes cost curves (1 thread, medians; shared 2-core machine)")
+    figure.suptitle("pinframes cost curves (1 thread, minimum of repeats; shared 2-core machine)")
     figure.tight_layout()
     figure.savefig(path, dpi=90)
 
