@@ -50,13 +50,18 @@ def describe_machine() -> str:
 
 def median_time(call: Callable[[], object], repeats: int) -> float:
     """Median wall time of ``call`` in seconds over ``repeats`` runs (after one warm-up)."""
+    return statistics.median(repeated_times(call, repeats))
+
+
+def repeated_times(call: Callable[[], object], repeats: int) -> list[float]:
+    """Wall times of ``repeats`` runs of ``call`` in seconds, after one warm-up run."""
     call()
     samples = []
     for _ in range(repeats):
         start = time.perf_counter()
         call()
         samples.append(time.perf_counter() - start)
-    return statistics.median(samples)
+    return samples
 
 
 @contextmanager

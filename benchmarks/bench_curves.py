@@ -33,21 +33,10 @@ from pathlib import Path
 
 import numpy as np
 
-from _machine import THREAD_VARIABLES, describe_machine
+from _machine import THREAD_VARIABLES, describe_machine, repeated_times
 from pinframes import FrameTree, Pose
 
 HERE = Path(__file__).resolve().parent
-
-
-def fastest(call, repeats: int) -> float:
-    """The minimum wall time of ``call`` in seconds over ``repeats`` runs (after a warm-up)."""
-    call()
-    samples = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        call()
-        samples.append(time.perf_counter() - start)
-    return min(samples)
 
 
 def random_quaternions(rng, count):
@@ -67,7 +56,8 @@ def samples_point(samples: int) -> dict:
     del built  # the joint positions now live in the tree's joint tracks only
     resident = resident_bytes()
     repeats = 7 if samples <= 100_000 else 3 if samples <= 1_000_000 else 1
-    seconds = fastest(lambda: tree.pose("panda_hand", "world", times=times), repeats)
+    seconds = min(repeated_times(
+        lambda: tree.pose("panda_hand", "world", times=times), repeats))
     tracemalloc.start()
     tree.pose("panda_hand", "world", times=times)
     _, peak = tracemalloc.get_traced_memory()
@@ -103,7 +93,7 @@ def chain_tree(rng, depth, keyframes, moving_every=2):
 def keyframes_point(keyframes: int) -> dict:
     tree, last = chain_tree(np.random.default_rng(1), 6, keyframes)
     times = np.sort(np.random.default_rng(2).uniform(-5, 105, size=100_000))
-    seconds = fastest(lambda: tree.pose(last, "world", times=times), 7)
+    seconds = min(repeated_times(lambda: tree.pose(last, "world", times=times), 7))
     return {"keyframes": keyframes, "per_sample": seconds / times.size}
 
 
@@ -113,7 +103,7 @@ def depth_point(depth: int) -> dict:
     start = time.perf_counter()
     tree.pose(last, "world", times=times)
     first = time.perf_counter() - start
-    seconds = fastest(lambda: tree.pose(last, "world", times=times), 7)
+    seconds = min(repeated_times(lambda: tree.pose(last, "world", times=times), 7))
     return {"depth": depth, "per_sample": seconds / times.size, "first_query": first}
 
 
@@ -138,8 +128,8 @@ def tree_point(size: int) -> dict:
     for a, b in pairs:  # first queries: each compiles its path
         tree.pose(names[a], names[b], times=times)
     first = (time.perf_counter() - start) / len(pairs)
-    again = fastest(lambda: [tree.pose(names[a], names[b], times=times) for a, b in pairs],
-                    5) / len(pairs)
+    again = min(repeated_times(
+        lambda: [tree.pose(names[a], names[b], times=times) for a, b in pairs], 5)) / len(pairs)
     return {"frames": size, "build_per_frame": build / size, "first_query": first,
             "query": again}
 
