@@ -6,6 +6,7 @@ query path (``_model``), plans its times (``_timeline``) and evaluates it (``_ev
 
 from ._description import TreeDescription, paths_to_common_ancestor
 from ._evaluate import default_times, evaluate_pose
+from ._many import evaluate_poses
 from ._snapshot import Snapshot, snapshot
 from .pinocchio_tree import PinocchioTree
 
@@ -15,6 +16,7 @@ __all__ = [
     "TreeDescription",
     "default_times",
     "evaluate_pose",
+    "evaluate_poses",
     "paths_to_common_ancestor",
     "snapshot",
 ]
