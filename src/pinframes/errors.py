@@ -19,6 +19,7 @@ __all__ = [
     "FileFormatError",
     "FrameExistsError",
     "FrameNotFoundError",
+    "InvalidDataError",
     "InvalidPoseError",
     "InvalidTimeError",
     "JointError",
@@ -101,6 +102,10 @@ class TreeStructureError(PinframesError, ValueError):
 
 class InvalidPoseError(PinframesError, ValueError):
     """A pose that is not a rigid transform: wrong shape, non-finite, not a rotation."""
+
+
+class InvalidDataError(PinframesError, ValueError):
+    """Points, vectors or other measured data of the wrong shape or with non-finite values."""
 
 
 class InvalidTimeError(PinframesError, ValueError):

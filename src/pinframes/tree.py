@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import os
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
 import numpy as np
@@ -16,6 +16,7 @@ from .errors import (
     FrameNotFoundError,
     InvalidPoseError,
     JointError,
+    PinframesError,
     ReferenceTimeError,
     TreeStructureError,
 )
@@ -373,6 +374,34 @@ class FrameTree:
         self._require(relative_to, "relative_to")
         return _query.evaluate_pose(self, frame, relative_to, times, time_ref, extrapolation)
 
+    def transform_points(
+        self, points: Any, frame: str, relative_to: str, times: Any = None,
+        time_ref: Any = None, *, extrapolation: str = "clamp",
+    ) -> np.ndarray:
+        """Points given in ``frame`` (metres), returned in ``relative_to``, at ``times``.
+
+        Times follow :meth:`pose` (None: every keyframe and joint sample on the path; a
+        static path keeps the points' shape). Shapes follow :meth:`Pose.transform_points`:
+        with ``T`` times, ``(T, 3)`` is one point per time (row ``i`` at time ``i``),
+        ``(M, 3)`` (``M != T``) the same points at every time giving ``(T, M, 3)``,
+        ``(T, M, 3)`` a profile per time; ``(1, M, 3)`` forces the same points at every time
+        when ``M == T``. Bad data raise :class:`~pinframes.errors.InvalidDataError` naming
+        ``points`` and ``frame``.
+        """
+        pose = self.pose(frame, relative_to, times, time_ref, extrapolation=extrapolation)
+        return _located(pose.transform_points, points, frame)
+
+    def transform_vectors(
+        self, vectors: Any, frame: str, relative_to: str, times: Any = None,
+        time_ref: Any = None, *, extrapolation: str = "clamp",
+    ) -> np.ndarray:
+        """Directions given in ``frame``, returned in ``relative_to``: rotated, never moved.
+
+        Arguments, times and shapes as :meth:`transform_points`.
+        """
+        pose = self.pose(frame, relative_to, times, time_ref, extrapolation=extrapolation)
+        return _located(pose.transform_vectors, vectors, frame)
+
     def sample_times(self, frame: str, relative_to: str | None = None) -> TimeAxis | None:
         """The times :meth:`pose` evaluates at when given none, without evaluating.
 
@@ -528,6 +557,14 @@ def _checked_pose(pose: object, frame: str, field: str) -> Pose:
         raise ArgumentTypeError(f"expected a pinframes.Pose or None, got {type(pose).__name__}",
                                 frame=frame, field=field)
     return pose
+
+
+def _located(transform: Callable[[Any], np.ndarray], data: Any, frame: str) -> np.ndarray:
+    """``transform(data)``, with its errors naming the frame the data are given in."""
+    try:
+        return transform(data)
+    except PinframesError as exc:
+        raise exc.located(frame=frame) from None
 
 
 def _replace_members(subsystem: Subsystem, members: tuple[str, ...]) -> Subsystem:
