@@ -5,12 +5,12 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from hardening.tree_model import build_tree
+from hardening.tree_strategies import absolute_trees, trees
 from pinframes import FrameTree, InvalidDataError, Pose
 from pinframes.errors import ExtrapolationError, FrameNotFoundError
 
 from geometry import rot_z
-from hardening.tree_model import build_tree
-from hardening.tree_strategies import absolute_trees, trees
 
 QUARTER_TURN_Z = [0.0, 0.0, np.sin(np.pi / 4), np.cos(np.pi / 4)]
 FIXED = settings(max_examples=30, deadline=None, derandomize=True, database=None,
