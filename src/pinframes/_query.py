@@ -27,18 +27,22 @@ if TYPE_CHECKING:
     from .tree import FrameTree
 
 __all__ = [
+    "CHUNK",
     "Evaluation",
     "basis_shifts",
+    "checked_timeline",
     "compile_model",
     "default_times",
     "evaluate_pose",
+    "local_transforms",
     "model_sources",
     "plan_timeline",
+    "prepare_evaluation",
     "sample_joint_values",
 ]
 
 _EXTRAPOLATION_POLICIES = ("clamp", "error")
-_CHUNK = 1 << 15
+CHUNK = 1 << 15
 """Samples evaluated at once: bounds the temporaries of long queries (about 2 MB each)."""
 
 
@@ -64,14 +68,9 @@ def evaluate_pose(
     extrapolation: str,
 ) -> Pose:
     """``tree.pose(frame, relative_to, times, time_ref)``; arguments already checked."""
-    if extrapolation not in _EXTRAPOLATION_POLICIES:
-        raise ExtrapolationError(f"expected one of {', '.join(_EXTRAPOLATION_POLICIES)}, "
-                                 f"got {extrapolation!r}", field="extrapolation")
-    evaluation = _evaluation(tree, frame, relative_to)
+    evaluation = prepare_evaluation(tree, frame, relative_to)
     sources = list(evaluation.sources)
-    timeline = plan_timeline(tree, sources, times, time_ref)
-    if extrapolation == "error" and timeline.evaluation_times is not None:
-        _check_within_keyframes(sources, timeline)
+    timeline = checked_timeline(tree, evaluation, times, time_ref, extrapolation)
     if evaluation.static is not None:
         rotation, translation = evaluation.static
     else:
@@ -87,9 +86,23 @@ def evaluate_pose(
     return Pose._trusted(translation, rotation, offsets, timeline.reference)
 
 
+def checked_timeline(
+    tree: FrameTree, evaluation: Evaluation, times: Any, time_ref: Any, extrapolation: str
+) -> QueryTimeline:
+    """The timeline of a query, with its ``extrapolation`` policy checked and applied."""
+    if extrapolation not in _EXTRAPOLATION_POLICIES:
+        raise ExtrapolationError(f"expected one of {', '.join(_EXTRAPOLATION_POLICIES)}, "
+                                 f"got {extrapolation!r}", field="extrapolation")
+    sources = list(evaluation.sources)
+    timeline = plan_timeline(tree, sources, times, time_ref)
+    if extrapolation == "error" and timeline.evaluation_times is not None:
+        _check_within_keyframes(sources, timeline)
+    return timeline
+
+
 def default_times(tree: FrameTree, frame: str, relative_to: str) -> TimeAxis | None:
     """The times ``tree.pose(frame, relative_to)`` evaluates at when given none."""
-    evaluation = _evaluation(tree, frame, relative_to)
+    evaluation = prepare_evaluation(tree, frame, relative_to)
     timeline = plan_timeline(tree, list(evaluation.sources), None, None)
     if timeline.evaluation_times is None:
         return None
@@ -133,7 +146,8 @@ def compile_model(tree: FrameTree, root: str, frames: list[str]) -> CompiledMode
     return CompiledModel(root, joints, placements)
 
 
-def _evaluation(tree: FrameTree, frame: str, relative_to: str) -> Evaluation:
+def prepare_evaluation(tree: FrameTree, frame: str, relative_to: str) -> Evaluation:
+    """The query path from ``frame`` to ``relative_to``, compiled once and cached."""
     key = (frame, relative_to)
     cached = tree._cached_evaluation(key)
     if cached is not None:
@@ -229,12 +243,12 @@ def _evaluate_in_chunks(
     """:func:`_evaluate_model` over slices of the timeline, so that the temporary arrays of
     a long query stay small (and cache-friendly) while the result is filled in place."""
     times = timeline.evaluation_times
-    if times is None or times.shape[0] <= _CHUNK:
+    if times is None or times.shape[0] <= CHUNK:
         return _evaluate_model(tree, evaluation, sources, times, timeline)
     count = times.shape[0]
     rotation, translation = np.empty((count, 3, 3)), np.empty((count, 3))
-    for start in range(0, count, _CHUNK):
-        part = slice(start, start + _CHUNK)
+    for start in range(0, count, CHUNK):
+        part = slice(start, start + CHUNK)
         rotation[part], translation[part] = _evaluate_model(
             tree, evaluation, sources, times[part], timeline)
     return rotation, translation
@@ -245,8 +259,18 @@ def _evaluate_model(
     times: NDArray[np.int64] | None, timeline: QueryTimeline,
 ) -> Transform:
     """The pose of the query frame in the reference frame at ``times`` (timeline basis)."""
+    local = local_transforms(tree, evaluation, basis_shifts(sources, timeline), times)
+    frame_pose, reference_pose = evaluation.model.forward_kinematics(
+        local, [evaluation.frame, evaluation.relative_to])
+    return compose(inverse(reference_pose), frame_pose)
+
+
+def local_transforms(
+    tree: FrameTree, evaluation: Evaluation, shifts: dict[str, int],
+    times: NDArray[np.int64] | None,
+) -> list[Transform]:
+    """Per joint of the evaluation's model, its ``liMi`` at ``times`` (timeline basis)."""
     model = evaluation.model
-    shifts = basis_shifts(sources, timeline)
     local: list[Transform] = []
     values_cache: dict[str, NDArray[np.float64] | float] = {}
     for position, joint in enumerate(model.joints):
@@ -260,9 +284,7 @@ def _evaluate_model(
         rotation, translation = joint.joint.placed_motion(
             model.joint_placements[position], np.atleast_1d(values))
         local.append((rotation, translation) if np.ndim(values) else (rotation[0], translation[0]))
-    frame_pose, reference_pose = model.forward_kinematics(
-        local, [evaluation.frame, evaluation.relative_to])
-    return compose(inverse(reference_pose), frame_pose)
+    return local
 
 
 def basis_shifts(sources: list[TimedSource], timeline: QueryTimeline) -> dict[str, int]:

@@ -1,0 +1,1 @@
+"""Kinematics of compiled query paths: rates of what is interpolated, velocities, Jacobians."""

@@ -1,0 +1,139 @@
+"""``FrameTree.velocity``: how fast a frame moves relative to another, per sample.
+
+Exact derivatives of what ``pose()`` interpolates (see :mod:`.rates`), carried through the
+compiled model of the query path (see :mod:`.twists`). The linear velocity is that of the
+frame's origin relative to the reference frame (the derivative of
+``pose(frame, relative_to).translation``); the angular velocity ``w`` satisfies
+``dR/dt = [w]x @ R`` for ``R = pose(frame, relative_to).rotation``. Both are written in the
+axes of ``relative_to`` (Pinocchio's ``LOCAL_WORLD_ALIGNED`` when ``relative_to`` is the
+model's root) or, rotated, in those of ``frame`` (Pinocchio's ``LOCAL``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .._query import Evaluation
+from ..joint import Joint, mimic_chain
+from .rates import keyframe_rates, track_rates
+from .sampled_path import PlannedQuery, SampledPath, plan_query
+from .twists import Twist, robot_joint_axes, velocity_sum
+
+if TYPE_CHECKING:
+    from ..tree import FrameTree
+
+__all__ = ["Velocity", "evaluate_velocity", "joint_rates"]
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class Velocity:
+    """Velocity of ``frame`` relative to ``relative_to`` per sample.
+
+    Attributes
+    ----------
+    linear : ndarray, shape (T, 3)
+        Velocity of the origin of ``frame`` relative to ``relative_to``, m/s.
+    angular : ndarray, shape (T, 3)
+        Angular velocity of ``frame`` relative to ``relative_to``, rad/s.
+    times : ndarray of timedelta64[ns] or None
+        Sample times after :attr:`reference_time`; None for a path on which nothing moves
+        queried without times (then ``T`` is 1 and both velocities are zero).
+    reference_time : numpy.datetime64 or None
+        What :attr:`times` count from (the rules of ``pose()``).
+    frame, relative_to, expressed_in : str
+        The moving frame, the frame it moves relative to, and the frame whose axes the
+        vectors are written in.
+    """
+
+    linear: FloatArray
+    angular: FloatArray
+    times: NDArray[np.timedelta64] | None
+    reference_time: np.datetime64 | None
+    frame: str
+    relative_to: str
+    expressed_in: str
+
+    def __len__(self) -> int:
+        return int(self.linear.shape[0])
+
+
+def evaluate_velocity(tree: FrameTree, frame: str, relative_to: str, times: Any,
+                      time_ref: Any, extrapolation: str, expressed_in: str) -> Velocity:
+    """``tree.velocity(...)``; frame names already checked."""
+    planned = plan_query(tree, frame, relative_to, times, time_ref, extrapolation)
+    linear, angular = np.zeros((planned.count, 3)), np.zeros((planned.count, 3))
+    if planned.evaluation.static is None:
+        for part, path in planned.chunks(tree):
+            linear_c, angular_c = _velocity_in_root(tree, planned.evaluation, path)
+            axes = path.frame if expressed_in == frame else path.relative_to
+            rotation_t = np.swapaxes(axes[0], -1, -2)
+            linear[part] = _rotate(rotation_t, linear_c)
+            angular[part] = _rotate(rotation_t, angular_c)
+    if expressed_in not in (frame, relative_to):
+        rotation_t = np.swapaxes(_orientation(tree, expressed_in, relative_to, planned), 1, 2)
+        linear, angular = _rotate(rotation_t, linear), _rotate(rotation_t, angular)
+    return Velocity(linear, angular, planned.times, planned.reference_time, frame,
+                    relative_to, expressed_in)
+
+
+def _orientation(tree: FrameTree, other: str, relative_to: str, planned: PlannedQuery
+                 ) -> FloatArray:
+    """Rotations ``(T, 3, 3)`` of ``other`` in ``relative_to`` at the result's times."""
+    offsets, reference = planned.offsets, planned.reference_time
+    if offsets is None:
+        return np.broadcast_to(tree.pose(other, relative_to).rotation, (1, 3, 3))
+    times = offsets.astype("timedelta64[ns]")
+    if reference is not None:
+        return tree.pose(other, relative_to, reference + times, reference).rotation
+    return tree.pose(other, relative_to, times).rotation
+
+
+def _velocity_in_root(tree: FrameTree, evaluation: Evaluation, path: SampledPath) -> Twist:
+    """``(v, w)`` of the frame relative to the reference frame, in the root's axes."""
+    twists: list[Twist | None] = []
+    for position, joint in enumerate(evaluation.model.joints):
+        if position not in path.signs:
+            twists.append(None)
+        elif joint.joint is None:
+            linear, angular = keyframe_rates(evaluation.placed_keyframes[position],
+                                             path.times - path.shifts[joint.frame])
+            if joint.parent >= 0:
+                parent_rotation = path.joints[joint.parent][0]
+                linear = _rotate(parent_rotation, linear)
+                angular = _rotate(parent_rotation, angular)
+            twists.append((linear, angular))
+        else:
+            rates = joint_rates(tree, joint.joint, path.times, path.shifts)
+            if rates is None:
+                twists.append(None)
+                continue
+            linear, angular = robot_joint_axes(joint.joint, path.joints[position][0])
+            twists.append((linear * rates[:, None], angular * rates[:, None]))
+    origins = [translation for _, translation in path.joints]
+    return velocity_sum(path.signs, origins, twists, path.frame[1])
+
+
+def joint_rates(tree: FrameTree, joint: Joint, times: NDArray[np.int64],
+                shifts: dict[str, int]) -> FloatArray | None:
+    """Velocities (N,) of ``joint`` at ``times`` (timeline basis), rad/s or m/s: its
+    trajectory's, or its mimic primary's times the product of the multipliers; None when
+    no trajectory drives it."""
+    chain = mimic_chain(joint, tree.joints)
+    primary = chain[-1]
+    track = tree.joint_track(primary.name)
+    if track is None:
+        return None
+    multiplier = float(np.prod([link.mimic.multiplier for link in chain[:-1]
+                                if link.mimic is not None]))
+    return multiplier * track_rates(track, times - shifts[primary.name])
+
+
+def _rotate(rotation: FloatArray, vectors: FloatArray) -> FloatArray:
+    """``R @ v`` for static or batched ``R`` (3, 3) / (N, 3, 3) and ``v`` (3,) / (N, 3)."""
+    return np.einsum("...ij,...j->...i", rotation, vectors)
