@@ -9,11 +9,13 @@ from typing import Any, TextIO
 import numpy as np
 
 from ..errors import InvalidTimeError
+from ..kinematics.velocity import Velocity
 from ..pose import Pose
 from ..timeconv import TimeAxis, parse_time_axis, parse_timedelta, parse_timestamp, timestamp_ns
 from ..tree import FrameTree
 
-__all__ = ["add_time_arguments", "evaluate_poses", "requested_times", "terminal_stderr"]
+__all__ = ["add_time_arguments", "evaluate_poses", "pose_velocity", "requested_times",
+           "terminal_stderr"]
 
 CHUNK_SIZE = 20_000
 """Times evaluated per call; the progress bar moves once per chunk."""
@@ -117,6 +119,17 @@ def evaluate_poses(tree: FrameTree, frame: str, relative_to: str, times: TimeAxi
     if bar is not None:
         bar.close()
     return parts[0] if len(parts) == 1 else _concatenate(parts)
+
+
+def pose_velocity(tree: FrameTree, pose: Pose, frame: str, relative_to: str,
+                  expressed_in: str | None = None) -> Velocity:
+    """``tree.velocity`` of ``frame`` in ``relative_to`` at the times of ``pose`` (its
+    result), so that rows line up."""
+    if not pose.is_time_dependent:
+        return tree.velocity(frame, relative_to, expressed_in=expressed_in)
+    reference = pose.reference_time
+    times = pose.times if reference is None else reference + pose.times
+    return tree.velocity(frame, relative_to, times, reference, expressed_in)
 
 
 def _time_values(times: TimeAxis) -> np.ndarray:

@@ -21,9 +21,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ArgumentTypeError, JointError
-from ..joint import mimic_chain
+from ..joint import mimic_primary
 from .sampled_path import SampledPath, plan_query
-from .twists import Twist, jacobian_columns, robot_joint_axes
+from .twists import Twist, jacobian_columns, robot_joint_axes, rotate
 
 if TYPE_CHECKING:
     from ..tree import FrameTree
@@ -81,12 +81,10 @@ def _columns_in_reference(tree: FrameTree, joints: Sequence[Any], path: SampledP
     for position, compiled in enumerate(joints):
         if compiled.joint is None or position not in path.signs:
             continue
-        chain = mimic_chain(compiled.joint, tree.joints)
-        column = column_of.get(chain[-1].name)
+        primary, multiplier = mimic_primary(compiled.joint, tree.joints)
+        column = column_of.get(primary.name)
         if column is None:
             continue
-        multiplier = float(np.prod([link.mimic.multiplier for link in chain[:-1]
-                                    if link.mimic is not None]))
         unit_twists[position] = robot_joint_axes(compiled.joint, path.joints[position][0])
         targets[position] = (column, multiplier)
     origins = [translation for _, translation in path.joints]
@@ -96,11 +94,9 @@ def _columns_in_reference(tree: FrameTree, joints: Sequence[Any], path: SampledP
         column, multiplier = targets[position]
         root_matrix[:, :3, column] += multiplier * linear
         root_matrix[:, 3:, column] += multiplier * angular
-    rotation_t = np.swapaxes(path.relative_to[0], -1, -2)
-    out = np.empty_like(root_matrix)
-    out[:, :3] = np.matmul(rotation_t, root_matrix[:, :3])
-    out[:, 3:] = np.matmul(rotation_t, root_matrix[:, 3:])
-    return out
+    rotation_t = np.swapaxes(path.relative_to[0], -1, -2)[..., None, None, :, :]
+    columns = np.swapaxes(root_matrix.reshape(count, 2, 3, -1), -1, -2)  # (N, 2, n, 3)
+    return np.swapaxes(rotate(rotation_t, columns), -1, -2).reshape(count, 6, -1)
 
 
 def _joint_names(tree: FrameTree, joints: Sequence[str] | None, frame: str) -> list[str]:

@@ -42,6 +42,13 @@ def cross(a: FloatArray, b: FloatArray) -> FloatArray:
     return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
 
 
+def rotate(rotation: FloatArray, vectors: FloatArray) -> FloatArray:
+    """``R @ v`` for static or batched ``R`` ``(3, 3)`` / ``(N, 3, 3)`` and ``v`` ``(3,)`` /
+    ``(N, 3)``, element by element (no BLAS call with an inner dimension of 3)."""
+    return (rotation[..., :, 0] * vectors[..., None, 0] + rotation[..., :, 1]
+            * vectors[..., None, 1] + rotation[..., :, 2] * vectors[..., None, 2])
+
+
 def joint_signs(model: CompiledModel, frame: str, relative_to: str) -> dict[int, float]:
     """Joint index -> +1 for the joints that move ``frame`` in the model's root, -1 for
     those that move ``relative_to`` (no joint moves both: the root is their common
@@ -59,9 +66,14 @@ def robot_joint_axes(joint: Joint, rotation_in_root: FloatArray) -> Twist:
     """The twist per unit of joint velocity of a robot joint, in the root's axes:
     ``(0, R @ axis)`` for a turning joint, ``(R @ axis, 0)`` for a sliding one, where ``R`` is
     the joint frame's rotation in the root."""
-    axis = rotation_in_root @ np.asarray(joint.axis)
-    zero = np.zeros_like(axis)
-    return (axis, zero) if joint.kind == "prismatic" else (zero, axis)
+    axis = np.asarray(joint.axis)
+    aligned = np.flatnonzero(axis == 1.0)
+    if aligned.size:  # a unit axis picks a column of R
+        turned = rotation_in_root[..., :, int(aligned[0])]
+    else:
+        turned = rotate(rotation_in_root, axis)
+    zero = np.zeros(turned.shape)
+    return (turned, zero) if joint.kind == "prismatic" else (zero, turned)
 
 
 def velocity_sum(

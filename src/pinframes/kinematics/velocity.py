@@ -18,10 +18,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .._query import Evaluation
-from ..joint import Joint, mimic_chain
+from ..joint import Joint, mimic_primary
 from .rates import keyframe_rates, track_rates
 from .sampled_path import PlannedQuery, SampledPath, plan_query
-from .twists import Twist, robot_joint_axes, velocity_sum
+from .twists import Twist, robot_joint_axes, rotate, velocity_sum
 
 if TYPE_CHECKING:
     from ..tree import FrameTree
@@ -73,11 +73,11 @@ def evaluate_velocity(tree: FrameTree, frame: str, relative_to: str, times: Any,
             linear_c, angular_c = _velocity_in_root(tree, planned.evaluation, path)
             axes = path.frame if expressed_in == frame else path.relative_to
             rotation_t = np.swapaxes(axes[0], -1, -2)
-            linear[part] = _rotate(rotation_t, linear_c)
-            angular[part] = _rotate(rotation_t, angular_c)
+            linear[part] = rotate(rotation_t, linear_c)
+            angular[part] = rotate(rotation_t, angular_c)
     if expressed_in not in (frame, relative_to):
         rotation_t = np.swapaxes(_orientation(tree, expressed_in, relative_to, planned), 1, 2)
-        linear, angular = _rotate(rotation_t, linear), _rotate(rotation_t, angular)
+        linear, angular = rotate(rotation_t, linear), rotate(rotation_t, angular)
     return Velocity(linear, angular, planned.times, planned.reference_time, frame,
                     relative_to, expressed_in)
 
@@ -105,8 +105,8 @@ def _velocity_in_root(tree: FrameTree, evaluation: Evaluation, path: SampledPath
                                              path.times - path.shifts[joint.frame])
             if joint.parent >= 0:
                 parent_rotation = path.joints[joint.parent][0]
-                linear = _rotate(parent_rotation, linear)
-                angular = _rotate(parent_rotation, angular)
+                linear = rotate(parent_rotation, linear)
+                angular = rotate(parent_rotation, angular)
             twists.append((linear, angular))
         else:
             rates = joint_rates(tree, joint.joint, path.times, path.shifts)
@@ -124,16 +124,8 @@ def joint_rates(tree: FrameTree, joint: Joint, times: NDArray[np.int64],
     """Velocities (N,) of ``joint`` at ``times`` (timeline basis), rad/s or m/s: its
     trajectory's, or its mimic primary's times the product of the multipliers; None when
     no trajectory drives it."""
-    chain = mimic_chain(joint, tree.joints)
-    primary = chain[-1]
+    primary, multiplier = mimic_primary(joint, tree.joints)
     track = tree.joint_track(primary.name)
     if track is None:
         return None
-    multiplier = float(np.prod([link.mimic.multiplier for link in chain[:-1]
-                                if link.mimic is not None]))
     return multiplier * track_rates(track, times - shifts[primary.name])
-
-
-def _rotate(rotation: FloatArray, vectors: FloatArray) -> FloatArray:
-    """``R @ v`` for static or batched ``R`` (3, 3) / (N, 3, 3) and ``v`` (3,) / (N, 3)."""
-    return np.einsum("...ij,...j->...i", rotation, vectors)
