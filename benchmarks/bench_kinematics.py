@@ -17,6 +17,9 @@ Run: ``python benchmarks/bench_kinematics.py [--quick]`` (``--quick``: 100,000 p
 from __future__ import annotations
 
 import argparse
+import os
+import statistics
+import time
 
 import numpy as np
 import pinocchio as pin
@@ -83,7 +86,10 @@ def main() -> None:
     parser.add_argument("--quick", action="store_true", help="100,000 points instead of 10^6")
     args = parser.parse_args()
     print(describe_machine())
-    print("(shared machine: read the ratios, measured in one process, not the times)")
+    threads = {name: os.environ.get(name, "default")
+               for name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS")}
+    print(f"threads: {threads}; the machine is shared: read the ratios (interleaved runs in "
+          "one process), not the times")
     rng = np.random.default_rng(3)
 
     count = 100_000 if args.quick else 1_000_000
@@ -94,12 +100,14 @@ def main() -> None:
     points = rng.normal(scale=0.1, size=(count, 3))
     ours = tree.transform_points(points, "panda_hand", "world", times)
     reference = reference_points(model, chain, mount, times, positions, points)
+    medians = interleaved_medians({
+        "ours": lambda: tree.transform_points(points, "panda_hand", "world", times),
+        "reference": lambda: reference_points(model, chain, mount, times, positions, points),
+    }, 5)
     table(f"(a) {count:,} time-stamped points, hand frame -> world", [
-        ("pinframes tree.transform_points", median_time(
-            lambda: tree.transform_points(points, "panda_hand", "world", times), 3),
+        ("pinframes tree.transform_points", medians["ours"],
          float(np.max(np.abs(ours - reference)))),
-        ("numpy: interpolate, FK, apply (reference)", median_time(
-            lambda: reference_points(model, chain, mount, times, positions, points), 3), None),
+        ("numpy: interpolate, FK, apply (reference)", medians["reference"], None),
     ], "numpy: interpolate, FK, apply (reference)")
 
     tree, urdf, grid, translation, rotation, times, positions = build_case(rng, 10_000)
@@ -108,15 +116,32 @@ def main() -> None:
     expected = loop().copy()
     diff = float(np.max(np.abs(np.concatenate([velocity.linear, velocity.angular], axis=1)
                                - expected)))
+    # interleaved, so that a neighbour's load falls on all three alike
+    medians = interleaved_medians({
+        "velocity": lambda: tree.velocity("panda_hand", "world", times=times),
+        "pose": lambda: tree.pose("panda_hand", "world", times=times),
+        "jacobian": lambda: tree.jacobian("panda_hand", "world", times=times),
+    }, 21)
     table("(b) hand velocity in the world at 10,000 samples", [
-        ("pinframes tree.velocity", median_time(
-            lambda: tree.velocity("panda_hand", "world", times=times), 9), diff),
-        ("pinframes tree.pose (the poses alone)", median_time(
-            lambda: tree.pose("panda_hand", "world", times=times), 9), None),
+        ("pinframes tree.velocity", medians["velocity"], diff),
+        ("pinframes tree.pose (the poses alone)", medians["pose"], None),
+        ("pinframes tree.jacobian (7 + 2 joints)", medians["jacobian"], None),
         ("Pinocchio loop per sample (v, getFrameVelocity)", median_time(loop, 1), 0.0),
     ], "pinframes tree.pose (the poses alone)")
-    jacobian_time = median_time(lambda: tree.jacobian("panda_hand", "world", times=times), 9)
-    print(f"\n(c) tree.jacobian of the hand at 10,000 samples: {jacobian_time * 1e3:.1f} ms")
+
+
+def interleaved_medians(calls, repeats):
+    """Median seconds of each call, the calls taking turns ``repeats`` times (after a
+    warm-up of each)."""
+    samples = {name: [] for name in calls}
+    for call in calls.values():
+        call()
+    for _ in range(repeats):
+        for name, call in calls.items():
+            start = time.perf_counter()
+            call()
+            samples[name].append(time.perf_counter() - start)
+    return {name: statistics.median(values) for name, values in samples.items()}
 
 
 if __name__ == "__main__":

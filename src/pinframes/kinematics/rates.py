@@ -77,9 +77,16 @@ def rotation_steps(rotations: FloatArray) -> FloatArray:
     return vector * scale[:, None]
 
 
-def track_rates(track: JointTrack, times: NDArray[np.int64]) -> FloatArray:
-    """Joint velocities ``(N,)`` (rad/s or m/s) of a sampled joint trajectory."""
-    index, inverse = segment_rates(track.times, times)
+def track_rates(
+    track: JointTrack, times: NDArray[np.int64],
+    segments: tuple[NDArray[np.intp], FloatArray] | None = None,
+) -> FloatArray:
+    """Joint velocities ``(N,)`` (rad/s or m/s) of a sampled joint trajectory.
+
+    ``segments`` is ``segment_rates(track.times, times)`` when the caller has it already
+    (joints driven by one trajectory share their times).
+    """
     if track.values.shape[0] == 1:
         return np.zeros(times.shape)
+    index, inverse = segment_rates(track.times, times) if segments is None else segments
     return np.diff(track.values)[index] * inverse

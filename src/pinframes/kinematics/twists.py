@@ -24,15 +24,15 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from .._se3 import Transform
 from ..joint import Joint
 from ..pinocchio_model import CompiledModel
 
 __all__ = ["cross", "jacobian_columns", "joint_signs", "robot_joint_axes", "velocity_sum"]
 
 FloatArray = NDArray[np.float64]
-Twist = tuple[FloatArray, FloatArray]
-"""``(linear, angular)``: velocity of a point in m/s and angular velocity in rad/s."""
+Twist = tuple[FloatArray | None, FloatArray | None]
+"""``(linear, angular)``: velocity of a point in m/s and angular velocity in rad/s; a None
+part is zero."""
 
 
 def cross(a: FloatArray, b: FloatArray) -> FloatArray:
@@ -64,55 +64,67 @@ def joint_signs(model: CompiledModel, frame: str, relative_to: str) -> dict[int,
 
 def robot_joint_axes(joint: Joint, rotation_in_root: FloatArray) -> Twist:
     """The twist per unit of joint velocity of a robot joint, in the root's axes:
-    ``(0, R @ axis)`` for a turning joint, ``(R @ axis, 0)`` for a sliding one, where ``R`` is
-    the joint frame's rotation in the root."""
+    ``(None, R @ axis)`` for a turning joint, ``(R @ axis, None)`` for a sliding one (None:
+    zero), where ``R`` is the joint frame's rotation in the root."""
     axis = np.asarray(joint.axis)
     aligned = np.flatnonzero(axis == 1.0)
     if aligned.size:  # a unit axis picks a column of R
         turned = rotation_in_root[..., :, int(aligned[0])]
     else:
         turned = rotate(rotation_in_root, axis)
-    zero = np.zeros(turned.shape)
-    return (turned, zero) if joint.kind == "prismatic" else (zero, turned)
+    return (turned, None) if joint.kind == "prismatic" else (None, turned)
 
 
 def velocity_sum(
     signs: dict[int, float], joint_origins: Sequence[FloatArray],
     twists: Sequence[Twist | None], point: FloatArray,
-) -> Twist:
+) -> tuple[FloatArray, FloatArray]:
     """``(v, w)`` of the formula above at ``point`` (``p_A``), in the root's axes.
 
-    ``twists[j]`` is joint ``j``'s ``(u_j, w_j)``, or None when it does not move;
-    ``joint_origins[j]`` is ``p_j``. Uses ``sum (u_j - w_j x p_j) + (sum w_j) x p_A``.
+    ``twists[j]`` is joint ``j``'s ``(u_j, w_j)`` (a None part is zero), or None when it does
+    not move; ``joint_origins[j]`` is ``p_j``. Uses ``sum (u_j - w_j x p_j) + (sum w_j) x p_A``.
     """
-    linear: FloatArray | float = 0.0
-    angular: FloatArray | float = 0.0
+    linear: FloatArray | None = None
+    angular: FloatArray | None = None
     for joint, sign in signs.items():
         twist = twists[joint]
         if twist is None:
             continue
         u, w = twist
-        linear = linear + sign * (u - cross(w, joint_origins[joint]))
-        angular = angular + sign * w
-    if isinstance(angular, float):
-        zero = np.zeros(np.shape(point))
-        return zero, zero.copy()
-    return linear + cross(angular, point), angular
+        if u is not None:
+            linear = _accumulate(linear, u, sign)
+        if w is not None:
+            angular = _accumulate(angular, w, sign)
+            linear = _accumulate(linear, cross(w, joint_origins[joint]), -sign)
+    if angular is not None:
+        linear = _accumulate(linear, cross(angular, point), 1.0)
+    zero = np.zeros(np.shape(point))
+    return (zero if linear is None else linear), (zero if angular is None else angular)
 
 
 def jacobian_columns(
     signs: dict[int, float], joint_origins: Sequence[FloatArray],
     unit_twists: dict[int, Twist], point: FloatArray,
-) -> dict[int, Twist]:
+) -> dict[int, tuple[FloatArray, FloatArray]]:
     """Per robot joint ``j`` of ``unit_twists``: ``(dv/dq_j, dw/dq_j)`` at ``point``."""
     columns = {}
+    zero = np.zeros(3)
     for joint, (u, w) in unit_twists.items():
         sign = signs.get(joint, 0.0)
-        if sign:
-            columns[joint] = (sign * (u + cross(w, point - joint_origins[joint])), sign * w)
+        if not sign:
+            continue
+        if w is None:
+            columns[joint] = (sign * u, zero) if u is not None else (zero, zero)
+        else:
+            linear = cross(w, point - joint_origins[joint])
+            if u is not None:
+                linear = linear + u
+            columns[joint] = (sign * linear, sign * w)
     return columns
 
 
-def root_rotations(world: Sequence[Transform], model: CompiledModel) -> list[FloatArray]:
-    """Per joint, its parent joint's rotation in the root (the identity at the root)."""
-    return [np.eye(3) if joint.parent < 0 else world[joint.parent][0] for joint in model.joints]
+def _accumulate(total: FloatArray | None, value: FloatArray, sign: float) -> FloatArray:
+    """``total + sign * value`` (``sign`` is +1 or -1), a new array; None counts as 0."""
+    if total is None:
+        return value.copy() if sign > 0 else -value
+    return total + value if sign > 0 else total - value

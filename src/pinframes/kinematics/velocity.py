@@ -18,8 +18,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .._query import Evaluation
+from .._se3 import IDENTITY
 from ..joint import Joint, mimic_primary
-from .rates import keyframe_rates, track_rates
+from .rates import keyframe_rates, segment_rates, track_rates
 from .sampled_path import PlannedQuery, SampledPath, plan_query
 from .twists import Twist, robot_joint_axes, rotate, velocity_sum
 
@@ -71,10 +72,11 @@ def evaluate_velocity(tree: FrameTree, frame: str, relative_to: str, times: Any,
     if planned.evaluation.static is None:
         for part, path in planned.chunks(tree):
             linear_c, angular_c = _velocity_in_root(tree, planned.evaluation, path)
-            axes = path.frame if expressed_in == frame else path.relative_to
-            rotation_t = np.swapaxes(axes[0], -1, -2)
-            linear[part] = rotate(rotation_t, linear_c)
-            angular[part] = rotate(rotation_t, angular_c)
+            axes = (path.frame if expressed_in == frame else path.relative_to)[0]
+            if axes is not IDENTITY[0]:  # the root's own axes need no turn
+                rotation_t = np.swapaxes(axes, -1, -2)
+                linear_c, angular_c = rotate(rotation_t, linear_c), rotate(rotation_t, angular_c)
+            linear[part], angular[part] = linear_c, angular_c
     if expressed_in not in (frame, relative_to):
         rotation_t = np.swapaxes(_orientation(tree, expressed_in, relative_to, planned), 1, 2)
         linear, angular = rotate(rotation_t, linear), rotate(rotation_t, angular)
@@ -94,9 +96,11 @@ def _orientation(tree: FrameTree, other: str, relative_to: str, planned: Planned
     return tree.pose(other, relative_to, times).rotation
 
 
-def _velocity_in_root(tree: FrameTree, evaluation: Evaluation, path: SampledPath) -> Twist:
+def _velocity_in_root(tree: FrameTree, evaluation: Evaluation, path: SampledPath
+                      ) -> tuple[FloatArray, FloatArray]:
     """``(v, w)`` of the frame relative to the reference frame, in the root's axes."""
     twists: list[Twist | None] = []
+    segments: dict[tuple[int, int], tuple[NDArray[np.intp], FloatArray]] = {}
     for position, joint in enumerate(evaluation.model.joints):
         if position not in path.signs:
             twists.append(None)
@@ -109,23 +113,34 @@ def _velocity_in_root(tree: FrameTree, evaluation: Evaluation, path: SampledPath
                 angular = rotate(parent_rotation, angular)
             twists.append((linear, angular))
         else:
-            rates = joint_rates(tree, joint.joint, path.times, path.shifts)
+            rates = joint_rates(tree, joint.joint, path.times, path.shifts, segments)
             if rates is None:
                 twists.append(None)
                 continue
             linear, angular = robot_joint_axes(joint.joint, path.joints[position][0])
-            twists.append((linear * rates[:, None], angular * rates[:, None]))
+            twists.append((None if linear is None else linear * rates[:, None],
+                           None if angular is None else angular * rates[:, None]))
     origins = [translation for _, translation in path.joints]
     return velocity_sum(path.signs, origins, twists, path.frame[1])
 
 
-def joint_rates(tree: FrameTree, joint: Joint, times: NDArray[np.int64],
-                shifts: dict[str, int]) -> FloatArray | None:
+def joint_rates(
+    tree: FrameTree, joint: Joint, times: NDArray[np.int64], shifts: dict[str, int],
+    segments: dict[tuple[int, int], tuple[NDArray[np.intp], FloatArray]] | None = None,
+) -> FloatArray | None:
     """Velocities (N,) of ``joint`` at ``times`` (timeline basis), rad/s or m/s: its
     trajectory's, or its mimic primary's times the product of the multipliers; None when
-    no trajectory drives it."""
+    no trajectory drives it. ``segments`` keeps the segment lookups of one set of times
+    for the trajectories that share their sample times."""
     primary, multiplier = mimic_primary(joint, tree.joints)
     track = tree.joint_track(primary.name)
     if track is None:
         return None
-    return multiplier * track_rates(track, times - shifts[primary.name])
+    own_times = times - shifts[primary.name]
+    found = None
+    if segments is not None:
+        key = (id(track.times), shifts[primary.name])
+        found = segments.get(key)
+        if found is None:
+            found = segments[key] = segment_rates(track.times, own_times)
+    return multiplier * track_rates(track, own_times, found)
