@@ -136,3 +136,14 @@ def test_unknown_frames_and_extrapolation_follow_pose():
         tree.transform_points([0, 0, 0], "nowhere", "world", [0.0])
     with pytest.raises(ExtrapolationError):
         tree.transform_points([0, 0, 0], "table", "world", [11.0], extrapolation="error")
+
+
+def test_absolute_times_and_time_ref_follow_pose():
+    tree = FrameTree(reference_time="2024-03-01T08:00:00")
+    tree.add("table", "world", Pose(rotation=[[0, 0, 0, 1], QUARTER_TURN_Z], times=[0.0, 10.0]))
+    at_five = tree.transform_points([1.0, 0.0, 0.0], "table", "world",
+                                    ["2024-03-01T08:00:05"])
+    np.testing.assert_allclose(at_five, [[np.sqrt(0.5), np.sqrt(0.5), 0.0]], atol=1e-15)
+    shifted = tree.transform_points([1.0, 0.0, 0.0], "table", "world", [0.0],
+                                    time_ref="2024-03-01T08:00:05")
+    np.testing.assert_allclose(shifted, at_five, atol=1e-15)

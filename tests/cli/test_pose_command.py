@@ -167,3 +167,16 @@ def test_velocity_columns_carry_units(run_cli, turntable):
                                [0.0, 0.2 * rate, rate], atol=1e-12)
     result = run_cli("pose", turntable, "tip", "-r", "world", "--expressed-in", "nowhere")
     assert result.returncode == 1 and "nowhere" in result.stderr
+
+
+def test_velocity_in_npz_files(run_cli, turntable, tmp_path):
+    out = tmp_path / "tip.npz"
+    result = run_cli("pose", turntable, "tip", "-r", "world", "--times", "2.5", "--velocity",
+                     "-o", out)
+    assert result.returncode == 0, result.stderr
+    with np.load(out) as data:
+        rate = np.pi / 20
+        np.testing.assert_allclose(data["angular_velocity_rad_s"], [[0, 0, rate]], atol=1e-15)
+        np.testing.assert_allclose(np.linalg.norm(data["linear_velocity_m_s"]), 0.2 * rate,
+                                   atol=1e-15)
+        assert str(data["velocity_axes"]) == "world"

@@ -125,10 +125,10 @@ def pose_velocity(tree: FrameTree, pose: Pose, frame: str, relative_to: str,
                   expressed_in: str | None = None) -> Velocity:
     """``tree.velocity`` of ``frame`` in ``relative_to`` at the times of ``pose`` (its
     result), so that rows line up."""
-    if not pose.is_time_dependent:
+    offsets, reference = pose.times, pose.reference_time
+    if offsets is None:
         return tree.velocity(frame, relative_to, expressed_in=expressed_in)
-    reference = pose.reference_time
-    times = pose.times if reference is None else reference + pose.times
+    times = offsets if reference is None else reference + offsets
     return tree.velocity(frame, relative_to, times, reference, expressed_in)
 
 

@@ -12,6 +12,7 @@ import io
 import json
 import sys
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -108,7 +109,7 @@ def _json_text(pose: Pose, frame: str, relative_to: str, velocity: Velocity | No
 def _write_npz(handle: io.BufferedWriter, pose: Pose, frame: str, relative_to: str,
                velocity: Velocity | None) -> None:
     seconds, values = pose_rows(pose)
-    rates = {} if velocity is None else {
+    rates: dict[str, Any] = {} if velocity is None else {
         "linear_velocity_m_s": velocity.linear, "angular_velocity_rad_s": velocity.angular,
         "velocity_axes": np.array(velocity.expressed_in)}
     np.savez(handle, time_s=seconds, translation=values[:, :3], quaternion=values[:, 3:],

@@ -112,9 +112,10 @@ def _joint_names(tree: FrameTree, joints: Sequence[str] | None, frame: str) -> l
         if name not in known:
             raise JointError(f"no joint named {name!r} in the tree", frame=frame,
                              field="joints")
-        if not known[name].is_actuated:
-            raise JointError(f"joint {name!r} mimics {known[name].mimic.joint!r}; its motion "
-                             "is in that joint's column", frame=frame, field="joints")
+        mimic = known[name].mimic
+        if mimic is not None:
+            raise JointError(f"joint {name!r} mimics {mimic.joint!r}; its motion is in that "
+                             "joint's column", frame=frame, field="joints")
     if len(set(names)) != len(names):
         raise JointError("joint names repeat", frame=frame, field="joints")
     return names

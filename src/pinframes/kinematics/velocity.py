@@ -117,9 +117,9 @@ def _velocity_in_root(tree: FrameTree, evaluation: Evaluation, path: SampledPath
             if rates is None:
                 twists.append(None)
                 continue
-            linear, angular = robot_joint_axes(joint.joint, path.joints[position][0])
-            twists.append((None if linear is None else linear * rates[:, None],
-                           None if angular is None else angular * rates[:, None]))
+            sliding, turning = robot_joint_axes(joint.joint, path.joints[position][0])
+            twists.append((None if sliding is None else sliding * rates[:, None],
+                           None if turning is None else turning * rates[:, None]))
     origins = [translation for _, translation in path.joints]
     return velocity_sum(path.signs, origins, twists, path.frame[1])
 
