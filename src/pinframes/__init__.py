@@ -19,6 +19,8 @@ from .errors import (
 )
 from .joint import Joint, Mimic
 from .joint_track import JointTrack
+from .kinematics.jacobian import FrameJacobian
+from .kinematics.velocity import Velocity
 from .pinocchio_tree import PinocchioTree
 from .pose import Pose
 from .scene import read_scene
@@ -35,6 +37,7 @@ __all__ = [
     "ExtrapolationError",
     "FileFormatError",
     "FrameExistsError",
+    "FrameJacobian",
     "FrameNotFoundError",
     "FrameTree",
     "InvalidDataError",
@@ -52,6 +55,7 @@ __all__ = [
     "Subsystem",
     "TreeStructureError",
     "UnsupportedFeatureError",
+    "Velocity",
     "WriteError",
     "__version__",
     "read_joint_trajectory",

@@ -20,10 +20,11 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from .._se3 import IDENTITY
 from ..errors import ArgumentTypeError, JointError
 from ..joint import mimic_primary
 from .sampled_path import SampledPath, plan_query
-from .twists import Twist, jacobian_columns, robot_joint_axes, rotate
+from .twists import Twist, jacobian_columns, robot_joint_axes
 
 if TYPE_CHECKING:
     from ..tree import FrameTree
@@ -94,9 +95,19 @@ def _columns_in_reference(tree: FrameTree, joints: Sequence[Any], path: SampledP
         column, multiplier = targets[position]
         root_matrix[:, :3, column] += multiplier * linear
         root_matrix[:, 3:, column] += multiplier * angular
-    rotation_t = np.swapaxes(path.relative_to[0], -1, -2)[..., None, None, :, :]
-    columns = np.swapaxes(root_matrix.reshape(count, 2, 3, -1), -1, -2)  # (N, 2, n, 3)
-    return np.swapaxes(rotate(rotation_t, columns), -1, -2).reshape(count, 6, -1)
+    rotation = path.relative_to[0]
+    if rotation is IDENTITY[0]:  # the root's own axes
+        return root_matrix
+    # R.T @ (3, n) blocks, element by element: row i is sum_j R[j, i] * block[j]
+    weights = rotation[..., None] if rotation.ndim == 3 else rotation[None, :, :, None]
+    out = np.empty_like(root_matrix)
+    for half in (slice(0, 3), slice(3, 6)):
+        block = root_matrix[:, half]
+        for row in range(3):
+            out[:, half.start + row] = (weights[:, 0, row] * block[:, 0]
+                                        + weights[:, 1, row] * block[:, 1]
+                                        + weights[:, 2, row] * block[:, 2])
+    return out
 
 
 def _joint_names(tree: FrameTree, joints: Sequence[str] | None, frame: str) -> list[str]:
