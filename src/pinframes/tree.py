@@ -377,8 +377,8 @@ class FrameTree:
         return _query.evaluate_pose(self, frame, relative_to, times, time_ref, extrapolation)
 
     def transform_points(
-        self, points: Any, frame: str, relative_to: str, times: Any = None,
-        time_ref: Any = None, *, extrapolation: str = "clamp",
+        self, points: Any, frame: str, relative_to: str, times: Any = None, *,
+        time_ref: Any = None, extrapolation: str = "clamp",
     ) -> np.ndarray:
         """Points given in ``frame`` (metres), returned in ``relative_to``, at ``times``.
 
@@ -394,8 +394,8 @@ class FrameTree:
         return _located(pose.transform_points, points, frame)
 
     def transform_vectors(
-        self, vectors: Any, frame: str, relative_to: str, times: Any = None,
-        time_ref: Any = None, *, extrapolation: str = "clamp",
+        self, vectors: Any, frame: str, relative_to: str, times: Any = None, *,
+        time_ref: Any = None, extrapolation: str = "clamp",
     ) -> np.ndarray:
         """Directions given in ``frame``, returned in ``relative_to``: rotated, never moved.
 
@@ -406,7 +406,7 @@ class FrameTree:
 
     def velocity(
         self, frame: str, relative_to: str | None = None, times: Any = None,
-        time_ref: Any = None, expressed_in: str | None = None, *,
+        expressed_in: str | None = None, *, time_ref: Any = None,
         extrapolation: str = "clamp",
     ) -> Velocity:
         """Linear (m/s) and angular (rad/s) velocity of ``frame`` relative to ``relative_to``.
@@ -442,7 +442,7 @@ class FrameTree:
 
     def jacobian(
         self, frame: str, relative_to: str | None = None, times: Any = None,
-        time_ref: Any = None, joints: Sequence[str] | None = None, *,
+        joints: Sequence[str] | None = None, *, time_ref: Any = None,
         extrapolation: str = "clamp",
     ) -> FrameJacobian:
         """Jacobians ``(T, 6, n)`` of ``frame`` relative to ``relative_to`` in the robot joints.

@@ -129,7 +129,7 @@ def pose_velocity(tree: FrameTree, pose: Pose, frame: str, relative_to: str,
     if offsets is None:
         return tree.velocity(frame, relative_to, expressed_in=expressed_in)
     times = offsets if reference is None else reference + offsets
-    return tree.velocity(frame, relative_to, times, reference, expressed_in)
+    return tree.velocity(frame, relative_to, times, expressed_in, time_ref=reference)
 
 
 def _time_values(times: TimeAxis) -> np.ndarray:
