@@ -26,7 +26,7 @@ import pinocchio as pin
 
 from _machine import describe_machine, median_time
 from bench_robot import arm_chain, build_case, numpy_reference
-from pinframes.rotations import quaternion_from_matrix
+from pinframes.values.rotations import quaternion_from_matrix
 
 LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
 

@@ -19,9 +19,8 @@ from hypothesis import strategies as st
 
 from hardening.tree_model import build_tree
 from hardening.tree_strategies import absolute_trees, trees
-from pinframes import FrameTree, Pose
+from pinframes import FrameTree, JointLimitWarning, Pose
 from pinframes.errors import ExtrapolationError, FrameNotFoundError, JointError
-from pinframes.joint_trajectory import JointLimitWarning
 
 FIXED = settings(max_examples=25, deadline=None, derandomize=True, database=None,
                  suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])

@@ -16,10 +16,10 @@ from typing import Any
 
 import numpy as np
 
-from .._atomic import atomic_write
 from ..errors import FileFormatError
-from ..kinematics.velocity import Velocity
-from ..pose import Pose
+from ..formats._atomic import atomic_write
+from ..kinematics import Velocity
+from ..values.pose import Pose
 
 __all__ = ["COLUMNS", "OUTPUT_FORMATS", "VELOCITY_COLUMNS", "output_format", "pose_rows",
            "write_poses"]

@@ -10,12 +10,12 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import read_scene
 from ..errors import FileFormatError, WriteError
-from ..kinematics.velocity import Velocity
+from ..formats.scene import read_scene
+from ..kinematics import Velocity
 from ..plotting import new_figure, plot_frames, robot_frames, save_figure
-from ..pose import Pose
 from ..tree import FrameTree
+from ..values.pose import Pose
 from ._evaluate import evaluate_poses, pose_velocity, terminal_stderr
 from ._files import require_frames
 from ._output import write_poses

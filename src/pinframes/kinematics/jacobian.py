@@ -15,19 +15,17 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from .._se3 import IDENTITY
 from ..errors import ArgumentTypeError, JointError
-from ..joint import mimic_primary
+from ..values._se3 import IDENTITY
+from ..values.joint import mimic_primary
+from ._description import TreeDescription
 from .sampled_path import SampledPath, plan_query
 from .twists import Twist, jacobian_columns, robot_joint_axes
-
-if TYPE_CHECKING:
-    from ..tree import FrameTree
 
 __all__ = ["FrameJacobian", "evaluate_jacobian"]
 
@@ -58,7 +56,7 @@ class FrameJacobian:
     reference_time: np.datetime64 | None
 
 
-def evaluate_jacobian(tree: FrameTree, frame: str, relative_to: str, times: Any,
+def evaluate_jacobian(tree: TreeDescription, frame: str, relative_to: str, times: Any,
                       time_ref: Any, extrapolation: str, joints: Sequence[str] | None
                       ) -> FrameJacobian:
     """``tree.jacobian(...)``; frame names already checked."""
@@ -68,21 +66,20 @@ def evaluate_jacobian(tree: FrameTree, frame: str, relative_to: str, times: Any,
     matrix = np.zeros((planned.count, 6, len(names)))
     if planned.evaluation.static is None:
         for part, path in planned.chunks(tree):
-            matrix[part] = _columns_in_reference(tree, planned.evaluation.model.joints, path,
-                                                 column_of, frame)
+            matrix[part] = _columns_in_reference(tree, path, column_of)
     return FrameJacobian(matrix, tuple(names), planned.times, planned.reference_time)
 
 
-def _columns_in_reference(tree: FrameTree, joints: Sequence[Any], path: SampledPath,
-                          column_of: dict[str, int], frame: str) -> FloatArray:
+def _columns_in_reference(tree: TreeDescription, path: SampledPath,
+                          column_of: dict[str, int]) -> FloatArray:
     """``(N, 6, n)`` Jacobians of one chunk, rows in the axes of the reference frame."""
     count = path.times.shape[0]
     unit_twists: dict[int, Twist] = {}
     targets: dict[int, tuple[int, float]] = {}
-    for position, compiled in enumerate(joints):
+    for position, compiled in enumerate(path.model.joints):
         if compiled.joint is None or position not in path.signs:
             continue
-        primary, multiplier = mimic_primary(compiled.joint, tree.joints)
+        primary, multiplier = mimic_primary(compiled.joint, tree.joints_by_name)
         column = column_of.get(primary.name)
         if column is None:
             continue
@@ -110,15 +107,15 @@ def _columns_in_reference(tree: FrameTree, joints: Sequence[Any], path: SampledP
     return out
 
 
-def _joint_names(tree: FrameTree, joints: Sequence[str] | None, frame: str) -> list[str]:
+def _joint_names(tree: TreeDescription, joints: Sequence[str] | None, frame: str) -> list[str]:
     """The columns: the named joints, or every actuated joint in the tree's order."""
     if joints is None:
-        return [name for name, joint in tree.joints.items() if joint.is_actuated]
+        return [name for name, joint in tree.joints_by_name.items() if joint.is_actuated]
     if isinstance(joints, str) or not isinstance(joints, Sequence):
         raise ArgumentTypeError(f"expected a list of joint names, got {joints!r}",
                                 frame=frame, field="joints")
     names = list(joints)
-    known = tree.joints
+    known = tree.joints_by_name
     for name in names:
         if name not in known:
             raise JointError(f"no joint named {name!r} in the tree", frame=frame,

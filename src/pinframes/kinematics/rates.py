@@ -15,9 +15,9 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from .._interpolation import Keyframes
-from ..joint_track import JointTrack
-from ..rotations import quaternion_from_matrix
+from ..values._interpolation import Keyframes
+from ..values.joint_trajectory import JointTrajectory
+from ..values.rotations import quaternion_from_matrix
 
 __all__ = ["keyframe_rates", "rotation_steps", "segment_rates", "track_rates"]
 
@@ -78,7 +78,7 @@ def rotation_steps(rotations: FloatArray) -> FloatArray:
 
 
 def track_rates(
-    track: JointTrack, times: NDArray[np.int64],
+    track: JointTrajectory, times: NDArray[np.int64],
     segments: tuple[NDArray[np.intp], FloatArray] | None = None,
 ) -> FloatArray:
     """Joint velocities ``(N,)`` (rad/s or m/s) of a sampled joint trajectory.

@@ -9,17 +9,17 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from .. import _query
-from .._se3 import Transform
+from ..values._se3 import Transform
+from ..values._timeline import QueryTimeline
+from . import _evaluate
+from ._description import TreeDescription
+from ._model import CompiledModel
 from .twists import joint_signs
-
-if TYPE_CHECKING:
-    from ..tree import FrameTree
 
 __all__ = ["PlannedQuery", "SampledPath", "plan_query", "sample_path"]
 
@@ -30,6 +30,8 @@ class SampledPath:
 
     Attributes
     ----------
+    model : CompiledModel
+        The compiled path.
     joints : list of Transform
         Per joint of the model, its frame in ``C`` (``oMi``).
     frame, relative_to : Transform
@@ -42,6 +44,7 @@ class SampledPath:
         The sample times on the timeline's basis.
     """
 
+    model: CompiledModel
     joints: list[Transform]
     frame: Transform
     relative_to: Transform
@@ -54,8 +57,8 @@ class SampledPath:
 class PlannedQuery:
     """A query's compiled path, its timeline and the result's times."""
 
-    evaluation: _query.Evaluation
-    timeline: _query.QueryTimeline
+    evaluation: _evaluate.Evaluation
+    timeline: QueryTimeline
     count: int
     offsets: NDArray[np.int64] | None
 
@@ -68,35 +71,37 @@ class PlannedQuery:
     def reference_time(self) -> np.datetime64 | None:
         return self.timeline.reference
 
-    def chunks(self, tree: FrameTree) -> Iterator[tuple[slice, SampledPath]]:
-        """The path sampled in slices of at most ``_query.CHUNK`` times (moving paths only)."""
+    def chunks(self, tree: TreeDescription) -> Iterator[tuple[slice, SampledPath]]:
+        """The path sampled in slices of at most ``_evaluate.CHUNK`` times (moving paths only)."""
         evaluation, timeline = self.evaluation, self.timeline
-        shifts = _query.basis_shifts(list(evaluation.sources), timeline)
+        assert evaluation.model is not None, "a static path has no model to sample"
+        shifts = _evaluate.basis_shifts(list(evaluation.sources), timeline)
         signs = joint_signs(evaluation.model, evaluation.frame, evaluation.relative_to)
         times = timeline.evaluation_times
         if times is None:
             times = np.zeros(1, dtype=np.int64)
-        for start in range(0, self.count, _query.CHUNK):
-            part = slice(start, start + _query.CHUNK)
+        for start in range(0, self.count, _evaluate.CHUNK):
+            part = slice(start, start + _evaluate.CHUNK)
             yield part, sample_path(tree, evaluation, signs, shifts, times[part])
 
 
-def plan_query(tree: FrameTree, frame: str, relative_to: str, times: Any, time_ref: Any,
+def plan_query(tree: TreeDescription, frame: str, relative_to: str, times: Any, time_ref: Any,
                extrapolation: str) -> PlannedQuery:
     """Compile (or reuse) the path and plan its timeline by the rules of ``pose()``."""
-    evaluation = _query.prepare_evaluation(tree, frame, relative_to)
-    timeline = _query.checked_timeline(tree, evaluation, times, time_ref, extrapolation)
+    evaluation = _evaluate.prepare_evaluation(tree, frame, relative_to)
+    timeline = _evaluate.checked_timeline(tree, evaluation, times, time_ref, extrapolation)
     offsets = timeline.result_offsets
     return PlannedQuery(evaluation, timeline, 1 if offsets is None else offsets.shape[0],
                         offsets)
 
 
-def sample_path(tree: FrameTree, evaluation: _query.Evaluation, signs: dict[int, float],
+def sample_path(tree: TreeDescription, evaluation: _evaluate.Evaluation, signs: dict[int, float],
                 shifts: dict[str, int], times: NDArray[np.int64]) -> SampledPath:
     """The path of ``evaluation`` (a moving one) at ``times`` (timeline basis)."""
     model = evaluation.model
-    local = _query.local_transforms(tree, evaluation, shifts, times)
+    assert model is not None, "a static path has no model to sample"
+    local = _evaluate.local_transforms(tree, evaluation, shifts, times)
     joints = model.joint_placements_in_root(local)
     frame, relative_to = model.frame_placements_in_root(
         joints, [evaluation.frame, evaluation.relative_to])
-    return SampledPath(joints, frame, relative_to, signs, shifts, times)
+    return SampledPath(model, joints, frame, relative_to, signs, shifts, times)

@@ -24,8 +24,8 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from ..joint import Joint
-from ..pinocchio_model import CompiledModel
+from ..values.joint import Joint
+from ._model import CompiledModel
 
 __all__ = ["cross", "jacobian_columns", "joint_signs", "robot_joint_axes", "velocity_sum"]
 

@@ -12,20 +12,18 @@ model's root) or, rotated, in those of ``frame`` (Pinocchio's ``LOCAL``).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from .._query import Evaluation
-from .._se3 import IDENTITY
-from ..joint import Joint, mimic_primary
+from ..values._se3 import IDENTITY
+from ..values.joint import Joint, mimic_primary
+from ._description import TreeDescription
+from ._evaluate import Evaluation, evaluate_pose
 from .rates import keyframe_rates, segment_rates, track_rates
 from .sampled_path import PlannedQuery, SampledPath, plan_query
 from .twists import Twist, robot_joint_axes, rotate, velocity_sum
-
-if TYPE_CHECKING:
-    from ..tree import FrameTree
 
 __all__ = ["Velocity", "evaluate_velocity", "joint_rates"]
 
@@ -64,7 +62,7 @@ class Velocity:
         return int(self.linear.shape[0])
 
 
-def evaluate_velocity(tree: FrameTree, frame: str, relative_to: str, times: Any,
+def evaluate_velocity(tree: TreeDescription, frame: str, relative_to: str, times: Any,
                       time_ref: Any, extrapolation: str, expressed_in: str) -> Velocity:
     """``tree.velocity(...)``; frame names already checked."""
     planned = plan_query(tree, frame, relative_to, times, time_ref, extrapolation)
@@ -84,37 +82,40 @@ def evaluate_velocity(tree: FrameTree, frame: str, relative_to: str, times: Any,
                     relative_to, expressed_in)
 
 
-def _orientation(tree: FrameTree, other: str, relative_to: str, planned: PlannedQuery
+def _orientation(tree: TreeDescription, other: str, relative_to: str, planned: PlannedQuery
                  ) -> FloatArray:
     """Rotations ``(T, 3, 3)`` of ``other`` in ``relative_to`` at the result's times."""
     offsets, reference = planned.offsets, planned.reference_time
     if offsets is None:
-        return np.broadcast_to(tree.pose(other, relative_to).rotation, (1, 3, 3))
+        static = evaluate_pose(tree, other, relative_to, None, None, "clamp")
+        return np.broadcast_to(static.rotation, (1, 3, 3))
     times = offsets.astype("timedelta64[ns]")
     if reference is not None:
-        return tree.pose(other, relative_to, reference + times, reference).rotation
-    return tree.pose(other, relative_to, times).rotation
+        return evaluate_pose(tree, other, relative_to, reference + times, reference,
+                             "clamp").rotation
+    return evaluate_pose(tree, other, relative_to, times, None, "clamp").rotation
 
 
-def _velocity_in_root(tree: FrameTree, evaluation: Evaluation, path: SampledPath
+def _velocity_in_root(tree: TreeDescription, evaluation: Evaluation, path: SampledPath
                       ) -> tuple[FloatArray, FloatArray]:
     """``(v, w)`` of the frame relative to the reference frame, in the root's axes."""
     twists: list[Twist | None] = []
     segments: dict[tuple[int, int], tuple[NDArray[np.intp], FloatArray]] = {}
-    for position, joint in enumerate(evaluation.model.joints):
+    for position, joint in enumerate(path.model.joints):
+        keyframes = evaluation.placed_keyframes[position]
         if position not in path.signs:
             twists.append(None)
-        elif joint.joint is None:
-            linear, angular = keyframe_rates(evaluation.placed_keyframes[position],
-                                             path.times - path.shifts[joint.frame])
+        elif keyframes is not None:  # a moving frame's free-flyer
+            linear, angular = keyframe_rates(keyframes, path.times - path.shifts[joint.frame])
             if joint.parent >= 0:
                 parent_rotation = path.joints[joint.parent][0]
                 linear = rotate(parent_rotation, linear)
                 angular = rotate(parent_rotation, angular)
             twists.append((linear, angular))
         else:
-            rates = joint_rates(tree, joint.joint, path.times, path.shifts, segments)
-            if rates is None:
+            rates = None if joint.joint is None else joint_rates(
+                tree, joint.joint, path.times, path.shifts, segments)
+            if joint.joint is None or rates is None:
                 twists.append(None)
                 continue
             sliding, turning = robot_joint_axes(joint.joint, path.joints[position][0])
@@ -125,15 +126,15 @@ def _velocity_in_root(tree: FrameTree, evaluation: Evaluation, path: SampledPath
 
 
 def joint_rates(
-    tree: FrameTree, joint: Joint, times: NDArray[np.int64], shifts: dict[str, int],
+    tree: TreeDescription, joint: Joint, times: NDArray[np.int64], shifts: dict[str, int],
     segments: dict[tuple[int, int], tuple[NDArray[np.intp], FloatArray]] | None = None,
 ) -> FloatArray | None:
     """Velocities (N,) of ``joint`` at ``times`` (timeline basis), rad/s or m/s: its
     trajectory's, or its mimic primary's times the product of the multipliers; None when
     no trajectory drives it. ``segments`` keeps the segment lookups of one set of times
     for the trajectories that share their sample times."""
-    primary, multiplier = mimic_primary(joint, tree.joints)
-    track = tree.joint_track(primary.name)
+    primary, multiplier = mimic_primary(joint, tree.joints_by_name)
+    track = tree.joint_trajectories.get(primary.name)
     if track is None:
         return None
     own_times = times - shifts[primary.name]
