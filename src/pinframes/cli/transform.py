@@ -20,7 +20,6 @@ import numpy as np
 from ..errors import FileFormatError, InvalidDataError
 from ..formats._atomic import atomic_write
 from ..formats._reading import read_text
-from ..tree import FrameTree
 from ..values.timeconv import TimeAxis
 from ._evaluate import add_time_arguments, requested_times
 from ._files import read_tree, require_frames
@@ -70,23 +69,21 @@ def run(args: argparse.Namespace) -> int:
         out = method(data, args.frame, args.relative_to, times, time_ref=args.time_ref)
         header, rows = [TIME_COLUMN, *names], np.column_stack([times, out])
     else:
-        axis = requested_times(args, tree, args.frame, args.relative_to)
-        if axis is None and tree.sample_times(args.frame, args.relative_to) is None:
-            out = method(data, args.frame, args.relative_to)
-            header, rows = names, out
+        axis = (requested_times(args, tree, args.frame, args.relative_to)
+                or tree.sample_times(args.frame, args.relative_to))
+        if axis is None:  # nothing moves: the points as they are
+            header, rows = names, method(data, args.frame, args.relative_to)
         else:
-            header, rows = _every_point_at_every_time(tree, method, args, axis, data, names)
+            header, rows = _every_point_at_every_time(method, args, axis, data, names)
     _write(header, rows, args.output)
     return 0
 
 
 def _every_point_at_every_time(
-    tree: FrameTree, method: Callable[..., np.ndarray], args: argparse.Namespace,
-    axis: TimeAxis | None, data: np.ndarray, names: list[str],
+    method: Callable[..., np.ndarray], args: argparse.Namespace, axis: TimeAxis,
+    data: np.ndarray, names: list[str],
 ) -> tuple[list[str], np.ndarray]:
-    """Every point at every requested time (default: every sample on the path)."""
-    if axis is None:
-        axis = tree.sample_times(args.frame, args.relative_to)
+    """Every point at every time of ``axis``."""
     offsets = axis.offsets.astype("timedelta64[ns]")
     times = offsets if axis.reference is None else axis.reference + offsets
     time_ref = args.time_ref if axis.reference is None else axis.reference
