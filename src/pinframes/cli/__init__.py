@@ -15,11 +15,11 @@ from collections.abc import Sequence
 
 from .. import __version__
 from ..errors import PinframesError
-from . import convert, demo, info, plot, pose, transform
+from . import convert, demo, info, plot, pose, transform, view
 
 __all__ = ["main"]
 
-_SUBCOMMANDS = (demo, info, pose, transform, convert, plot)
+_SUBCOMMANDS = (demo, info, pose, transform, convert, plot, view)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
