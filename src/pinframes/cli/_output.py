@@ -22,7 +22,7 @@ from ..kinematics import Velocity
 from ..values.pose import Pose
 
 __all__ = ["COLUMNS", "OUTPUT_FORMATS", "VELOCITY_COLUMNS", "output_format", "pose_rows",
-           "write_poses"]
+           "write_poses", "write_text"]
 
 COLUMNS = ("time_s", "x", "y", "z", "qx", "qy", "qz", "qw")
 VELOCITY_COLUMNS = ("vx_m_s", "vy_m_s", "vz_m_s", "wx_rad_s", "wy_rad_s", "wz_rad_s")
@@ -58,8 +58,12 @@ def write_poses(pose: Pose, fmt: str, out: str | None, *, frame: str, relative_t
         with atomic_write(out, "wb") as handle:
             _write_npz(handle, pose, frame, relative_to, velocity)
         return
-    text = (_csv_text(pose, velocity) if fmt == "csv"
-            else _json_text(pose, frame, relative_to, velocity))
+    write_text(_csv_text(pose, velocity) if fmt == "csv"
+               else _json_text(pose, frame, relative_to, velocity), out)
+
+
+def write_text(text: str, out: str | None) -> None:
+    """``text`` to the file ``out`` (atomically) or to standard output."""
     if out is None:
         sys.stdout.write(text)
         sys.stdout.flush()

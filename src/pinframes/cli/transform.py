@@ -12,17 +12,16 @@ from __future__ import annotations
 import argparse
 import csv
 import io
-import sys
 from collections.abc import Callable
 
 import numpy as np
 
 from ..errors import FileFormatError, InvalidDataError
-from ..formats._atomic import atomic_write
 from ..formats._reading import read_text
 from ..values.timeconv import TimeAxis
 from ._evaluate import add_time_arguments, requested_times
 from ._files import read_tree, require_frames
+from ._output import write_text
 
 __all__ = ["add_parser", "run"]
 
@@ -127,10 +126,4 @@ def _read_data(path: str) -> tuple[list[str], np.ndarray | None, np.ndarray]:
 def _write(header: list[str], rows: np.ndarray, out: str | None) -> None:
     lines = [",".join(header)]
     lines += [",".join(repr(value) for value in row) for row in np.atleast_2d(rows).tolist()]
-    text = "\n".join(lines) + "\n"
-    if out is None:
-        sys.stdout.write(text)
-        sys.stdout.flush()
-        return
-    with atomic_write(out, "w") as handle:
-        handle.write(text)
+    write_text("\n".join(lines) + "\n", out)
