@@ -28,6 +28,7 @@ from .tree import FrameTree
 from .values.joint import Joint, Mimic
 from .values.joint_trajectory import JointTrack, JointTrajectory
 from .values.pose import Pose
+from .values.spatial_data import SpatialData
 from .values.subsystem import Subsystem
 from .values.timeconv import TimeAxis
 
@@ -56,6 +57,7 @@ __all__ = [
     "Pose",
     "ReadError",
     "ReferenceTimeError",
+    "SpatialData",
     "Subsystem",
     "TimeAxis",
     "TreeStructureError",

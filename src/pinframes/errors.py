@@ -107,7 +107,8 @@ class InvalidPoseError(PinframesError, ValueError):
 
 
 class InvalidDataError(PinframesError, ValueError):
-    """Points, vectors or other measured data of the wrong shape or with non-finite values."""
+    """Points, vectors or other measured or spatial data that is not what it must be: wrong
+    shape, non-finite values, bad triangles or attributes."""
 
 
 class InvalidTimeError(PinframesError, ValueError):
