@@ -9,6 +9,7 @@ through the joints' twists (``twists``).
 
 from ._description import TreeDescription, paths_to_common_ancestor
 from ._evaluate import default_times, evaluate_pose
+from ._many import evaluate_poses
 from .jacobian import FrameJacobian, evaluate_jacobian
 from .pinocchio_tree import PinocchioTree
 from .velocity import Velocity, evaluate_velocity
@@ -21,6 +22,7 @@ __all__ = [
     "default_times",
     "evaluate_jacobian",
     "evaluate_pose",
+    "evaluate_poses",
     "evaluate_velocity",
     "paths_to_common_ancestor",
 ]

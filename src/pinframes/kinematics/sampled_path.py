@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..values._se3 import Transform
+from ..values._se3 import Transform, samples_first
 from ..values._timeline import QueryTimeline
 from . import _evaluate
 from ._description import TreeDescription
@@ -104,4 +104,7 @@ def sample_path(tree: TreeDescription, evaluation: _evaluate.Evaluation, signs: 
     joints = model.joint_placements_in_root(local)
     frame, relative_to = model.frame_placements_in_root(
         joints, [evaluation.frame, evaluation.relative_to])
-    return SampledPath(model, joints, frame, relative_to, signs, shifts, times)
+    # the twist sums work on (N, 3, 3) / (N, 3) stacks; the evaluator's are samples last
+    # (static parts stay the same objects: the shared identity is still recognised)
+    return SampledPath(model, [samples_first(joint) for joint in joints],
+                       samples_first(frame), samples_first(relative_to), signs, shifts, times)
