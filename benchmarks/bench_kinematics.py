@@ -25,21 +25,23 @@ import numpy as np
 import pinocchio as pin
 
 from _machine import describe_machine, median_time
-from bench_robot import arm_chain, build_case, numpy_reference
-from pinframes.values.rotations import quaternion_from_matrix
+from bench_robot import arm_chain, build_case, numpy_reference, panda_urdf
 
 LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
 
 
-def reference_points(model, chain, mount, times, positions, points):
+def reference_points(hand, chain, mount, times, positions, points):
     """Numpy: the hand's poses in the world (interpolate, FK), then ``R @ p + t`` per row."""
-    world = numpy_reference(model, chain, mount, times, positions)
+    world = numpy_reference(hand, chain, mount, times, positions)
     return np.einsum("nij,nj->ni", world[:, :3, :3], points) + world[:, :3, 3]
 
 
-def pinocchio_velocities(urdf, grid, translation, rotation, times, positions):
+def pinocchio_velocities(mount, times, positions):
     """Per sample: q and v of a free-flyer Panda by hand, then Pinocchio's frame velocity."""
-    model = pin.buildModelFromUrdf(str(urdf), pin.JointModelFreeFlyer())
+    grid, translation, quaternions = mount
+    rotation = np.array([pin.Quaternion(w, x, y, z).toRotationMatrix()
+                         for x, y, z, w in quaternions])
+    model = pin.buildModelFromUrdf(str(panda_urdf()), pin.JointModelFreeFlyer())
     data = model.createData()
     hand = model.getFrameId("panda_hand")
     count = len(times)
@@ -93,16 +95,16 @@ def main() -> None:
     rng = np.random.default_rng(3)
 
     count = 100_000 if args.quick else 1_000_000
-    tree, urdf, grid, translation, rotation, times, positions = build_case(rng, count)
-    model = pin.buildModelFromUrdf(str(urdf))
-    mount = (grid, translation, quaternion_from_matrix(rotation))
+    tree, mount, times, positions = build_case(rng, count)
+    model = pin.buildModelFromUrdf(str(panda_urdf()))
+    hand = model.frames[model.getFrameId("panda_hand")].placement.homogeneous
     chain = arm_chain(model)
     points = rng.normal(scale=0.1, size=(count, 3))
     ours = tree.transform_points(points, "panda_hand", "world", times)
-    reference = reference_points(model, chain, mount, times, positions, points)
+    reference = reference_points(hand, chain, mount, times, positions, points)
     medians = interleaved_medians({
         "ours": lambda: tree.transform_points(points, "panda_hand", "world", times),
-        "reference": lambda: reference_points(model, chain, mount, times, positions, points),
+        "reference": lambda: reference_points(hand, chain, mount, times, positions, points),
     }, 5)
     table(f"(a) {count:,} time-stamped points, hand frame -> world", [
         ("pinframes tree.transform_points", medians["ours"],
@@ -110,9 +112,9 @@ def main() -> None:
         ("numpy: interpolate, FK, apply (reference)", medians["reference"], None),
     ], "numpy: interpolate, FK, apply (reference)")
 
-    tree, urdf, grid, translation, rotation, times, positions = build_case(rng, 10_000)
+    tree, mount, times, positions = build_case(rng, 10_000)
     velocity = tree.velocity("panda_hand", "world", times=times)
-    loop = pinocchio_velocities(urdf, grid, translation, rotation, times, positions)
+    loop = pinocchio_velocities(mount, times, positions)
     expected = loop().copy()
     diff = float(np.max(np.abs(np.concatenate([velocity.linear, velocity.angular], axis=1)
                                - expected)))
