@@ -23,7 +23,7 @@ from .formats import read, read_joint_trajectory, write
 from .formats.frames_yaml import read_frames_yaml, write_frames_yaml
 from .formats.scene import read_scene, write_scene
 from .formats.urdf import read_urdf, write_urdf
-from .kinematics import PinocchioTree, Snapshot
+from .kinematics import FrameJacobian, PinocchioTree, Snapshot, Velocity
 from .tree import FrameTree
 from .values.joint import Joint, Mimic
 from .values.joint_trajectory import JointTrack, JointTrajectory
@@ -40,6 +40,7 @@ __all__ = [
     "ExtrapolationError",
     "FileFormatError",
     "FrameExistsError",
+    "FrameJacobian",
     "FrameNotFoundError",
     "FrameTree",
     "FramesYamlWarning",
@@ -64,6 +65,7 @@ __all__ = [
     "TimeAxis",
     "TreeStructureError",
     "UnsupportedFeatureError",
+    "Velocity",
     "WriteError",
     "__version__",
     "read",
