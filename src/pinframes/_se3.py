@@ -11,12 +11,15 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from ._readonly import readonly
+
 __all__ = ["IDENTITY", "Transform", "canonical", "compose", "inverse"]
 
 FloatArray = NDArray[np.float64]
 Transform = tuple[FloatArray, FloatArray]
-IDENTITY: Transform = (np.eye(3), np.zeros(3))
-"""The identity; :func:`compose` skips it by object identity, so share this one object."""
+IDENTITY: Transform = (readonly(np.eye(3)), readonly(np.zeros(3)))
+"""The identity; :func:`compose` skips it by object identity, so share this one object
+(read-only: queries hand its arrays out)."""
 
 _SMALL_BATCH = 64
 

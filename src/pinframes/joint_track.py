@@ -8,6 +8,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ._interpolation import segment_positions
+from ._readonly import readonly_copy
 
 __all__ = ["JointTrack"]
 
@@ -25,11 +26,17 @@ class JointTrack:
     values : ndarray, shape (T,)
         Radians or metres. Continuous joints are stored unwrapped, so that linear
         interpolation takes the short way round.
+
+    Immutable: ``times`` and ``values`` are read-only copies of the arrays given.
     """
 
     times: NDArray[np.int64]
     reference: np.datetime64 | None
     values: NDArray[np.float64]
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "times", readonly_copy(self.times))
+        object.__setattr__(self, "values", readonly_copy(self.values))
 
     def sample(self, times: NDArray[np.int64]) -> NDArray[np.float64]:
         """Values at ``times`` (ns on this track's own basis), held outside the samples."""
