@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 from collections.abc import Iterator, Sequence
 from typing import Any
@@ -442,8 +443,12 @@ class FrameTree:
         return self._evaluations.get(key)
 
     def _store_evaluation(self, key: tuple[str, str], evaluation: _query.Evaluation) -> None:
+        # Queries may run in several threads at once: two of them may pick the same oldest
+        # entry, or one may insert while another iterates, so eviction tolerates both races
+        # (the cache may then exceed its limit by a few entries) instead of taking a lock.
         if len(self._evaluations) >= _CACHE_LIMIT:
-            del self._evaluations[next(iter(self._evaluations))]
+            with contextlib.suppress(KeyError, RuntimeError, StopIteration):
+                self._evaluations.pop(next(iter(self._evaluations)))
         self._evaluations[key] = evaluation
 
     @property
