@@ -18,6 +18,7 @@ from .errors import (
 )
 from .joint import Joint, Mimic
 from .joint_track import JointTrack
+from .limits import Limits
 from .pinocchio_tree import PinocchioTree
 from .pose import Pose
 from .scene import read_scene
@@ -41,6 +42,7 @@ __all__ = [
     "Joint",
     "JointError",
     "JointTrack",
+    "Limits",
     "Mimic",
     "PinframesError",
     "PinocchioTree",

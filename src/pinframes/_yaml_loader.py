@@ -15,6 +15,7 @@ from typing import Any
 import yaml
 
 from ._reading import read_text
+from ._yaml_size import check_yaml_size
 from .errors import FileFormatError
 
 __all__ = ["KeyPath", "Locate", "load_yaml"]
@@ -59,6 +60,7 @@ def load_yaml(path: str | os.PathLike[str], locate: Locate = _dotted) -> Any:
         node = loader.get_single_node()
         if node is None:
             return None
+        check_yaml_size(node, file)  # aliases: before anything expands them
         loader.check_tags_and_index(node, ())
         return loader.construct_document(node)
     except yaml.MarkedYAMLError as exc:

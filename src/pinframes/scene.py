@@ -24,9 +24,11 @@ from typing import Any
 
 import numpy as np
 
+from ._paths import path_argument
 from ._yaml_loader import load_yaml
 from .errors import FileFormatError, PinframesError, UnsupportedFeatureError
 from .frames_yaml import read_frames_yaml
+from .limits import Limits, reader_with_limits
 from .pose import Pose
 from .timeconv import parse_timestamp
 from .trajectory_io import read_joint_trajectory
@@ -63,8 +65,11 @@ class _Entry:
     apply: Callable[[FrameTree], None]
 
 
-def read_scene(path: str | os.PathLike[str]) -> FrameTree:
+@reader_with_limits
+def read_scene(path: str | os.PathLike[str], *, limits: Limits | None = None) -> FrameTree:
     """Read a scene file into a new :class:`FrameTree`.
+
+    ``limits`` (:class:`pinframes.Limits`) bounds the scene file and every file it names.
 
     Entries are added as soon as the frame they hang from exists, so their order in the
     file does not matter (a tool may name a robot link, a robot a frame of a layer).
@@ -79,7 +84,7 @@ def read_scene(path: str | os.PathLike[str]) -> FrameTree:
     ReadError
         The scene file (or a file it names) is missing, a folder, unreadable or not text.
     """
-    scene = _Scene(Path(path))
+    scene = _Scene(Path(path_argument(path)))
     return scene.build()
 
 
