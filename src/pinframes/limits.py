@@ -49,9 +49,9 @@ class Limits:
         segments of a frames.yaml key (``a/b/c`` has 3).
     """
 
-    max_samples: int = 10_000_000
-    max_yaml_nodes: int = 2_000_000
-    max_decompressed_bytes: int = 2 * 1024**3
+    max_samples: int = 2_000_000
+    max_yaml_nodes: int = 200_000
+    max_decompressed_bytes: int = 1024**3
     max_depth: int = 1_000
 
     def __post_init__(self) -> None:
