@@ -18,6 +18,7 @@ import yaml
 
 from ._atomic import atomic_write
 from ._joint_steps import check_joint_steps
+from ._writable import check_writable_tree
 from .pose import Pose
 from .scene import SCENE_FORMAT_KEY, SCENE_FORMAT_VERSION
 from .timeconv import format_timedelta_iso
@@ -47,6 +48,7 @@ def write_scene(tree: FrameTree, path: str | os.PathLike[str], time: Any = None)
     WriteError
         The file cannot be written; an existing file is left untouched.
     """
+    check_writable_tree(tree, path)
     document: dict[str, Any] = {SCENE_FORMAT_KEY: SCENE_FORMAT_VERSION}
     if tree.name is not None:
         document["name"] = tree.name

@@ -14,6 +14,7 @@ from typing import Any
 
 from .._atomic import atomic_write
 from .._joint_steps import check_joint_steps
+from .._writable import check_writable_tree
 from ..errors import ArgumentTypeError, TreeStructureError, UnsupportedFeatureError, WriteError
 from ..pose import Pose
 from ..subsystem import Subsystem
@@ -65,6 +66,7 @@ def write_asdf(tree: FrameTree, path: str | os.PathLike[str], schema: str = "1.0
     if not isinstance(tree, FrameTree):
         raise ArgumentTypeError(f"expected a pinframes.FrameTree, got {type(tree).__name__}",
                                 file=str(path), field="tree")
+    check_writable_tree(tree, path)
     generation = SCHEMAS.get(schema)
     if generation is None:
         raise UnsupportedFeatureError(

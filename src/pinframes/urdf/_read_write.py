@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from .._atomic import atomic_write
+from .._writable import check_writable_tree
 from ..joint import Joint, mimic_chain
 from ..rotations import rpy_from_matrix
 from ..tree import FrameTree
@@ -35,6 +36,7 @@ def write_urdf(tree: FrameTree, path: str | os.PathLike[str], time: Any = None) 
     contents (visuals, inertials, ``package://`` URIs) and unread joint elements are
     written back as they were read.
     """
+    check_writable_tree(tree, path)
     robot = ET.Element("robot", name=tree.name or tree.root)
     for kept in tree.metadata.get(URDF_METADATA_KEY, {}).values():
         for text in kept.get("extra_xml", ()):
