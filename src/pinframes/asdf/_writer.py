@@ -12,6 +12,8 @@ from __future__ import annotations
 import os
 from typing import Any
 
+import numpy as np
+
 from .._atomic import atomic_write
 from .._joint_steps import check_joint_steps
 from .._writable import check_writable_tree
@@ -100,6 +102,10 @@ def _write(hierarchy: Any, generation: Generation, path: str | os.PathLike[str],
             document.write_to(handle)
 
 
+_LARGEST_METRES = 1e305
+"""Translations beyond it become infinite once written in millimetres."""
+
+
 def _frame_poses(tree: FrameTree) -> dict[str, Pose]:
     """Every frame but the root: its pose in its parent, joint-driven links sampled."""
     poses = {}
@@ -109,6 +115,10 @@ def _frame_poses(tree: FrameTree) -> dict[str, Pose]:
         else:
             check_joint_steps(tree, name)
             poses[name] = tree.pose(name, relative_to=tree.parent(name))
+        if np.max(np.abs(poses[name].translation)) > _LARGEST_METRES:
+            raise UnsupportedFeatureError(
+                "a translation over 1e305 m overflows in millimetres; read_asdf would refuse "
+                "the file", frame=name, field="coordinates")
     return poses
 
 
