@@ -11,25 +11,36 @@ non-empty string.
 
 from __future__ import annotations
 
-import os
 import unicodedata
 
-from .errors import PinframesError, TreeStructureError, UnsupportedFeatureError
+from ._paths import path_argument
+from .errors import (
+    ArgumentTypeError,
+    PinframesError,
+    TreeStructureError,
+    UnsupportedFeatureError,
+)
 from .tree import FrameTree
 
 __all__ = ["check_writable_tree"]
 
 
 def check_writable_tree(tree: FrameTree, path: object) -> None:
-    """Raise an :class:`UnsupportedFeatureError` for a name no file could hold unchanged,
-    and a :class:`TreeStructureError` for a subsystem naming frames the tree lacks; both
-    name the file ``path`` to be written."""
+    """Check a writer's arguments before it does any work.
+
+    Raises an :class:`ArgumentTypeError` for a ``tree`` that is no FrameTree or a ``path``
+    that is no text path, an :class:`UnsupportedFeatureError` for a name no file could
+    hold unchanged, and a :class:`TreeStructureError` for a subsystem naming frames the
+    tree lacks; the last two name the file ``path``.
+    """
+    file = path_argument(path)
+    if not isinstance(tree, FrameTree):
+        raise ArgumentTypeError(f"expected a pinframes.FrameTree, got {type(tree).__name__}",
+                                file=file, field="tree")
     try:
         _check_tree(tree)
     except PinframesError as exc:
-        if isinstance(path, (str, os.PathLike)):
-            raise exc.located(file=path) from None
-        raise
+        raise exc.located(file=file) from None
 
 
 def _check_tree(tree: FrameTree) -> None:
