@@ -203,7 +203,9 @@ def _requested_times(tree: FrameTree, times: Any) -> TimeAxis | None:
     if isinstance(times, str) and times in tree:
         if times == tree.root or not tree.is_moving(times):
             raise InvalidTimeError(f"frame {times!r} does not move, so it has no times to "
-                                   "take", field="times")
+                                   "take (a string naming a frame means that frame's "
+                                   "keyframe times; pass seconds as a number or as '5s')",
+                                   field="times")
         pose = tree.local_pose(times)
         reference = pose.reference_time if pose.reference_time is not None else (
             tree.reference_time)

@@ -82,7 +82,10 @@ class Joint:
         if self.kind not in JOINT_KINDS:
             raise JointError(f"unknown joint kind {self.kind!r}; expected one of {JOINT_KINDS}",
                              frame=self.name, field="type")
-        axis = np.asarray(self.axis, dtype=float)
+        try:
+            axis = np.asarray(self.axis, dtype=float)
+        except (TypeError, ValueError):
+            axis = np.zeros(0)
         norm = float(np.linalg.norm(axis))
         if axis.shape != (3,) or not np.isfinite(norm) or norm < 1e-9:
             raise JointError(f"axis must be a non-zero 3-vector, got {self.axis!r}",

@@ -192,6 +192,10 @@ def time_index_ns(node: Any, field: str) -> NDArray[np.int64]:
             raise FileFormatError(
                 f"expected a 1-D array of integer nanoseconds, got {values.dtype} of shape "
                 f"{values.shape}", field=f"{field}.values")
+        if values.dtype.kind == "u" and values.size and values.max() > np.iinfo(np.int64).max:
+            raise FileFormatError("unsigned nanoseconds beyond int64 (over 292 years); "
+                                  "numpy would wrap them around to negative times",
+                                  field=f"{field}.values")
         _check_sample_count(values.shape[0], field)
         return values.astype(np.int64)
     start = timedelta_ns(required(node, "start", field), f"{field}.start")
