@@ -14,7 +14,7 @@ from typing import NoReturn
 
 from .errors import ArgumentTypeError, ReadError
 
-__all__ = ["check_regular_file", "path_argument", "read_regular_file"]
+__all__ = ["check_regular_file", "is_regular_file", "path_argument", "read_regular_file"]
 
 
 def path_argument(path: object, field: str = "path") -> str:
@@ -60,6 +60,15 @@ def read_regular_file(path: object) -> bytes:
             return handle.read()
         except OSError as exc:
             raise ReadError(f"cannot read: {exc.strerror or exc}", file=file) from None
+
+
+def is_regular_file(path: str | os.PathLike[str]) -> bool:
+    """True when ``path`` names a regular file; False also for names the system refuses
+    (too long, a path through a file), where ``Path.is_file`` raises ``OSError``."""
+    try:
+        return stat.S_ISREG(os.stat(path).st_mode)
+    except (OSError, ValueError):
+        return False
 
 
 def check_regular_file(path: object) -> str:

@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from ._paths import path_argument
+from ._paths import is_regular_file, path_argument
 from ._yaml_loader import load_yaml
 from .errors import FileFormatError, PinframesError, UnsupportedFeatureError
 from .frames_yaml import read_frames_yaml
@@ -343,8 +343,8 @@ class _Scene:
             raise FileFormatError("missing", file=self.path, frame=frame, field=f"{field}.{key}")
         value = self._name(item[key], frame, f"{field}.{key}")
         path = self.path.parent / value
-        if not path.is_file():
-            raise FileFormatError(f"no such file: {path}", file=self.path, frame=frame,
+        if not is_regular_file(path):
+            raise FileFormatError(f"no such regular file: {path}", file=self.path, frame=frame,
                                   field=f"{field}.{key}")
         return path
 

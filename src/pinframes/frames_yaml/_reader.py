@@ -22,7 +22,7 @@ from __future__ import annotations
 import os
 from collections.abc import Callable
 
-from .._paths import path_argument
+from .._paths import is_regular_file, path_argument
 from .._yaml_loader import load_yaml
 from ..errors import FileFormatError, PinframesError
 from ..limits import Limits, current_limits, exceeded, reader_with_limits
@@ -147,7 +147,7 @@ def _tile_sizes(entries: list[Entry], file: str) -> dict[str, TileSize]:
     if not tiled:
         return {}
     tile_maps = tile_maps_beside(file)
-    if not tile_maps.is_file():
+    if not is_regular_file(tile_maps):
         raise FileFormatError(
             f"unit 'tiles' needs the tile size from {tile_maps.name} beside this file, but "
             f"{tile_maps} does not exist", file=file, frame=tiled[0].key, field="unit")
