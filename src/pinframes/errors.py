@@ -1,4 +1,4 @@
-"""Exceptions raised by pinframes.
+"""Exceptions raised by pinframes, and the warnings it gives.
 
 Every error carries, where known, the ``file`` it came from, the ``frame`` it concerns and the
 ``field`` that is wrong, and puts them at the front of its message::
@@ -19,9 +19,11 @@ __all__ = [
     "FileFormatError",
     "FrameExistsError",
     "FrameNotFoundError",
+    "FramesYamlWarning",
     "InvalidPoseError",
     "InvalidTimeError",
     "JointError",
+    "JointLimitWarning",
     "PinframesError",
     "ReadError",
     "ReferenceTimeError",
@@ -138,3 +140,11 @@ class ReadError(PinframesError, OSError):
 
 class ArgumentTypeError(PinframesError, TypeError):
     """An argument of the wrong type passed to a pinframes function or method."""
+
+
+class JointLimitWarning(UserWarning):
+    """Joint values outside the limits written in the URDF."""
+
+
+class FramesYamlWarning(UserWarning):
+    """A ``frames.yaml`` oddity that pinframes reads anyway (unknown fields, undeclared frames)."""

@@ -88,6 +88,7 @@ def test_yaml_1_1_octal_and_base_60_numbers_are_refused(value, tmp_path):
         read_frames_yaml(path)  # quoted, it is the string it looks like
 
 
+@pytest.mark.filterwarnings("ignore:Invalid integer literal")  # asdf notes the same value
 def test_asdf_unsigned_times_beyond_int64_are_refused(tmp_path):
     times = ("!legacy!time/timedeltaindex-1.0.0 {values: !core/ndarray-1.0.0 "
              "{data: [0, 18446744073709551615], datatype: uint64, shape: [2]}}")

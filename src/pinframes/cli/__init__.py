@@ -16,12 +16,12 @@ from dataclasses import fields
 
 from .. import __version__
 from ..errors import PinframesError
-from ..limits import Limits, using_limits
-from . import convert, demo, info, plot, pose
+from ..formats.limits import Limits, using_limits
+from . import convert, demo, info, plot, pose, view
 
 __all__ = ["main"]
 
-_SUBCOMMANDS = (demo, info, pose, convert, plot)
+_SUBCOMMANDS = (demo, info, pose, convert, plot, view)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -1,59 +1,22 @@
-"""Which format a file is in, and reading or writing a tree in any supported format.
-
-Formats are told apart by the file name: ``.asdf`` (weldx ASDF), ``.urdf`` (URDF) and
-``.yaml``/``.yml``, which is a scene when it has the ``pinframes_scene`` key, and a
-Duckietown ``frames.yaml`` when it has a ``frames`` key or its name starts with ``frames``.
-A ``.yaml`` file to be written is a frames.yaml when its name starts with ``frames``, else a
-scene.
-"""
+"""Reading and writing the CLI's tree files through the format registry (``pinframes.read`` /
+``pinframes.write``), with errors that name the command-line options."""
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-import pinframes
-
-from .._yaml_loader import load_yaml
-from ..errors import FileFormatError, FrameNotFoundError, ReadError, UnsupportedFeatureError
-from ..scene import SCENE_FORMAT_KEY
+from ..errors import FileFormatError, FrameNotFoundError
+from ..formats import detect_format, file_format, formats_taking, read, write
 from ..tree import FrameTree
 
-__all__ = ["FORMATS", "detect_format", "read_tree", "require_frames", "write_tree"]
-
-FORMATS = ("frames.yaml", "asdf", "urdf", "scene")
+__all__ = ["read_tree", "require_frames", "write_tree"]
 
 
-def detect_format(path: str | Path, *, writing: bool = False) -> str:
-    """One of :data:`FORMATS` for ``path`` (for a file to be written if ``writing``)."""
-    path = Path(path)
-    suffix = path.suffix.lower()
-    if suffix == ".asdf":
-        return "asdf"
-    if suffix == ".urdf":
-        return "urdf"
-    if suffix not in (".yaml", ".yml"):
-        raise FileFormatError(f"unknown file type {suffix or '(none)'!r}; expected .yaml "
-                              "(scene or frames.yaml), .asdf or .urdf", file=path)
-    named_frames = path.name.lower().startswith("frames")
-    if writing:
-        return "frames.yaml" if named_frames else "scene"
-    content = load_yaml(path)
-    if isinstance(content, dict) and SCENE_FORMAT_KEY in content:
-        return "scene"
-    if (isinstance(content, dict) and "frames" in content) or named_frames:
-        return "frames.yaml"
-    raise FileFormatError(f"neither a scene (no '{SCENE_FORMAT_KEY}' key) nor a frames.yaml "
-                          "(no 'frames' key)", file=path)
-
-
-def read_tree(path: str | Path, fmt: str | None = None) -> FrameTree:
-    """Read the tree in ``path``, in format ``fmt`` (default: told from the file)."""
-    if not Path(path).is_file():
-        raise ReadError("is a folder, not a file" if Path(path).is_dir() else "no such file",
-                        file=path)
-    return _function("read", fmt or detect_format(path))(path)
+def read_tree(path: str | Path) -> FrameTree:
+    """Read the tree in ``path``, in the format told from the file."""
+    tree: FrameTree = read(path)
+    return tree
 
 
 def require_frames(tree: FrameTree, path: str | Path, *names: str | None) -> None:
@@ -63,29 +26,18 @@ def require_frames(tree: FrameTree, path: str | Path, *names: str | None) -> Non
             raise FrameNotFoundError("no frame of this name in the file", file=path, frame=name)
 
 
-def write_tree(tree: FrameTree, path: str | Path, fmt: str | None = None, *,
-               schema: str | None = None, time: Any = None) -> None:
+def write_tree(tree: FrameTree, path: str | Path, fmt: str | None = None, **flags: Any
+               ) -> None:
     """Write ``tree`` to ``path`` in ``fmt`` (default: told from the name), atomically.
 
-    ``schema`` is the ASDF schema version; ``time`` writes the poses at that time for the
-    formats that cannot hold motion or when a static snapshot is wanted (not ASDF).
+    ``flags`` are the command line's options by name (``schema``, ``time``); those not given
+    are None. An option the format does not take names the flag and the formats that do.
     """
     fmt = fmt or detect_format(path, writing=True)
-    if schema is not None and fmt != "asdf":
-        raise FileFormatError(f"--schema is for ASDF files, not {fmt}", file=path)
-    if fmt == "asdf":
-        if time is not None:
-            raise FileFormatError("--time is not for ASDF files, which keep the motion",
-                                  file=path)
-        _function("write", fmt)(tree, path, **({} if schema is None else {"schema": schema}))
-        return
-    _function("write", fmt)(tree, path, time=time)
-
-
-def _function(verb: str, fmt: str) -> Callable[..., Any]:
-    """``pinframes.read_asdf`` and friends, looked up when needed."""
-    name = f"{verb}_{fmt.replace('.', '_')}"
-    function = getattr(pinframes, name, None)
-    if function is None:
-        raise UnsupportedFeatureError(f"this pinframes has no {name}()")
-    return function
+    options = {name: value for name, value in flags.items() if value is not None}
+    taken = file_format(fmt).write_options
+    for name in options:
+        if name not in taken:
+            takers = ", ".join(entry.title for entry in formats_taking(name))
+            raise FileFormatError(f"--{name} is for {takers} files, not {fmt}", file=path)
+    write(tree, path, fmt, **options)

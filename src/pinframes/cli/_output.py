@@ -13,9 +13,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .._atomic import atomic_write
 from ..errors import FileFormatError
-from ..pose import Pose
+from ..formats._atomic import atomic_write
+from ..values.pose import Pose
 
 __all__ = ["COLUMNS", "OUTPUT_FORMATS", "output_format", "pose_rows", "write_poses"]
 

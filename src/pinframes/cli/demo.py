@@ -10,11 +10,12 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import read_scene
-from ..errors import FileFormatError, WriteError
+from ..errors import FileFormatError, UnsupportedFeatureError, WriteError
+from ..formats.scene import read_scene
 from ..plotting import new_figure, plot_frames, robot_frames, save_figure
-from ..pose import Pose
 from ..tree import FrameTree
+from ..values.pose import Pose
+from ..view import write_view
 from ._evaluate import evaluate_poses, terminal_stderr
 from ._files import require_frames
 from ._output import write_poses
@@ -23,6 +24,7 @@ __all__ = ["PathSummary", "add_parser", "bundled_scene", "run", "summarize"]
 
 POSES_FILE = "torch_poses.csv"
 PLOT_FILE = "torch_path.png"
+VIEW_FILE = "cell.html"
 
 
 def bundled_scene() -> Path:
@@ -36,7 +38,8 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "demo", parents=parents, help="torch path of the bundled welding cell",
         description="Load the bundled welding cell (robot, positioner, workpiece), compute "
         "the pose of the torch tip relative to the workpiece at every sample of the motion, "
-        f"print a summary and write the poses ({POSES_FILE}) and a plot ({PLOT_FILE}).")
+        f"print a summary and write the poses ({POSES_FILE}), a plot ({PLOT_FILE}) and an "
+        f"animated 3-D page of the whole run ({VIEW_FILE}; needs pinframes[view]).")
     parser.add_argument("--out", metavar="DIR", default=".",
                         help="folder for the CSV and PNG files (default: the current folder; "
                         "created if missing, but not its parent folders)")
@@ -117,9 +120,15 @@ def run(args: argparse.Namespace) -> int:
     write_poses(pose, "csv", str(out / POSES_FILE), frame=args.tool,
                 relative_to=args.workpiece)
     _plot(tree, pose, summary, args.tool, args.workpiece, out / PLOT_FILE)
+    written = [out / POSES_FILE, out / PLOT_FILE]
+    try:
+        write_view(tree, out / VIEW_FILE, paths={args.tool: args.workpiece})
+        written.append(out / VIEW_FILE)
+    except UnsupportedFeatureError as exc:  # meshcat is not installed: the page is optional
+        print(f"pinframes: no 3-D page: {exc}", file=sys.stderr)
     print(f"{args.tool} relative to {args.workpiece} ({scene.name})")
     sys.stdout.write(summary.table())
-    print(f"pinframes: wrote {out / POSES_FILE} and {out / PLOT_FILE}", file=sys.stderr)
+    print(f"pinframes: wrote {', '.join(map(str, written))}", file=sys.stderr)
     return 0
 
 

@@ -1,0 +1,115 @@
+"""Atomic file writes: write beside the target, then rename over it."""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import stat
+import tempfile
+from collections.abc import Iterator
+from pathlib import Path
+from typing import IO
+
+from ..errors import PinframesError, WriteError
+from ._paths import path_argument
+
+__all__ = ["atomic_write", "remove_stale_temporaries"]
+
+_TEMPORARY_PREFIX = ".pinframes-"
+_TEMPORARY_SUFFIX = ".tmp"
+
+
+@contextlib.contextmanager
+def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO]:
+    """Open a temporary file in the target's folder; on success rename it onto ``path``.
+
+    The folder must exist (no folders are created). A symbolic link is kept: the file it
+    points to is replaced. If the body raises, or writing fails, the temporary file is
+    removed and any existing file at ``path`` is left untouched; failures of the file
+    system are :class:`~pinframes.errors.WriteError` naming ``path``.
+    """
+    file = path_argument(path)
+    target = Path(os.path.realpath(file)) if os.path.islink(file) else Path(file)
+    folder = target.parent if str(target.parent) else Path(".")
+    _check_target(target, folder, file)
+    remove_stale_temporaries(folder)
+    try:
+        # a short name of our own: legal names up to 255 bytes get a temporary name that
+        # fits, and the writer's process id tells a later write whether it was left behind
+        fd, tmp_name = tempfile.mkstemp(prefix=f"{_TEMPORARY_PREFIX}{os.getpid()}-",
+                                        suffix=_TEMPORARY_SUFFIX, dir=folder)
+    except OSError as exc:
+        raise WriteError(f"cannot create a file here: {exc.strerror}", file=file) from exc
+    try:
+        try:
+            os.fchmod(fd, _mode_for(target))
+            handle = os.fdopen(fd, mode, **({} if "b" in mode else {"encoding": "utf-8"}))
+        except BaseException:
+            os.close(fd)
+            raise
+        with handle:
+            yield handle
+            handle.flush()
+            os.fsync(handle.fileno())
+        os.replace(tmp_name, target)
+    except BaseException as exc:
+        with contextlib.suppress(OSError):
+            os.unlink(tmp_name)
+        if isinstance(exc, OSError) and not isinstance(exc, PinframesError):
+            raise WriteError(f"cannot write: {exc.strerror or exc}", file=file) from exc
+        raise
+
+
+def _check_target(target: Path, folder: Path, file: str) -> None:
+    """Refuse a target that exists and is no regular file (a folder, a FIFO, a device such
+    as ``/dev/null``, which a rename would replace), or a missing folder."""
+    try:
+        mode = os.stat(target).st_mode
+    except FileNotFoundError:
+        mode = None
+    except OSError as exc:  # a name too long, a path through a file
+        raise WriteError(f"cannot write: {exc.strerror or exc}", file=file) from None
+    if mode is not None and stat.S_ISDIR(mode):
+        raise WriteError("is a folder, not a file", file=file)
+    if mode is not None and not stat.S_ISREG(mode):
+        raise WriteError("exists and is not a regular file (a device, FIFO or socket): "
+                         "pinframes replaces only regular files", file=file)
+    if not folder.is_dir():
+        raise WriteError(f"the folder does not exist: {os.fspath(folder)}", file=file)
+
+
+def remove_stale_temporaries(folder: Path) -> None:
+    """Delete temporary files in ``folder`` that writers killed before their rename left
+    behind: files of our naming whose process no longer runs."""
+    try:
+        entries = [entry.name for entry in os.scandir(folder)
+                   if entry.name.startswith(_TEMPORARY_PREFIX)
+                   and entry.name.endswith(_TEMPORARY_SUFFIX)]
+    except OSError:
+        return
+    for name in entries:
+        pid = name[len(_TEMPORARY_PREFIX):].split("-", 1)[0]
+        if pid.isdigit() and not _running(int(pid)):
+            with contextlib.suppress(OSError):
+                os.unlink(folder / name)
+
+
+def _running(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:  # it runs, as another user
+        return True
+    return True
+
+
+def _mode_for(target: Path) -> int:
+    """The permissions of the file being replaced, else what a new file gets (0o666 - umask);
+    ``mkstemp`` alone would leave every written file readable by its owner only."""
+    try:
+        return stat.S_IMODE(target.stat().st_mode)
+    except FileNotFoundError:
+        umask = os.umask(0)
+        os.umask(umask)
+        return 0o666 & ~umask

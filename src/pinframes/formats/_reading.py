@@ -1,0 +1,41 @@
+"""Reading a whole input file; every way that can fail is a :class:`ReadError` naming it."""
+
+from __future__ import annotations
+
+import os
+
+from ..errors import ReadError
+from ._paths import read_regular_file
+
+__all__ = ["read_bytes", "read_text"]
+
+
+def read_bytes(path: str | os.PathLike[str]) -> bytes:
+    """The bytes of the file at ``path``.
+
+    Raises
+    ------
+    ReadError
+        The path is missing, a folder, not a regular file (a device, a FIFO) or not
+        readable.
+    ArgumentTypeError
+        ``path`` is not a text path (``str`` or ``os.PathLike``).
+    """
+    return read_regular_file(path)
+
+
+def read_text(path: str | os.PathLike[str]) -> str:
+    """The text of the UTF-8 file at ``path`` (a leading byte order mark is dropped).
+
+    Raises
+    ------
+    ReadError
+        As :func:`read_bytes`, and for content that is not UTF-8 text (binary data,
+        another encoding); the message gives the byte offset.
+    """
+    raw = read_bytes(path)
+    try:
+        return raw.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise ReadError(f"not UTF-8 text (byte {exc.start}): binary data or another "
+                        "encoding", file=os.fspath(path)) from None
