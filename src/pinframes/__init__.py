@@ -7,6 +7,7 @@ from .errors import (
     FrameExistsError,
     FrameNotFoundError,
     FramesYamlWarning,
+    InvalidDataError,
     InvalidPoseError,
     InvalidTimeError,
     JointError,
@@ -28,6 +29,7 @@ from .tree import FrameTree
 from .values.joint import Joint, Mimic
 from .values.joint_trajectory import JointTrack, JointTrajectory
 from .values.pose import Pose
+from .values.spatial_data import SpatialData
 from .values.subsystem import Subsystem
 from .values.timeconv import TimeAxis
 
@@ -41,6 +43,7 @@ __all__ = [
     "FrameNotFoundError",
     "FrameTree",
     "FramesYamlWarning",
+    "InvalidDataError",
     "InvalidPoseError",
     "InvalidTimeError",
     "Joint",
@@ -55,6 +58,7 @@ __all__ = [
     "Pose",
     "ReadError",
     "ReferenceTimeError",
+    "SpatialData",
     "Subsystem",
     "TimeAxis",
     "TreeStructureError",
