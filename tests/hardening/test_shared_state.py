@@ -168,3 +168,20 @@ def test_composed_sampled_and_inverted_poses_are_immutable_too():
                 array[...] = 0.0
     np.testing.assert_allclose(a.at([1.0]).translation, [[1.0, 0.0, 0.0]])
     np.testing.assert_allclose(b.translation, [0.0, 1.0, 0.0])
+
+
+def test_spatial_data_arrays_are_copied_and_read_only():
+    from pinframes import SpatialData
+
+    points = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+    triangles = np.array([[0, 1, 2]])
+    temperature = np.array([20.0, 21.0, 22.0])
+    data = SpatialData(points, triangles, {"temperature": temperature})
+    points[0, 0] = triangles[0, 0] = temperature[0] = 9
+    assert points.flags.writeable  # the caller's own array stays theirs
+    np.testing.assert_array_equal(data.points[0], [0.0, 0.0, 0.0])
+    np.testing.assert_array_equal(data.triangles, [[0, 1, 2]])
+    np.testing.assert_array_equal(data.attributes["temperature"], [20.0, 21.0, 22.0])
+    for array in (data.points, data.triangles, data.attributes["temperature"]):
+        with pytest.raises(ValueError, match="read-only"):
+            array[0] = 5
