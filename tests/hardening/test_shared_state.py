@@ -185,3 +185,16 @@ def test_spatial_data_arrays_are_copied_and_read_only():
     for array in (data.points, data.triangles, data.attributes["temperature"]):
         with pytest.raises(ValueError, match="read-only"):
             array[0] = 5
+
+
+def test_a_pose_stack_and_the_poses_taken_from_it_are_read_only():
+    tree = static_tree()
+    tree.add("b", "a", Pose([0.0, 1.0, 0.0]))
+    stack = tree.poses(["a", "b"], relative_to="w")
+    first = stack[1]
+    for array in (stack.translation, stack.rotation, first.translation):
+        with pytest.raises(ValueError, match="read-only"):
+            array[...] = 0.0
+    # b in w: (1, 2, 3) + (0, 1, 0)
+    np.testing.assert_array_equal(tree.poses(["a", "b"], relative_to="w").translation,
+                                  [[1.0, 2.0, 3.0], [1.0, 3.0, 3.0]])
