@@ -12,6 +12,7 @@ from ...tree import FrameTree
 from ...values.joint import Joint, mimic_chain
 from ...values.rotations import rpy_from_matrix
 from .._atomic import atomic_write
+from .._writable import check_writable_tree
 from ._mount import URDF_METADATA_KEY, mount_robot
 from ._parse import parse_urdf
 
@@ -35,6 +36,7 @@ def write_urdf(tree: FrameTree, path: str | os.PathLike[str], time: Any = None) 
     contents (visuals, inertials, ``package://`` URIs) and unread joint elements are
     written back as they were read.
     """
+    check_writable_tree(tree, path)
     robot = ET.Element("robot", name=tree.name or tree.root)
     for kept in tree.metadata.get(URDF_METADATA_KEY, {}).values():
         for text in kept.get("extra_xml", ()):
