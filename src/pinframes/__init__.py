@@ -21,6 +21,7 @@ from .errors import (
 )
 from .formats import read, read_joint_trajectory, write
 from .formats.frames_yaml import read_frames_yaml, write_frames_yaml
+from .formats.limits import Limits
 from .formats.scene import read_scene, write_scene
 from .formats.urdf import read_urdf, write_urdf
 from .kinematics import FrameJacobian, PinocchioTree, Snapshot, Velocity
@@ -52,6 +53,7 @@ __all__ = [
     "JointLimitWarning",
     "JointTrack",
     "JointTrajectory",
+    "Limits",
     "Mimic",
     "PinframesError",
     "PinocchioTree",

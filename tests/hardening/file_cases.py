@@ -418,7 +418,7 @@ ASDF = [
     Case("empty", "asdf", "", FileFormatError, None, None, "not a readable ASDF file"),
     Case("binary-garbage", "asdf", GARBAGE, FileFormatError, None, None,
          "not a readable ASDF file"),
-    Case("missing", "asdf", MISSING, ReadError, None, None, "does not exist"),
+    Case("missing", "asdf", MISSING, ReadError, None, None, "no such file"),
     Case("folder", "asdf", FOLDER, ReadError, None, None, "is a folder"),
     Case("no-hierarchy", "asdf", asdf_text("csm: 1\n"), FileFormatError, None, None,
          "no weldx coordinate system hierarchy"),

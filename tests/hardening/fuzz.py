@@ -290,7 +290,22 @@ def _yaml_mutation(content: bytes, rng: random.Random) -> bytes | None:
         for _ in range(rng.choice((50, 1000, 20000))):
             deep = [deep] if rng.random() < 0.5 else {"k": deep}
         _set_random(rng.choice(holders), deep, rng)
+    if rng.random() < 0.1:
+        _set_random(rng.choice(holders), _alias_structure(rng), rng)
     return yaml.safe_dump(document, sort_keys=False, width=rng.choice((80, 10**6))).encode()
+
+
+def _alias_structure(rng: random.Random) -> list:
+    """A list that dumps as YAML aliases: each level repeats the one below (an alias bomb of
+    up to 10^9 nodes in a few hundred bytes), or a list that contains itself."""
+    if rng.random() < 0.3:
+        loop: list = []
+        loop.append(loop)
+        return loop
+    structure: list = [rng.choice(_ODD_VALUES)]
+    for _ in range(rng.choice((2, 5, 9))):
+        structure = [structure] * rng.choice((2, 10))
+    return structure
 
 
 def _containers(node: object) -> Iterator[dict | list]:
@@ -435,6 +450,10 @@ def _asdf_mutation(content: bytes, rng: random.Random) -> bytes | None:
     tags = sorted({node.tag for node in _nodes(document)} | set(_ODD_TAGS))
     for _ in range(rng.choice((1, 1, 2, 3))):
         _mutate_node(rng.choice(holders), holders, tags, rng)
+    if rng.random() < 0.15:
+        _extreme_grid(document, rng)
+    if rng.random() < 0.1:
+        _alias_node(rng.choice(holders), rng)
     headers = b"".join(line for line in yaml_part.splitlines(keepends=True)
                        if line.startswith(b"#"))
     text = yaml.serialize(document, version=(1, 1), tags=_ASDF_TAG_HANDLES,
@@ -496,6 +515,52 @@ def _mutate_node(holder: yaml.Node, holders: list[yaml.Node], tags: list[str],
             taken = taken[1] if isinstance(donor, yaml.MappingNode) else taken
             items[index] = (items[index][0], copy.deepcopy(taken)) if mapping \
                 else copy.deepcopy(taken)
+
+
+_GRID_ENDS = ("P0DT0H0M0.5S", "P1DT0H0M0S", "P36500DT0H0M0S", "P-1DT0H0M0S", "P0DT0H0M0S")
+_GRID_FREQUENCIES = ("1N", "1U", "1L", "3N", "0N", "-1N", "N", "99999999999999999999N", "1S")
+
+
+def _extreme_grid(document: yaml.Node, rng: random.Random) -> None:
+    """Turn one weldx time index into a regular grid ``{start, end, freq}`` with an extreme
+    step or span (a 1 ns step over 0.5 s asks for 500 million samples)."""
+    indexes = [node for node in _nodes(document)
+               if isinstance(node, yaml.MappingNode) and "timedeltaindex" in (node.tag or "")]
+    if not indexes:
+        return
+    index = rng.choice(indexes)
+    duration_tag = index.tag.replace("timedeltaindex", "timedelta")
+    legacy = index.tag.endswith("-1.0.0")
+
+    def duration(text: str) -> yaml.Node:
+        if legacy:
+            return yaml.MappingNode(duration_tag, [(_plain("value"), _plain(text))])
+        return yaml.ScalarNode(duration_tag, text)
+
+    index.value = [(_plain("start"), duration("P0DT0H0M0S")),
+                   (_plain("end"), duration(rng.choice(_GRID_ENDS))),
+                   (_plain("freq"), _plain(rng.choice(_GRID_FREQUENCIES)))]
+
+
+def _plain(text: str) -> yaml.ScalarNode:
+    return yaml.ScalarNode("tag:yaml.org,2002:str", text)
+
+
+def _alias_node(holder: yaml.Node, rng: random.Random) -> None:
+    """Put an alias structure (see :func:`_alias_structure`) into ``holder`` as nodes: the
+    serializer writes a node met twice as an anchor and aliases."""
+    sequence = "tag:yaml.org,2002:seq"
+    if rng.random() < 0.3:
+        structure = yaml.SequenceNode(sequence, [])
+        structure.value.append(structure)
+    else:
+        structure = _odd_node(rng)
+        for _ in range(rng.choice((2, 5, 9))):
+            structure = yaml.SequenceNode(sequence, [structure] * rng.choice((2, 10)))
+    if isinstance(holder, yaml.MappingNode):
+        holder.value.append((_plain(f"alias{rng.randrange(1000)}"), structure))
+    else:
+        holder.value.append(structure)
 
 
 _STRUCTURE: dict[str, Callable[[bytes, random.Random], bytes | None]] = {

@@ -12,9 +12,11 @@ import os
 import sys
 import traceback
 from collections.abc import Sequence
+from dataclasses import fields
 
 from .. import __version__
 from ..errors import PinframesError
+from ..formats.limits import Limits, using_limits
 from . import batch, convert, demo, info, plot, pose, transform, view
 
 __all__ = ["main"]
@@ -27,7 +29,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = _parser()
     args = parser.parse_args(argv)
     try:
-        return args.run(args)
+        with using_limits(_limits(args)):
+            return args.run(args)
     except BrokenPipeError:
         # the reader of our output went away (``pinframes pose ... | head``): stop quietly
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
@@ -54,10 +57,27 @@ def _parser() -> argparse.ArgumentParser:
     verbose = argparse.ArgumentParser(add_help=False)
     verbose.add_argument("-v", "--verbose", action="store_true", default=argparse.SUPPRESS,
                          help="print the traceback of an error")
+    for options, default in ((parser, None), (verbose, argparse.SUPPRESS)):
+        _add_limit_options(options, default)
     subparsers = parser.add_subparsers(title="subcommands", metavar="SUBCOMMAND", required=True)
     for module in _SUBCOMMANDS:
         module.add_parser(subparsers, [verbose])
     return parser
+
+
+def _add_limit_options(parser: argparse.ArgumentParser, default: object) -> None:
+    """``--max-samples`` and the other bounds of :class:`pinframes.Limits`, for trusted
+    files that need more than the defaults."""
+    for item in fields(Limits):
+        parser.add_argument("--" + item.name.replace("_", "-"), type=int, default=default,
+                            metavar="N", help=f"raise the reader limit {item.name} "
+                            f"(default {getattr(Limits(), item.name):,}; see README)")
+
+
+def _limits(args: argparse.Namespace) -> Limits | None:
+    given = {item.name: getattr(args, item.name) for item in fields(Limits)
+             if getattr(args, item.name, None) is not None}
+    return Limits(**given) if given else None
 
 
 def _one_line(exc: BaseException) -> str:

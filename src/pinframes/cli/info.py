@@ -53,12 +53,16 @@ def describe(tree: FrameTree) -> str:
 
 
 def _walk(tree: FrameTree, name: str, prefix: str, child_prefix: str):
-    yield prefix, name
-    children = tree.children(name)
-    for position, child in enumerate(children):
-        last = position == len(children) - 1
-        yield from _walk(tree, child, child_prefix + ("`-- " if last else "|-- "),
-                         child_prefix + ("    " if last else "|   "))
+    """``(prefix, frame)`` depth first, with a stack: trees may be thousands of frames deep."""
+    stack = [(name, prefix, child_prefix)]
+    while stack:
+        name, prefix, child_prefix = stack.pop()
+        yield prefix, name
+        children = tree.children(name)
+        for position in reversed(range(len(children))):
+            last = position == len(children) - 1
+            stack.append((children[position], child_prefix + ("`-- " if last else "|-- "),
+                          child_prefix + ("    " if last else "|   ")))
 
 
 def _frame_columns(tree: FrameTree, name: str) -> tuple[str, str, str]:

@@ -11,8 +11,12 @@ from pathlib import Path
 from typing import IO
 
 from ..errors import PinframesError, WriteError
+from ._paths import path_argument
 
-__all__ = ["atomic_write"]
+__all__ = ["atomic_write", "remove_stale_temporaries"]
+
+_TEMPORARY_PREFIX = ".pinframes-"
+_TEMPORARY_SUFFIX = ".tmp"
 
 
 @contextlib.contextmanager
@@ -24,18 +28,18 @@ def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO]
     removed and any existing file at ``path`` is left untouched; failures of the file
     system are :class:`~pinframes.errors.WriteError` naming ``path``.
     """
-    target = Path(os.path.realpath(path)) if os.path.islink(path) else Path(path)
+    file = path_argument(path)
+    target = Path(os.path.realpath(file)) if os.path.islink(file) else Path(file)
     folder = target.parent if str(target.parent) else Path(".")
-    if target.is_dir():
-        raise WriteError("is a folder, not a file", file=os.fspath(path))
-    if not folder.is_dir():
-        raise WriteError(f"the folder does not exist: {os.fspath(folder)}",
-                         file=os.fspath(path))
+    _check_target(target, folder, file)
+    remove_stale_temporaries(folder)
     try:
-        fd, tmp_name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=folder)
+        # a short name of our own: legal names up to 255 bytes get a temporary name that
+        # fits, and the writer's process id tells a later write whether it was left behind
+        fd, tmp_name = tempfile.mkstemp(prefix=f"{_TEMPORARY_PREFIX}{os.getpid()}-",
+                                        suffix=_TEMPORARY_SUFFIX, dir=folder)
     except OSError as exc:
-        raise WriteError(f"cannot create a file here: {exc.strerror}",
-                         file=os.fspath(path)) from exc
+        raise WriteError(f"cannot create a file here: {exc.strerror}", file=file) from exc
     try:
         try:
             os.fchmod(fd, _mode_for(target))
@@ -52,9 +56,52 @@ def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO]
         with contextlib.suppress(OSError):
             os.unlink(tmp_name)
         if isinstance(exc, OSError) and not isinstance(exc, PinframesError):
-            raise WriteError(f"cannot write: {exc.strerror or exc}",
-                             file=os.fspath(path)) from exc
+            raise WriteError(f"cannot write: {exc.strerror or exc}", file=file) from exc
         raise
+
+
+def _check_target(target: Path, folder: Path, file: str) -> None:
+    """Refuse a target that exists and is no regular file (a folder, a FIFO, a device such
+    as ``/dev/null``, which a rename would replace), or a missing folder."""
+    try:
+        mode = os.stat(target).st_mode
+    except FileNotFoundError:
+        mode = None
+    except OSError as exc:  # a name too long, a path through a file
+        raise WriteError(f"cannot write: {exc.strerror or exc}", file=file) from None
+    if mode is not None and stat.S_ISDIR(mode):
+        raise WriteError("is a folder, not a file", file=file)
+    if mode is not None and not stat.S_ISREG(mode):
+        raise WriteError("exists and is not a regular file (a device, FIFO or socket): "
+                         "pinframes replaces only regular files", file=file)
+    if not folder.is_dir():
+        raise WriteError(f"the folder does not exist: {os.fspath(folder)}", file=file)
+
+
+def remove_stale_temporaries(folder: Path) -> None:
+    """Delete temporary files in ``folder`` that writers killed before their rename left
+    behind: files of our naming whose process no longer runs."""
+    try:
+        entries = [entry.name for entry in os.scandir(folder)
+                   if entry.name.startswith(_TEMPORARY_PREFIX)
+                   and entry.name.endswith(_TEMPORARY_SUFFIX)]
+    except OSError:
+        return
+    for name in entries:
+        pid = name[len(_TEMPORARY_PREFIX):].split("-", 1)[0]
+        if pid.isdigit() and not _running(int(pid)):
+            with contextlib.suppress(OSError):
+                os.unlink(folder / name)
+
+
+def _running(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:  # it runs, as another user
+        return True
+    return True
 
 
 def _mode_for(target: Path) -> int:

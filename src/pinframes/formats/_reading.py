@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import os
 
-from ..errors import ArgumentTypeError, ReadError
+from ..errors import ReadError
+from ._paths import read_regular_file
 
 __all__ = ["read_bytes", "read_text"]
 
@@ -15,25 +16,12 @@ def read_bytes(path: str | os.PathLike[str]) -> bytes:
     Raises
     ------
     ReadError
-        The path is missing, a folder or not readable.
+        The path is missing, a folder, not a regular file (a device, a FIFO) or not
+        readable.
     ArgumentTypeError
-        ``path`` is not a path.
+        ``path`` is not a text path (``str`` or ``os.PathLike``).
     """
-    try:
-        file = os.fspath(path)
-    except TypeError:
-        raise ArgumentTypeError(f"expected a file path, got {type(path).__name__}",
-                                field="path") from None
-    try:
-        with open(file, "rb") as handle:
-            return handle.read()
-    except FileNotFoundError:
-        raise ReadError("no such file", file=file) from None
-    except IsADirectoryError:
-        raise ReadError("is a folder, not a file", file=file) from None
-    except (OSError, ValueError) as exc:  # ValueError: a NUL character in the path
-        reason = exc.strerror if isinstance(exc, OSError) and exc.strerror else str(exc)
-        raise ReadError(f"cannot read: {reason}", file=file) from None
+    return read_regular_file(path)
 
 
 def read_text(path: str | os.PathLike[str]) -> str:

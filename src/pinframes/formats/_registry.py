@@ -14,8 +14,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..errors import ArgumentTypeError, FileFormatError, ReadError
+from ..errors import FileFormatError
+from ._paths import check_regular_file, path_argument
 from ._yaml_loader import load_yaml
+from .limits import using_limits
 
 __all__ = [
     "FileFormat",
@@ -141,16 +143,15 @@ def detect_format(
 def read(path: str | os.PathLike[str], format: str | None = None, **options: Any) -> Any:
     """Read the tree in ``path``, in ``format`` (default: told from the file).
 
-    ``options`` go to the format's reader (``key=`` for ASDF).
+    ``options`` go to the format's reader (``key=`` for ASDF); ``limits=`` (a
+    :class:`pinframes.Limits`) bounds the read, for every format.
     """
-    _check_path(path)
-    if not Path(path).is_file():
-        raise ReadError("is a folder, not a file" if Path(path).is_dir() else "no such file",
-                        file=path)
-    entry = file_format(format) if format is not None else file_format(detect_format(path))
-    if entry.read is None:
-        raise FileFormatError(f"pinframes does not read {entry.title} files", file=path)
-    return entry.read(path, **options)
+    with using_limits(options.pop("limits", None)):
+        check_regular_file(path)
+        entry = file_format(format) if format is not None else file_format(detect_format(path))
+        if entry.read is None:
+            raise FileFormatError(f"pinframes does not read {entry.title} files", file=path)
+        return entry.read(path, **options)
 
 
 def write(tree: Any, path: str | os.PathLike[str], format: str | None = None,
@@ -181,5 +182,4 @@ def formats_taking(option: str) -> list[FileFormat]:
 
 
 def _check_path(path: object) -> None:
-    if not isinstance(path, (str, os.PathLike)):
-        raise ArgumentTypeError(f"expected a path, got {type(path).__name__}", field="path")
+    path_argument(path)

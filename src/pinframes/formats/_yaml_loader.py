@@ -9,6 +9,7 @@ syntax errors (with their line) and tags it has no constructor for (``!include``
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Callable, Hashable
 from typing import Any
 
@@ -16,6 +17,7 @@ import yaml
 
 from ..errors import FileFormatError
 from ._reading import read_text
+from ._yaml_size import check_yaml_size
 
 __all__ = ["KeyPath", "Locate", "load_yaml"]
 
@@ -59,6 +61,7 @@ def load_yaml(path: str | os.PathLike[str], locate: Locate = _dotted) -> Any:
         node = loader.get_single_node()
         if node is None:
             return None
+        check_yaml_size(node, file)  # aliases: before anything expands them
         loader.check_tags_and_index(node, ())
         return loader.construct_document(node)
     except yaml.MarkedYAMLError as exc:
@@ -121,6 +124,29 @@ class _StrictLoader(yaml.SafeLoader):
             if isinstance(key, Hashable):
                 first_lines[key] = line
         return super().construct_mapping(node, deep=deep)
+
+
+_AMBIGUOUS_NUMBER = re.compile(r"^[-+]?(0[0-7_]+|[0-9][0-9_]*(:[0-5]?[0-9])+(\.[0-9_]*)?)$")
+"""YAML 1.1 numbers that other readers take differently: ``010`` is octal 8 and ``1:30``
+base-60 90 for PyYAML, but 10 and a string for YAML 1.2 readers."""
+
+
+def _unambiguous(construct: Callable[[yaml.SafeLoader, yaml.ScalarNode], Any]
+                 ) -> Callable[[_StrictLoader, yaml.ScalarNode], Any]:
+    """``construct``, refusing the YAML 1.1 octal and base-60 forms of numbers."""
+    def strict(loader: _StrictLoader, node: yaml.ScalarNode) -> Any:
+        if _AMBIGUOUS_NUMBER.match(node.value):
+            raise FileFormatError(
+                f"the number {node.value!r} at line {node.start_mark.line + 1} is read as "
+                f"{construct(loader, node)!r} by YAML 1.1 (octal or base 60) and differently "
+                "by YAML 1.2 readers: quote it, or write it in decimal", file=loader._file)
+        return construct(loader, node)
+    return strict
+
+
+for _tag, _construct in (("tag:yaml.org,2002:int", yaml.SafeLoader.construct_yaml_int),
+                         ("tag:yaml.org,2002:float", yaml.SafeLoader.construct_yaml_float)):
+    _StrictLoader.add_constructor(_tag, _unambiguous(_construct))
 
 
 def _syntax_message(exc: yaml.MarkedYAMLError) -> str:

@@ -15,17 +15,21 @@ from __future__ import annotations
 
 import csv
 import io
+import math
 import os
 import zipfile
 import zlib
+from typing import IO
 
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import FileFormatError, InvalidTimeError
+from ..errors import FileFormatError, InvalidTimeError, PinframesError
 from ..values.timeconv import parse_time_axis
+from ._paths import path_argument
 from ._reading import read_bytes, read_text
 from ._registry import detect_format, file_format
+from .limits import Limits, current_limits, exceeded, reader_with_limits
 
 __all__ = [
     "JOINT_TRAJECTORY",
@@ -44,10 +48,14 @@ _TIME_COLUMNS = ("time_s", "time")
 _ARCHIVE_ERRORS = (ValueError, EOFError, OSError, zipfile.BadZipFile, zlib.error, RuntimeError)
 
 
+@reader_with_limits
 def read_joint_trajectory(
-    path: str | os.PathLike[str],
+    path: str | os.PathLike[str], *, limits: Limits | None = None,
 ) -> tuple[np.ndarray, NDArray[np.float64], list[str]]:
     """Read joint values over time from a ``.csv`` or ``.npz`` file.
+
+    ``limits`` bounds the rows (``max_samples``) and the decompressed size of an NPZ
+    (``max_decompressed_bytes``); see :class:`pinframes.Limits`.
 
     Returns
     -------
@@ -66,6 +74,7 @@ def read_joint_trajectory(
     ReadError
         The file is missing, a folder, unreadable, or (CSV) not UTF-8 text.
     """
+    path = path_argument(path)
     reader = file_format(detect_format(path, kind=JOINT_TRAJECTORY), JOINT_TRAJECTORY).read
     assert reader is not None
     times, positions, names = reader(path)
@@ -142,6 +151,7 @@ def read_npz_trajectory(
 ) -> tuple[np.ndarray, NDArray[np.float64], list[str]]:
     """Times, positions and joint names of a ``.npz`` joint trajectory file."""
     content = read_bytes(path)
+    _check_npz_sizes(content, path)
     try:
         archive = np.load(io.BytesIO(content), allow_pickle=False)
     except _ARCHIVE_ERRORS as exc:
@@ -178,6 +188,49 @@ def read_npz_trajectory(
     return times, positions.astype(float), name_list
 
 
+def _check_npz_sizes(content: bytes, path: str | os.PathLike[str]) -> None:
+    """Refuse an NPZ that is no ZIP archive, or whose arrays would decompress to more than
+    ``max_decompressed_bytes``, from the sizes its ZIP directory and ``.npy`` headers
+    declare, before numpy allocates or inflates anything (zipfile never yields more bytes
+    than a member declares)."""
+    if not zipfile.is_zipfile(io.BytesIO(content)):
+        raise FileFormatError("not a readable NPZ file: not a ZIP archive (numpy.savez "
+                              "writes one)", file=path)
+    limit = current_limits().max_decompressed_bytes
+    total = 0
+    try:
+        with zipfile.ZipFile(io.BytesIO(content)) as archive:
+            for info in archive.infolist():
+                total += info.file_size
+                if total > limit:
+                    raise exceeded("max_decompressed_bytes", f"the archive's members "
+                                   f"decompress to more than {limit:,} bytes",
+                                   field=info.filename).located(file=path)
+                if info.filename.endswith(".npy"):
+                    with archive.open(info) as member:
+                        declared = _npy_bytes(member)
+                    if declared > info.file_size:
+                        raise FileFormatError(
+                            f"the array header declares {declared:,} bytes, but the member "
+                            f"holds {info.file_size:,}", file=path, field=info.filename)
+    except PinframesError:
+        raise
+    except _ARCHIVE_ERRORS as exc:
+        raise FileFormatError(f"not a readable NPZ file: {exc}", file=path) from None
+
+
+def _npy_bytes(member: IO[bytes]) -> int:
+    """The bytes of the array whose ``.npy`` header starts ``member``."""
+    version = np.lib.format.read_magic(member)
+    if version == (1, 0):
+        shape, _, dtype = np.lib.format.read_array_header_1_0(member)
+    elif version == (2, 0):
+        shape, _, dtype = np.lib.format.read_array_header_2_0(member)
+    else:
+        raise ValueError(f".npy format version {version} is not read (1.0 and 2.0 are)")
+    return math.prod(shape) * dtype.itemsize
+
+
 def _check_names(names: list[str], path: str | os.PathLike[str], field: str) -> None:
     if not names:
         raise FileFormatError("no joint columns: expected one column per joint", file=path,
@@ -192,6 +245,9 @@ def _check_names(names: list[str], path: str | os.PathLike[str], field: str) -> 
 
 
 def _check_times(times: np.ndarray, path: str | os.PathLike[str]) -> None:
+    if times.shape[0] > current_limits().max_samples:
+        raise exceeded("max_samples", f"{times.shape[0]:,} samples",
+                       field="times").located(file=path)
     if times.dtype.kind == "f" and not np.all(np.isfinite(times)):
         raise FileFormatError(f"time at sample {int(np.argmin(np.isfinite(times))) + 1} is not "
                               "finite", file=path, field="times")

@@ -9,6 +9,7 @@ belongs to.
 
 from __future__ import annotations
 
+import contextlib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
@@ -119,8 +120,12 @@ class TreeDescription:
 
     def store(self, key: tuple[str, str], prepared: Any) -> None:
         """Keep a prepared query path for this version of the tree."""
+        # Queries may run in several threads at once: two of them may pick the same oldest
+        # entry, or one may insert while another iterates, so eviction tolerates both races
+        # (the cache may then exceed its limit by a few entries) instead of taking a lock.
         if len(self._evaluations) >= _CACHE_LIMIT:
-            del self._evaluations[next(iter(self._evaluations))]
+            with contextlib.suppress(KeyError, RuntimeError, StopIteration):
+                self._evaluations.pop(next(iter(self._evaluations)))
         self._evaluations[key] = prepared
 
 

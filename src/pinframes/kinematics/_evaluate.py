@@ -180,7 +180,9 @@ def _requested_times(tree: TreeDescription, times: Any) -> TimeAxis | None:
     if isinstance(times, str) and times in tree.depths:
         if not tree.is_moving(times):
             raise InvalidTimeError(f"frame {times!r} does not move, so it has no times to "
-                                   "take", field="times")
+                                   "take (a string naming a frame means that frame's "
+                                   "keyframe times; pass seconds as a number or as '5s')",
+                                   field="times")
         pose = tree.local_poses[times]
         reference = pose.reference_time if pose.reference_time is not None else (
             tree.reference_time)

@@ -110,7 +110,8 @@ class FrameTree:
         return len(self._children)
 
     def __iter__(self) -> Iterator[str]:
-        return iter(self._children)
+        """The frame names when iteration starts (the tree may change meanwhile)."""
+        return iter(list(self._children))
 
     def __repr__(self) -> str:
         moving = sum(1 for pose in self._local.values() if pose.is_time_dependent)

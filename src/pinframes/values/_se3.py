@@ -19,6 +19,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from ._readonly import readonly
+
 __all__ = [
     "IDENTITY",
     "Transform",
@@ -32,8 +34,9 @@ __all__ = [
 
 FloatArray = NDArray[np.float64]
 Transform = tuple[FloatArray, FloatArray]
-IDENTITY: Transform = (np.eye(3), np.zeros(3))
-"""The identity; :func:`compose` skips it by object identity, so share this one object."""
+IDENTITY: Transform = (readonly(np.eye(3)), readonly(np.zeros(3)))
+"""The identity; :func:`compose` skips it by object identity, so share this one object
+(read-only: queries hand its arrays out)."""
 
 
 def canonical(transform: Transform) -> Transform:

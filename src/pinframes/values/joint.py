@@ -23,6 +23,9 @@ JOINT_KINDS = ("revolute", "continuous", "prismatic")
 """Joint kinds driven by one value each."""
 
 _AXIS_TOLERANCE = 1e-12
+MIMIC_BOUND = 1e6
+"""Largest mimic multiplier and offset: a coupling beyond it is no mechanism, and its
+products overflow to infinite or NaN poses long before floats run out."""
 
 
 @dataclass(frozen=True)
@@ -32,6 +35,19 @@ class Mimic:
     joint: str
     multiplier: float = 1.0
     offset: float = 0.0
+
+    def __post_init__(self) -> None:
+        for field in ("multiplier", "offset"):
+            value = getattr(self, field)
+            try:
+                number = float(value) if not isinstance(value, (str, bytes)) else None
+            except (TypeError, ValueError, OverflowError):
+                number = None
+            if number is None or not abs(number) <= MIMIC_BOUND:
+                raise JointError(f"a mimic {field} must be a number of magnitude at most "
+                                 f"{MIMIC_BOUND:g}, got {value!r} (mimic of joint {self.joint!r})",
+                                 field=f"mimic.{field}")
+            object.__setattr__(self, field, number)
 
 
 @dataclass(frozen=True)
@@ -67,7 +83,10 @@ class Joint:
         if self.kind not in JOINT_KINDS:
             raise JointError(f"unknown joint kind {self.kind!r}; expected one of {JOINT_KINDS}",
                              frame=self.name, field="type")
-        axis = np.asarray(self.axis, dtype=float)
+        try:
+            axis = np.asarray(self.axis, dtype=float)
+        except (TypeError, ValueError):
+            axis = np.zeros(0)
         norm = float(np.linalg.norm(axis))
         if axis.shape != (3,) or not np.isfinite(norm) or norm < 1e-9:
             raise JointError(f"axis must be a non-zero 3-vector, got {self.axis!r}",

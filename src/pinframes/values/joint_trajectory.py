@@ -12,6 +12,7 @@ from numpy.typing import NDArray
 
 from ..errors import ArgumentTypeError, InvalidTimeError, JointError, JointLimitWarning
 from ._interpolation import segment_positions
+from ._readonly import readonly_copy
 from .joint import Joint
 from .timeconv import parse_time_axis
 
@@ -31,11 +32,17 @@ class JointTrajectory:
     values : ndarray, shape (T,)
         Radians or metres. Continuous joints are stored unwrapped, so that linear
         interpolation takes the short way round.
+
+    Immutable: ``times`` and ``values`` are read-only copies of the arrays given.
     """
 
     times: NDArray[np.int64]
     reference: np.datetime64 | None
     values: NDArray[np.float64]
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "times", readonly_copy(self.times))
+        object.__setattr__(self, "values", readonly_copy(self.values))
 
     def sample(
         self, times: NDArray[np.int64],

@@ -14,6 +14,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InvalidPoseError, InvalidTimeError, ReferenceTimeError
 from ._interpolation import Keyframes
+from ._readonly import readonly
 from ._se3 import compose, inverse, samples_first, samples_last
 from ._timeline import QueryTimeline, TimedSource, plan_query_timeline
 from ._transform_data import transform_data
@@ -60,7 +61,9 @@ class Pose:
         unless it is given.
 
     A static translation or rotation broadcasts against a time-dependent other part.
-    Poses are immutable.
+    Poses are immutable: the arrays given are copied, and the arrays a pose hands out
+    (``translation``, ``rotation``) are read-only views of its own, so writing into them
+    raises numpy's ``ValueError``; copy them (``np.array(pose.translation)``) to edit.
     """
 
     __slots__ = ("_keyframes", "_reference", "_rotation", "_times", "_translation")
@@ -78,9 +81,10 @@ class Pose:
         count = None if axis is None else axis.offsets.shape[0]
         translation_array = _broadcast_part(translation_array, (3,), count, "translation")
         rotation_array = _broadcast_part(rotation_array, (3, 3), count, "rotation")
-        self._translation = translation_array
-        self._rotation = rotation_array
-        self._times = None if axis is None else axis.offsets
+        # the arrays above are this pose's own copies (np.array and astype copy)
+        self._translation = readonly(translation_array)
+        self._rotation = readonly(rotation_array)
+        self._times = None if axis is None else readonly(axis.offsets)
         self._reference = None if axis is None else axis.reference
         self._keyframes: Keyframes | None = None
 
@@ -93,11 +97,15 @@ class Pose:
         times: NDArray[np.int64] | None = None,
         reference: np.datetime64 | None = None,
     ) -> Pose:
-        """Wrap arrays that are known to be valid, without checks or copies."""
+        """Wrap arrays that are known to be valid, without checks or copies.
+
+        The arrays are marked read-only: they must be new, or already read-only (caches
+        and other poses share them); never an array a caller may still write into.
+        """
         pose = cls.__new__(cls)
-        pose._translation = translation
-        pose._rotation = rotation
-        pose._times = times
+        pose._translation = readonly(translation)
+        pose._rotation = readonly(rotation)
+        pose._times = None if times is None else readonly(times)
         pose._reference = reference
         pose._keyframes = None
         return pose

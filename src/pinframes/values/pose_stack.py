@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ._readonly import readonly
 from .pose import Pose, trusted_pose
 
 __all__ = ["PoseStack"]
@@ -30,12 +31,20 @@ class PoseStack:
     offsets : ndarray of int64, shape (T,), or None
         Nanoseconds after :attr:`reference_time`; None for static poses.
     reference_time : numpy.datetime64 or None
+
+    Immutable like :class:`Pose`: the arrays are marked read-only (they are the stack's
+    own; the poses ``stack[i]`` are views of them).
     """
 
     rotation: NDArray[np.float64]
     translation: NDArray[np.float64]
     offsets: NDArray[np.int64] | None = None
     reference_time: np.datetime64 | None = None
+
+    def __post_init__(self) -> None:
+        for array in (self.rotation, self.translation, self.offsets):
+            if array is not None:
+                readonly(array)
 
     @property
     def matrix(self) -> NDArray[np.float64]:

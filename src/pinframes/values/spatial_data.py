@@ -16,6 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InvalidDataError
+from ._readonly import readonly, readonly_copy
 from .lengths import metres
 from .pose import Pose, _time_axis
 
@@ -63,16 +64,19 @@ class SpatialData:
         self._points = array
         self._times = None if axis is None else axis.offsets
         self._reference = None if axis is None else axis.reference
-        self._triangles = None if triangles is None else _triangles(triangles, count)
-        self._attributes = {str(name): _attribute(name, value, array.shape[-2], count)
+        # read-only copies: the arrays handed out cannot change the data behind its back
+        self._triangles = None if triangles is None else readonly_copy(
+            _triangles(triangles, count))
+        self._attributes = {str(name): readonly_copy(_attribute(name, value, array.shape[-2],
+                                                                count))
                             for name, value in (attributes or {}).items()}
-        self._points.flags.writeable = False
+        readonly(self._points)
 
     def with_points(self, points: FloatArray, times: NDArray[np.int64] | None,
                     reference: np.datetime64 | None) -> SpatialData:
         """The same triangles and attributes over other points (already checked)."""
         data = SpatialData.__new__(SpatialData)
-        data._points, data._times, data._reference = points, times, reference
+        data._points, data._times, data._reference = readonly(points), times, reference
         data._triangles, data._attributes = self._triangles, self._attributes
         return data
 

@@ -206,6 +206,8 @@ def _parse_elements(items: list[Any], original: Any, field: str) -> np.ndarray:
 def _parse_one(item: Any, field: str) -> np.generic:
     if isinstance(item, np.generic) and item.dtype.kind in "mM":
         return item
+    if isinstance(item, _dt.date) and item != item:  # pandas.NaT is a datetime unequal to itself
+        raise InvalidTimeError("not-a-time (NaT) values", field=field)
     if isinstance(item, _dt.datetime):
         if item.tzinfo is not None:
             item = item.astimezone(_dt.timezone.utc).replace(tzinfo=None)
@@ -298,6 +300,9 @@ def _in_nanoseconds(array: np.ndarray, field: str) -> np.ndarray:
     """
     kind = "datetime64" if array.dtype.kind == "M" else "timedelta64"
     unit, _ = np.datetime_data(array.dtype)
+    if kind == "timedelta64" and unit in ("Y", "M"):  # numpy would take an average length
+        raise InvalidTimeError(f"durations in {'years' if unit == 'Y' else 'months'} have no "
+                               "fixed length; give them in days or smaller units", field=field)
     if unit not in ("ns", "ps", "fs", "as", "generic"):
         values = array.astype(np.int64)
         values = values[values != np.iinfo(np.int64).min]  # NaT, reported by the callers

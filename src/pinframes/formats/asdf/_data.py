@@ -26,6 +26,7 @@ from ...values.spatial_data import SpatialData
 from ._decode import (
     DECODING_ERRORS,
     as_list,
+    check_array_bytes,
     first_line,
     float_array,
     raw_tag,
@@ -135,6 +136,7 @@ def _scale(unit: Any, field: str) -> float:
 
 
 def _array(value: Any, field: str) -> np.ndarray:
+    check_array_bytes(value, field)
     try:
         return np.array(value)
     except DECODING_ERRORS as exc:

@@ -8,6 +8,7 @@ Times come out as int64 nanoseconds (SPEC section 7).
 from __future__ import annotations
 
 import contextlib
+import math
 import os
 import re
 import warnings
@@ -19,7 +20,10 @@ from numpy.typing import NDArray
 
 from ...errors import FileFormatError, PinframesError, ReadError
 from ...values.timeconv import parse_timedelta, parse_timestamp
+from .._paths import check_regular_file
+from ..limits import current_limits, exceeded
 from ._asdf_config import temporary_asdf_config
+from ._bounds import check_asdf_yaml
 from ._depth import MAX_GRAPH_DEPTH, deepest_frame_in_yaml, recursion_room, too_deep
 
 __all__ = [
@@ -68,9 +72,7 @@ def open_raw_tree(path: str | os.PathLike[str]) -> Iterator[dict[str, Any]]:
     """
     import asdf
 
-    if not os.path.isfile(path):
-        reason = "is a folder" if os.path.isdir(path) else "does not exist"
-        raise ReadError(f"cannot read the file: it {reason}", file=path)
+    check_asdf_yaml(check_regular_file(path))
     with temporary_asdf_config() as config, warnings.catch_warnings():
         for extension in config.extensions:
             if (extension.extension_uri or "").startswith(_WELDX_EXTENSION_PREFIX):
@@ -133,11 +135,34 @@ def as_list(value: Any, field: str) -> list[Any]:
 
 def float_array(value: Any, field: str) -> NDArray[np.float64]:
     """An ndarray (inline, in a binary block, or a plain number/list) as a float array."""
+    check_array_bytes(value, field)
     try:
         return np.array(value, dtype=float)
     except DECODING_ERRORS as exc:
         raise FileFormatError(f"cannot read the numbers: {first_line(exc)}",
                               field=field) from None
+
+
+def check_array_bytes(value: Any, field: str) -> None:
+    """Refuse an array stored in a binary block whose declared shape and dtype exceed
+    ``max_decompressed_bytes``, before asdf reads (and decompresses) the block.
+
+    Inline arrays are bounded already by the YAML node limit; what asdf cannot tell without
+    loading (streamed blocks) is left to asdf.
+    """
+    shape, dtype = getattr(value, "_shape", None), getattr(value, "_dtype", None)
+    if not isinstance(shape, (list, tuple)) or not all(
+            isinstance(n, int) and not isinstance(n, bool) for n in shape):
+        return
+    try:
+        itemsize = np.dtype(dtype).itemsize
+    except TypeError:
+        return
+    size = math.prod(shape) * itemsize
+    if size > current_limits().max_decompressed_bytes:
+        raise exceeded("max_decompressed_bytes",
+                       f"the array of shape {tuple(shape)} ({dtype}) takes {size:,} bytes",
+                       field=field)
 
 
 def timestamp(value: Any, field: str) -> np.datetime64:
@@ -157,6 +182,7 @@ def time_index_ns(node: Any, field: str) -> NDArray[np.int64]:
     ``start + k * freq`` up to ``end``, as pandas' ``timedelta_range`` makes it.
     """
     if isinstance(node, dict) and "values" in node:
+        check_array_bytes(node["values"], f"{field}.values")
         try:
             values = np.array(node["values"])
         except DECODING_ERRORS as exc:
@@ -166,6 +192,11 @@ def time_index_ns(node: Any, field: str) -> NDArray[np.int64]:
             raise FileFormatError(
                 f"expected a 1-D array of integer nanoseconds, got {values.dtype} of shape "
                 f"{values.shape}", field=f"{field}.values")
+        if values.dtype.kind == "u" and values.size and values.max() > np.iinfo(np.int64).max:
+            raise FileFormatError("unsigned nanoseconds beyond int64 (over 292 years); "
+                                  "numpy would wrap them around to negative times",
+                                  field=f"{field}.values")
+        _check_sample_count(values.shape[0], field)
         return values.astype(np.int64)
     start = timedelta_ns(required(node, "start", field), f"{field}.start")
     end = timedelta_ns(required(node, "end", field), f"{field}.end")
@@ -173,7 +204,13 @@ def time_index_ns(node: Any, field: str) -> NDArray[np.int64]:
     if end < start:
         raise FileFormatError(f"the grid ends ({end} ns) before it starts ({start} ns)",
                               field=field)
+    _check_sample_count((end - start) // step + 1, field)  # before allocating the grid
     return start + step * np.arange((end - start) // step + 1, dtype=np.int64)
+
+
+def _check_sample_count(count: int, field: str) -> None:
+    if count > current_limits().max_samples:
+        raise exceeded("max_samples", f"the time axis has {count:,} samples", field=field)
 
 
 def _frequency_ns(value: Any, field: str) -> int:

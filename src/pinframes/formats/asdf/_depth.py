@@ -5,8 +5,10 @@ In ``coordinate_system_hierarchy-0.1.0`` every frame is nested inside its parent
 validates that YAML recursively, about 28 Python calls per frame (measured, asdf 6.0), so a
 chain of 40 frames already exceeds Python's default recursion limit. :func:`recursion_room`
 raises the limit for one asdf call, by a bounded amount; graphs deeper than
-:data:`MAX_GRAPH_DEPTH` frames are refused with :func:`too_deep`. The limit is process-wide:
-another thread recursing meanwhile gets the same higher limit.
+:data:`MAX_GRAPH_DEPTH` frames are refused with :func:`too_deep`. The limit is process-wide,
+so concurrent blocks share one raise: the first to enter remembers the limit it found, each
+raises it to what it needs (never lowers it while another block is inside), and the last to
+leave restores the remembered limit, so it never leaks, whatever the threads' order.
 """
 
 from __future__ import annotations
@@ -14,6 +16,7 @@ from __future__ import annotations
 import contextlib
 import os
 import sys
+import threading
 from collections.abc import Iterable, Iterator
 
 import yaml
@@ -28,15 +31,29 @@ _CALLS_PER_LEVEL = 32
 _NODE_TAG = "core/graph/di_node-"
 
 
+_room_lock = threading.Lock()
+_room_users = 0
+_room_restore = 0
+
+
 @contextlib.contextmanager
 def recursion_room(depth: int) -> Iterator[None]:
     """Within this block Python recurses ``depth`` (at most MAX_GRAPH_DEPTH) frames deeper."""
-    old = sys.getrecursionlimit()
-    sys.setrecursionlimit(old + min(depth, MAX_GRAPH_DEPTH) * _CALLS_PER_LEVEL)
+    global _room_users, _room_restore
+    with _room_lock:
+        if _room_users == 0:
+            _room_restore = sys.getrecursionlimit()
+        _room_users += 1
+        needed = _room_restore + min(depth, MAX_GRAPH_DEPTH) * _CALLS_PER_LEVEL
+        if sys.getrecursionlimit() < needed:
+            sys.setrecursionlimit(needed)
     try:
         yield
     finally:
-        sys.setrecursionlimit(old)
+        with _room_lock:
+            _room_users -= 1
+            if _room_users == 0:
+                sys.setrecursionlimit(_room_restore)
 
 
 def deepest_frame(frames: Iterable[tuple[str, str]]) -> tuple[str | None, int]:

@@ -8,6 +8,8 @@ from typing import Any
 
 from ...errors import FileFormatError, PinframesError
 from ...tree import FrameTree
+from .._paths import path_argument
+from ..limits import Limits, reader_with_limits
 from ._decode import open_raw_tree, weldx_tag
 from ._depth import MAX_GRAPH_DEPTH, deepest_frame, recursion_room, too_deep
 from ._digraph import read_digraph_hierarchy
@@ -20,7 +22,9 @@ __all__ = ["read_asdf"]
 _HIERARCHY_TAG = "core/transformations/coordinate_system_hierarchy"
 
 
-def read_asdf(path: str | os.PathLike[str], key: str | None = None) -> FrameTree:
+@reader_with_limits
+def read_asdf(path: str | os.PathLike[str], key: str | None = None, *,
+              limits: Limits | None = None) -> FrameTree:
     """Read the weldx coordinate system hierarchy stored in the ASDF file at ``path``.
 
     All three generations of weldx files are read (SPEC section 7): the legacy ``1.0.0``
@@ -36,6 +40,9 @@ def read_asdf(path: str | os.PathLike[str], key: str | None = None) -> FrameTree
         Where the hierarchy is in the file's tree: a top-level key such as ``"csm"``, or a
         ``/``-separated path to a nested one (list positions as numbers). None finds the
         only hierarchy in the file.
+    limits : Limits or None
+        Bounds on what the file may cost to read (:class:`pinframes.Limits`; None: the
+        defaults, or those of the reader this one is called from).
 
     Returns
     -------
@@ -53,8 +60,9 @@ def read_asdf(path: str | os.PathLike[str], key: str | None = None) -> FrameTree
         a hierarchy that breaks the format or pinframes' weldx schemas (checked after
         pinframes' own, more specific checks); the message names the frame and field.
     UnsupportedFeatureError
-        Coordinates given as a math expression (``core/time_series``), or a graph with a
-        frame more than 400 frames below its root.
+        Coordinates given as a math expression (``core/time_series``), or a graph (weldx
+        0.1.0 format) with a frame more than 400 frames below its root; the legacy format
+        lists frames flat and has no such bound.
     InvalidPoseError, InvalidTimeError, ReferenceTimeError
         Rotations that are not rotations, non-finite values, times that do not increase,
         reference times that cannot be combined.
@@ -63,13 +71,18 @@ def read_asdf(path: str | os.PathLike[str], key: str | None = None) -> FrameTree
     read into :meth:`FrameTree.get_data`; data pinframes cannot hold (a ``time_series``, a
     ``shape``) is an :class:`UnsupportedFeatureError` naming the frame, the data and its tag.
     """
+    path = path_argument(path)
     try:
         with open_raw_tree(path) as tree:
             node = _find_hierarchy(tree, key)
             hierarchy = _read_hierarchy(node)
-            deepest, depth = deepest_frame((name, parent) for name, parent, _ in hierarchy.frames)
-            if depth > MAX_GRAPH_DEPTH:
-                raise too_deep(deepest, depth, path)
+            depth = 0
+            tag = weldx_tag(node)  # found by its hierarchy tag
+            if tag is not None and not tag[1].startswith("1."):  # only 0.1.0 nests (_depth)
+                deepest, depth = deepest_frame(
+                    (name, parent) for name, parent, _ in hierarchy.frames)
+                if depth > MAX_GRAPH_DEPTH:
+                    raise too_deep(deepest, depth, path)
             with recursion_room(depth):
                 validate_hierarchy(node)
         return hierarchy.to_tree()

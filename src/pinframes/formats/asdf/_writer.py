@@ -13,12 +13,15 @@ from __future__ import annotations
 import os
 from typing import Any
 
+import numpy as np
+
 from ...errors import ArgumentTypeError, TreeStructureError, UnsupportedFeatureError, WriteError
 from ...tree import FrameTree
 from ...values.pose import Pose
 from ...values.subsystem import Subsystem
 from .._atomic import atomic_write
 from .._joint_steps import check_joint_steps
+from .._writable import check_writable_tree
 from ._asdf_config import temporary_asdf_config
 from ._data import encode_data
 from ._depth import MAX_GRAPH_DEPTH, deepest_frame, recursion_room, too_deep
@@ -68,6 +71,7 @@ def write_asdf(tree: FrameTree, path: str | os.PathLike[str], schema: str = "1.0
     if not isinstance(tree, FrameTree):
         raise ArgumentTypeError(f"expected a pinframes.FrameTree, got {type(tree).__name__}",
                                 file=str(path), field="tree")
+    check_writable_tree(tree, path)
     generation = SCHEMAS.get(schema)
     if generation is None:
         raise UnsupportedFeatureError(
@@ -105,6 +109,10 @@ def _write(hierarchy: Any, generation: Generation, path: str | os.PathLike[str],
             document.write_to(handle)
 
 
+_LARGEST_METRES = 1e305
+"""Translations beyond it become infinite once written in millimetres."""
+
+
 def _frame_poses(tree: FrameTree) -> dict[str, Pose]:
     """Every frame but the root: its pose in its parent, joint-driven links sampled."""
     poses = {}
@@ -114,6 +122,10 @@ def _frame_poses(tree: FrameTree) -> dict[str, Pose]:
         else:
             check_joint_steps(tree, name)
             poses[name] = tree.pose(name, relative_to=tree.parent(name))
+        if np.max(np.abs(poses[name].translation)) > _LARGEST_METRES:
+            raise UnsupportedFeatureError(
+                "a translation over 1e305 m overflows in millimetres; read_asdf would refuse "
+                "the file", frame=name, field="coordinates")
     return poses
 
 

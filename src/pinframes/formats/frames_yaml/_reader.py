@@ -25,7 +25,9 @@ from collections.abc import Callable
 from ...errors import FileFormatError, PinframesError
 from ...tree import FrameTree
 from ...values.pose import Pose
+from .._paths import is_regular_file, path_argument
 from .._yaml_loader import load_yaml
+from ..limits import Limits, current_limits, exceeded, reader_with_limits
 from ._schema import (
     Entry,
     TileSize,
@@ -44,7 +46,9 @@ __all__ = ["METADATA_KEY", "read_frames_yaml"]
 METADATA_KEY = "frames_yaml"
 
 
-def read_frames_yaml(path: str | os.PathLike[str], root: str = "world") -> FrameTree:
+@reader_with_limits
+def read_frames_yaml(path: str | os.PathLike[str], root: str = "world", *,
+                     limits: Limits | None = None) -> FrameTree:
     """Read a Duckietown ``frames.yaml`` map layer.
 
     Parameters
@@ -54,6 +58,9 @@ def read_frames_yaml(path: str | os.PathLike[str], root: str = "world") -> Frame
         same folder gives the tile size.
     root : str
         Name of the root frame; top-level keys become its children.
+    limits : Limits or None
+        Bounds on what the file may cost to read (:class:`pinframes.Limits`; None: the
+        defaults, or those of the reader this one is called from).
 
     Returns
     -------
@@ -74,8 +81,9 @@ def read_frames_yaml(path: str | os.PathLike[str], root: str = "world") -> Frame
     FramesYamlWarning
         For unknown fields (kept, not used) and undeclared ``relative_to`` targets.
     """
-    file = os.fspath(path)
+    file = path_argument(path)
     top_level, entries = parse_layer(load_yaml(file, locate_in("frames")), file)
+    _check_key_depths(entries, file)
     declared = {entry.key: entry for entry in entries}
     tile_sizes = _tile_sizes(entries, file)
     offsets = {entry.key: _pose_in_relative_to(entry, tile_sizes.get(entry.key))
@@ -92,10 +100,14 @@ def read_frames_yaml(path: str | os.PathLike[str], root: str = "world") -> Frame
     tree.metadata[METADATA_KEY] = {"file": file, "top_level": top_level}
 
     def add(name: str) -> None:
-        if name in tree:
-            return
-        parent = key_parent(name) or root
-        add(parent)
+        chain = []  # name and its key ancestors not in the tree yet (no recursion: keys
+        while name not in tree:  # may have many segments)
+            chain.append(name)
+            name = key_parent(name) or root
+        for name in reversed(chain):
+            add_one(name, key_parent(name) or root)
+
+    def add_one(name: str, parent: str) -> None:
         entry = declared.get(name)
         if entry is None:
             tree.add(name, parent)
@@ -119,13 +131,23 @@ def read_frames_yaml(path: str | os.PathLike[str], root: str = "world") -> Frame
     return tree
 
 
+def _check_key_depths(entries: list[Entry], file: str) -> None:
+    """Refuse keys (and ``relative_to`` targets) of more than ``max_depth`` path segments."""
+    limit = current_limits().max_depth
+    for entry in entries:
+        for name, field in ((entry.key, None), (entry.relative_to, "relative_to")):
+            if name is not None and name.count("/") >= limit:
+                raise exceeded("max_depth", f"{name.count('/') + 1:,} path segments",
+                               frame=entry.key, field=field).located(file=file)
+
+
 def _tile_sizes(entries: list[Entry], file: str) -> dict[str, TileSize]:
     """Tile sizes of the ``unit: tiles`` frames, from ``tile_maps.yaml`` beside ``file``."""
     tiled = [entry for entry in entries if entry.unit == "tiles"]
     if not tiled:
         return {}
     tile_maps = tile_maps_beside(file)
-    if not tile_maps.is_file():
+    if not is_regular_file(tile_maps):
         raise FileFormatError(
             f"unit 'tiles' needs the tile size from {tile_maps.name} beside this file, but "
             f"{tile_maps} does not exist", file=file, frame=tiled[0].key, field="unit")

@@ -21,6 +21,8 @@ from ...tree import FrameTree
 from ...values.pose import Pose
 from .._atomic import atomic_write
 from .._snapshot import one_instant
+from .._writable import check_writable_tree
+from ..limits import current_limits
 from ._reader import METADATA_KEY
 from ._schema import (
     POSE_FIELDS,
@@ -60,6 +62,7 @@ def write_frames_yaml(tree: FrameTree, path: str | os.PathLike[str], time: Any =
     WriteError
         The file cannot be written.
     """
+    check_writable_tree(tree, path)
     document = _document(tree, Path(path), time)
     text = yaml.dump(document, Dumper=_Dumper, sort_keys=False, default_flow_style=False,
                      allow_unicode=True)
@@ -74,9 +77,9 @@ def frame_keys(tree: FrameTree) -> dict[str, str]:
     for name in tree.frames[1:]:
         parent_key = keys.get(tree.parent(name) or "", "")
         head, _, last = name.rpartition("/")
-        if _kept(tree, name).get("key") == name or (head and head == parent_key):
+        if last and (_kept(tree, name).get("key") == name or (head and head == parent_key)):
             segment = last
-        elif not head and last:
+        elif "/" not in name:
             segment = name
         else:
             where = f"under {parent_key!r}" if parent_key else "at the top level"
@@ -85,6 +88,11 @@ def frame_keys(tree: FrameTree) -> dict[str, str]:
                 f"frame sits {where}: rename it (for example to {name.replace('/', '_')!r})",
                 frame=name)
         key = f"{parent_key}/{segment}" if parent_key else segment
+        if key.count("/") >= current_limits().max_depth:
+            raise UnsupportedFeatureError(
+                f"its key would have {key.count('/') + 1:,} path segments, more than "
+                f"read_frames_yaml reads by default (max_depth="
+                f"{current_limits().max_depth:,})", frame=name, field="key")
         if key in owners:
             raise UnsupportedFeatureError(
                 f"frames {owners[key]!r} and {name!r} would both get the key {key!r}",

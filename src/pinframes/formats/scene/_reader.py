@@ -28,8 +28,10 @@ from ...errors import FileFormatError, PinframesError, UnsupportedFeatureError
 from ...tree import FrameTree
 from ...values.pose import Pose
 from ...values.timeconv import parse_timestamp
+from .._paths import is_regular_file, path_argument
 from .._registry import detect_format, read
 from .._yaml_loader import load_yaml
+from ..limits import Limits, reader_with_limits
 from ..trajectory_files import read_joint_trajectory
 
 __all__ = ["SCENE_FORMAT_KEY", "SCENE_FORMAT_VERSION", "read_scene"]
@@ -65,8 +67,11 @@ class _Entry:
     apply: Callable[[FrameTree], None]
 
 
-def read_scene(path: str | os.PathLike[str]) -> FrameTree:
+@reader_with_limits
+def read_scene(path: str | os.PathLike[str], *, limits: Limits | None = None) -> FrameTree:
     """Read a scene file into a new :class:`FrameTree`.
+
+    ``limits`` (:class:`pinframes.Limits`) bounds the scene file and every file it names.
 
     Entries are added as soon as the frame they hang from exists, so their order in the
     file does not matter (a tool may name a robot link, a robot a frame of a layer).
@@ -81,7 +86,7 @@ def read_scene(path: str | os.PathLike[str]) -> FrameTree:
     ReadError
         The scene file (or a file it names) is missing, a folder, unreadable or not text.
     """
-    scene = _Scene(Path(path))
+    scene = _Scene(Path(path_argument(path)))
     return scene.build()
 
 
@@ -340,7 +345,7 @@ class _Scene:
             raise FileFormatError("missing", file=self.path, frame=frame, field=f"{field}.{key}")
         value = self._name(item[key], frame, f"{field}.{key}")
         path = self.path.parent / value
-        if not path.is_file():
+        if not is_regular_file(path):
             raise FileFormatError(f"no such file: {path}", file=self.path, frame=frame,
                                   field=f"{field}.{key}")
         return path

@@ -22,6 +22,7 @@ from ...values.timeconv import format_timedelta_iso
 from .._atomic import atomic_write
 from .._joint_steps import check_joint_steps
 from .._snapshot import one_instant
+from .._writable import check_writable_tree
 from ._reader import SCENE_FORMAT_KEY, SCENE_FORMAT_VERSION
 
 __all__ = ["write_scene"]
@@ -48,6 +49,7 @@ def write_scene(tree: FrameTree, path: str | os.PathLike[str], time: Any = None)
     WriteError
         The file cannot be written; an existing file is left untouched.
     """
+    check_writable_tree(tree, path)
     document: dict[str, Any] = {SCENE_FORMAT_KEY: SCENE_FORMAT_VERSION}
     if tree.name is not None:
         document["name"] = tree.name

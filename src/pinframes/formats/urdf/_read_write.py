@@ -16,6 +16,7 @@ from ...values.rotations import rpy_from_matrix
 from ...values.timeconv import format_timestamp_iso
 from .._atomic import atomic_write
 from .._snapshot import moving_parts, one_instant
+from .._writable import check_writable_tree
 from ._mount import URDF_METADATA_KEY, mount_robot
 from ._parse import parse_urdf
 
@@ -46,6 +47,7 @@ def write_urdf(tree: FrameTree, path: str | os.PathLike[str], time: Any = None, 
     and no joint-state file is written. Link contents (visuals, inertials, ``package://``
     URIs) and unread joint elements are written back as they were read.
     """
+    check_writable_tree(tree, path)
     instant = one_instant(tree, time, path, "URDF")
     robot = ET.Element("robot", name=tree.name or tree.root)
     written: set[str] = set()

@@ -1,0 +1,77 @@
+"""What every writer checks before it writes: names its own reader reads back unchanged.
+
+A writer writes a file its own reader accepts with the same meaning, or refuses before
+writing, naming the frame and the field. Names are where the formats differ least from each
+other and most from Python strings: XML 1.0 cannot hold most control characters, YAML reads
+``\\x85`` (NEL) and other line breaks inside a plain scalar as a space, and none of the files
+can encode a lone surrogate (``\\ud800``). So names with control characters (Unicode
+category ``Cc``) or surrogates are refused by every writer; the tree itself accepts any
+non-empty string.
+"""
+
+from __future__ import annotations
+
+import unicodedata
+
+from ..errors import (
+    ArgumentTypeError,
+    PinframesError,
+    TreeStructureError,
+    UnsupportedFeatureError,
+)
+from ..tree import FrameTree
+from ._paths import path_argument
+
+__all__ = ["check_writable_tree"]
+
+
+def check_writable_tree(tree: FrameTree, path: object) -> None:
+    """Check a writer's arguments before it does any work.
+
+    Raises an :class:`ArgumentTypeError` for a ``tree`` that is no FrameTree or a ``path``
+    that is no text path, an :class:`UnsupportedFeatureError` for a name no file could
+    hold unchanged, and a :class:`TreeStructureError` for a subsystem naming frames the
+    tree lacks; the last two name the file ``path``.
+    """
+    file = path_argument(path)
+    if not isinstance(tree, FrameTree):
+        raise ArgumentTypeError(f"expected a pinframes.FrameTree, got {type(tree).__name__}",
+                                file=file, field="tree")
+    try:
+        _check_tree(tree)
+    except PinframesError as exc:
+        raise exc.located(file=file) from None
+
+
+def _check_tree(tree: FrameTree) -> None:
+    if tree.name is not None:
+        _check_name(tree.name, None, "name")
+    for frame in tree.frames:
+        _check_name(frame, frame, "name")
+        joint = tree.joint_of(frame)
+        if joint is not None:
+            _check_name(joint.name, frame, "joint")
+    for subsystem in tree.subsystems:
+        _check_name(subsystem.name, subsystem.root, "subsystems.name")
+        missing = [name for name in (subsystem.root, *subsystem.members) if name not in tree]
+        if missing:
+            raise TreeStructureError(
+                f"subsystem {subsystem.name!r} names frames the tree does not hold: "
+                f"{', '.join(map(repr, missing))}", frame=missing[0], field="subsystems")
+
+
+def _check_name(name: str, frame: str | None, field: str) -> None:
+    for character in name:
+        kind = unicodedata.category(character)
+        if kind in ("Cc", "Cs"):
+            what = "a control character" if kind == "Cc" else "a lone surrogate"
+            raise UnsupportedFeatureError(
+                f"the name holds {what} ({character!r}), which files cannot hold unchanged: "
+                "rename it", frame=_printable(frame), field=field)
+
+
+def _printable(name: str | None) -> str | None:
+    """``name`` with surrogates escaped, so that the error message itself can be printed."""
+    if name is None:
+        return None
+    return name.encode("utf-8", "backslashreplace").decode("utf-8")
