@@ -216,9 +216,12 @@ def _check_within_keyframes(sources: list[TimedSource], timeline: QueryTimeline)
     first, last = requested.min(), requested.max()
     for source in sources:
         keyframes = source.on_basis(timeline.absolute)
-        if first < keyframes[0] or last > keyframes[-1]:
+        early, late = keyframes[0] - first, last - keyframes[-1]
+        if early > 0 or late > 0:
+            sides = ([f"{early / 1e9:.9g} s before its first keyframe"] if early > 0 else []) + (
+                [f"{late / 1e9:.9g} s after its last keyframe"] if late > 0 else [])
             raise ExtrapolationError(
-                "requested times reach outside its keyframes (extrapolation='error')",
+                f"requested times reach {' and '.join(sides)} (extrapolation='error')",
                 frame=source.name, field="times")
 
 

@@ -11,7 +11,9 @@ Each class also subclasses the built-in exception a caller would naturally catch
 
 from __future__ import annotations
 
+import difflib
 import os
+from collections.abc import Iterable
 
 __all__ = [
     "ArgumentTypeError",
@@ -28,6 +30,7 @@ __all__ = [
     "TreeStructureError",
     "UnsupportedFeatureError",
     "WriteError",
+    "near_misses",
 ]
 
 
@@ -138,3 +141,20 @@ class ReadError(PinframesError, OSError):
 
 class ArgumentTypeError(PinframesError, TypeError):
     """An argument of the wrong type passed to a pinframes function or method."""
+
+
+def near_misses(name: object, known: Iterable[str], kind: str = "frame") -> str:
+    """``"; did you mean 'a/x' or 'x2'?"`` for names in ``known`` close to ``name``, or "".
+
+    Names that end in ``/name`` (the name under a prefix) come first, then up to three
+    names that :func:`difflib.get_close_matches` finds similar.
+    """
+    if not isinstance(name, str) or not name:
+        return ""
+    known = list(known)
+    prefixed = [candidate for candidate in known if candidate.endswith("/" + name)]
+    close = difflib.get_close_matches(name, known, n=3, cutoff=0.6)
+    matches = list(dict.fromkeys([*prefixed, *close]))[:3]
+    if not matches:
+        return ""
+    return f"; did you mean {kind} " + " or ".join(repr(match) for match in matches) + "?"

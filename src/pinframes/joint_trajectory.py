@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .errors import ArgumentTypeError, InvalidTimeError, JointError
+from .errors import ArgumentTypeError, InvalidTimeError, JointError, near_misses
 from .joint_track import JointTrack
 from .timeconv import parse_time_axis
 
@@ -35,11 +35,12 @@ def set_joint_trajectory(
     joints = tree.joints
     for name in joint_names:
         if name not in joints:
-            raise JointError("no joint of this name in the tree", frame=name,
-                             field="joint_names")
+            raise JointError(f"no joint named {name!r} in the tree"
+                             + near_misses(name, joints, "joint"), field="joint_names")
         if not joints[name].is_actuated:
-            raise JointError(f"is a mimic joint of {joints[name].mimic.joint!r}; drive that "
-                             "joint instead", frame=name, field="joint_names")
+            raise JointError(f"joint {name!r} is a mimic joint of "
+                             f"{joints[name].mimic.joint!r}; drive that joint instead",
+                             field="joint_names")
     if len(set(joint_names)) != len(joint_names):
         raise JointError("joint names repeat", field="joint_names")
     axis = parse_time_axis(times, field="times")

@@ -18,6 +18,7 @@ from .errors import (
     JointError,
     ReferenceTimeError,
     TreeStructureError,
+    near_misses,
 )
 from .joint import Joint
 from .joint_track import JointTrack
@@ -233,7 +234,9 @@ class FrameTree:
     def set_joint_track(self, joint_name: str, track: JointTrack | None) -> None:
         """Set (or with None, clear) the trajectory of a robot joint."""
         if not isinstance(joint_name, str) or joint_name not in self._joint_frames:
-            raise FrameNotFoundError(f"no joint named {joint_name!r}", field="joint_names")
+            raise FrameNotFoundError(
+                f"no joint named {joint_name!r} in the tree"
+                + near_misses(joint_name, self._joint_frames, "joint"), field="joint_names")
         previous = self._joint_tracks.pop(joint_name, None)
         if previous is not None:
             self._uncount_reference(previous.reference)
@@ -456,7 +459,8 @@ class FrameTree:
             raise ArgumentTypeError(f"frame names are strings, got {type(name).__name__}",
                                     field=field)
         if name not in self._children:
-            raise FrameNotFoundError("no frame of this name in the tree", frame=str(name))
+            raise FrameNotFoundError("no frame of this name in the tree"
+                                     + near_misses(name, self._children), frame=str(name))
 
     def _check_new(self, name: str, parent: str) -> None:
         _check_name(name)
@@ -466,7 +470,8 @@ class FrameTree:
             raise ArgumentTypeError(f"frame names are strings, got {type(parent).__name__}",
                                     frame=name, field="parent")
         if parent not in self._children:
-            raise FrameNotFoundError(f"parent frame {parent!r} is not in the tree",
+            raise FrameNotFoundError(f"parent frame {parent!r} is not in the tree"
+                                     + near_misses(parent, self._children),
                                      frame=name, field="parent")
 
     def _insert(self, name: str, parent: str, pose: Pose) -> None:

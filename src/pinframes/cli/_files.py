@@ -16,7 +16,13 @@ from typing import Any
 import pinframes
 
 from .._yaml_loader import load_yaml
-from ..errors import FileFormatError, FrameNotFoundError, ReadError, UnsupportedFeatureError
+from ..errors import (
+    FileFormatError,
+    FrameNotFoundError,
+    ReadError,
+    UnsupportedFeatureError,
+    near_misses,
+)
 from ..scene import SCENE_FORMAT_KEY
 from ..tree import FrameTree
 
@@ -60,7 +66,8 @@ def require_frames(tree: FrameTree, path: str | Path, *names: str | None) -> Non
     """Raise a :class:`FrameNotFoundError` naming ``path`` for a name not in ``tree``."""
     for name in names:
         if name is not None and name not in tree:
-            raise FrameNotFoundError("no frame of this name in the file", file=path, frame=name)
+            raise FrameNotFoundError("no frame of this name in the file"
+                                     + near_misses(name, tree.frames), file=path, frame=name)
 
 
 def write_tree(tree: FrameTree, path: str | Path, fmt: str | None = None, *,

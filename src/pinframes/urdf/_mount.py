@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from ..errors import ArgumentTypeError, FrameExistsError, FrameNotFoundError
+from ..errors import ArgumentTypeError, FrameExistsError, FrameNotFoundError, near_misses
 from ..joint import Joint, Mimic
 from ..pose import Pose
 from ._parse import RobotDescription
@@ -37,7 +37,8 @@ def mount_robot(
     names = [root_frame] + [prefix + joint.child for joint in robot.joints]
     if parent is not None:
         if parent not in tree:
-            raise FrameNotFoundError(f"parent frame {parent!r} is not in the tree",
+            raise FrameNotFoundError(f"parent frame {parent!r} is not in the tree"
+                                     + near_misses(parent, tree.frames),
                                      file=robot.source, field="parent")
         clash = [name for name in names if name in tree]
         if clash:
