@@ -8,6 +8,7 @@ rooted at that ancestor, so the cost of a query depends on its path, not on the 
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -17,7 +18,7 @@ from numpy.typing import NDArray
 from ._interpolation import Keyframes
 from ._se3 import IDENTITY, Transform, compose, inverse
 from ._timeline import QueryTimeline, TimedSource, plan_query_timeline
-from .errors import ExtrapolationError, InvalidTimeError
+from .errors import ExtrapolationError, InvalidTimeError, JointWithoutSamplesWarning
 from .joint import Joint, mimic_chain
 from .pinocchio_model import CompiledJoint, CompiledModel
 from .pose import Pose
@@ -281,7 +282,7 @@ def sample_joint_values(
     tree: FrameTree, joint: Joint, times: NDArray[np.int64] | None,
     shifts: dict[str, int], cache: dict[str, NDArray[np.float64] | float],
 ) -> NDArray[np.float64] | float:
-    """Values of ``joint`` at ``times``: its track, its mimic primary's, or 0."""
+    """Values of ``joint`` at ``times``: its track, its mimic primary's, or its rest value."""
     if joint.name in cache:
         return cache[joint.name]
     track = tree.joint_track(joint.name)
@@ -292,6 +293,23 @@ def sample_joint_values(
     elif track is not None:
         value = track.sample(times - shifts[joint.name])
     else:
-        value = 0.0
+        value = joint.rest_value
+        _warn_joints_without_samples(tree)
     cache[joint.name] = value
     return value
+
+
+def _warn_joints_without_samples(tree: FrameTree) -> None:
+    """One :class:`JointWithoutSamplesWarning` per tree, naming its joints without samples."""
+    if tree._warned_joints_without_samples:
+        return
+    tree._warned_joints_without_samples = True
+    idle = [name for name, joint in tree.joints.items()
+            if joint.is_actuated and tree.joint_track(name) is None]
+    named = ", ".join(repr(name) for name in idle[:4]) + (
+        f" and {len(idle) - 4} more" if len(idle) > 4 else "")
+    warnings.warn(
+        f"joints {named} have no samples and hold their rest value (0, or the limit nearest "
+        "to 0); give values with FrameTree.set_joint_trajectory(times, positions, "
+        "joint_names) or a scene robot's 'trajectory' file", JointWithoutSamplesWarning,
+        stacklevel=2)

@@ -24,6 +24,7 @@ __all__ = [
     "InvalidPoseError",
     "InvalidTimeError",
     "JointError",
+    "JointWithoutSamplesWarning",
     "PinframesError",
     "ReadError",
     "ReferenceTimeError",
@@ -121,6 +122,11 @@ class ExtrapolationError(PinframesError, ValueError):
 
 class JointError(PinframesError, ValueError):
     """A robot joint that is unknown, mis-specified or driven with bad values."""
+
+
+class JointWithoutSamplesWarning(UserWarning):
+    """Robot joints evaluated without samples: they hold their rest value
+    (:attr:`pinframes.Joint.rest_value`). Issued once per tree."""
 
 
 class FileFormatError(PinframesError, ValueError):

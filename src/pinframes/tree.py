@@ -72,6 +72,7 @@ class FrameTree:
         self.subsystems: list[Subsystem] = []
         self._anchors: dict[str, tuple[str, Transform]] = {root: (root, IDENTITY)}
         self._evaluations: dict[tuple[str, str], _query.Evaluation] = {}
+        self._warned_joints_without_samples = False  # see JointWithoutSamplesWarning
 
     # -- inspection ------------------------------------------------------------------------
     @property
@@ -208,7 +209,8 @@ class FrameTree:
         -------
         list of str
             The new frame names, root link first. Revolute, continuous and prismatic
-            joints stay joints (value 0 until :meth:`set_joint_trajectory`); fixed,
+            joints stay joints, at their rest value (0, or the limit nearest to 0) until
+            :meth:`set_joint_trajectory` gives them samples; fixed,
             floating and planar joints become frames at their origin. A failed import
             leaves the tree unchanged.
         """
