@@ -26,12 +26,13 @@ from .scene_writer import write_scene
 from .subsystem import Subsystem
 from .trajectory_io import read_joint_trajectory
 from .tree import FrameTree
-from .urdf import read_urdf, write_urdf
+from .urdf import BrokenMimicWarning, read_urdf, write_urdf
 
 __version__ = "0.1.0"
 
 __all__ = [
     "ArgumentTypeError",
+    "BrokenMimicWarning",
     "ExtrapolationError",
     "FileFormatError",
     "FrameExistsError",

@@ -190,7 +190,7 @@ class FrameTree:
 
     def attach_urdf(
         self, urdf: str | os.PathLike[str], parent: str, pose: Pose | None = None,
-        prefix: str = "",
+        prefix: str = "", *, strict: bool = False,
     ) -> list[str]:
         """Mount a robot: its root link at ``parent`` (at ``pose``), every link a frame.
 
@@ -204,6 +204,9 @@ class FrameTree:
             The root link's pose in ``parent`` (identity if None; may move in time).
         prefix : str
             Put before every link and joint name, to mount several copies of a robot.
+        strict : bool
+            Refuse a mimic joint whose primary joint is not in the file; by default it
+            stays an independent joint, with one ``BrokenMimicWarning`` per such joint.
 
         Returns
         -------
@@ -216,7 +219,7 @@ class FrameTree:
         """
         from .urdf import mount_robot, parse_urdf
 
-        return mount_robot(self, parse_urdf(urdf), parent, pose, prefix)
+        return mount_robot(self, parse_urdf(urdf, strict=strict), parent, pose, prefix)
 
     def set_joint_trajectory(
         self, times: Any, positions: Any, joint_names: Sequence[str] | None = None

@@ -1,11 +1,12 @@
 """URDF in and out: robots as frames and joints of a :class:`~pinframes.FrameTree`."""
 
 from ._mount import URDF_METADATA_KEY, mount_robot
-from ._parse import JointDescription, RobotDescription, parse_urdf
+from ._parse import BrokenMimicWarning, JointDescription, RobotDescription, parse_urdf
 from ._read_write import read_urdf, write_urdf
 
 __all__ = [
     "URDF_METADATA_KEY",
+    "BrokenMimicWarning",
     "JointDescription",
     "RobotDescription",
     "mount_robot",
