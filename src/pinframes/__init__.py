@@ -21,6 +21,7 @@ from .joint import Joint, Mimic
 from .joint_track import JointTrack
 from .pinocchio_tree import PinocchioTree
 from .pose import Pose
+from .pose_files import write_poses
 from .scene import read_scene
 from .scene_writer import write_scene
 from .subsystem import Subsystem
@@ -58,6 +59,7 @@ __all__ = [
     "read_joint_trajectory",
     "read_scene",
     "read_urdf",
+    "write_poses",
     "write_scene",
     "write_urdf",
 ]

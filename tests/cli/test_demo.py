@@ -74,7 +74,7 @@ def test_demo_prints_summary_and_writes_csv_and_png(run_cli, tmp_path):
     assert summary["max travel speed"] == f"{1000 * seam_length / DURATION:.2f} mm/s"
 
     text = (tmp_path / "results" / "torch_poses.csv").read_text()
-    assert text.startswith("time_s,x,y,z,qx,qy,qz,qw\n")
+    assert text.startswith("time_s,x_m,y_m,z_m,qx,qy,qz,qw\n")
     rows = np.loadtxt(io.StringIO(text), delimiter=",", skiprows=1)
     np.testing.assert_allclose(rows[:, 0], np.linspace(0.0, DURATION, 2001), atol=1e-12)
     angle = np.pi * rows[:, 0] / DURATION
