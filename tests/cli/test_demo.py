@@ -27,12 +27,12 @@ def test_bundled_scene_ships_the_files_of_models():
     """Editable or installed, the package holds models/ as it is in the repository."""
     shipped = bundled_scene().parents[1]
     for name in ("welding_cell/scene.yaml", "welding_cell/robot_motion.csv",
-                 "welding_cell/cell.yaml", "welding_robot/welding_robot.urdf"):
+                 "welding_cell/cell_design.yaml", "welding_robot/welding_robot.urdf"):
         assert (shipped / name).read_bytes() == (MODELS / name).read_bytes(), name
 
 
 def test_bundled_scene_matches_cell_description():
-    cell = yaml.safe_load((MODELS / "welding_cell" / "cell.yaml").read_text())
+    cell = yaml.safe_load((MODELS / "welding_cell" / "cell_design.yaml").read_text())
     tree = read_scene(MODELS / "welding_cell" / "scene.yaml")
     for frame in cell["frames"]:
         name = frame["name"]

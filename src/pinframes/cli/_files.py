@@ -1,10 +1,8 @@
 """Which format a file is in, and reading or writing a tree in any supported format.
 
-Formats are told apart by the file name: ``.asdf`` (weldx ASDF), ``.urdf`` (URDF) and
-``.yaml``/``.yml``, which is a scene when it has the ``pinframes_scene`` key, and a
-Duckietown ``frames.yaml`` when it has a ``frames`` key or its name starts with ``frames``.
-A ``.yaml`` file to be written is a frames.yaml when its name starts with ``frames``, else a
-scene.
+A file to be read is told by its content (:mod:`pinframes.tree_file_kind`), whatever its
+name. A file to be written is told by its name: ``.asdf``, ``.urdf``, and ``.yaml``/``.yml``,
+a frames.yaml when its name starts with ``frames``, else a scene.
 """
 
 from __future__ import annotations
@@ -15,7 +13,6 @@ from typing import Any
 
 import pinframes
 
-from .._yaml_loader import load_yaml
 from ..errors import (
     FileFormatError,
     FrameNotFoundError,
@@ -23,17 +20,20 @@ from ..errors import (
     UnsupportedFeatureError,
     near_misses,
 )
-from ..scene import SCENE_FORMAT_KEY
 from ..tree import FrameTree
+from ..tree_file_kind import TREE_FORMATS, tree_format_of
 
 __all__ = ["FORMATS", "detect_format", "read_tree", "require_frames", "write_tree"]
 
-FORMATS = ("frames.yaml", "asdf", "urdf", "scene")
+FORMATS = TREE_FORMATS
 
 
 def detect_format(path: str | Path, *, writing: bool = False) -> str:
-    """One of :data:`FORMATS` for ``path`` (for a file to be written if ``writing``)."""
+    """One of :data:`FORMATS` for ``path``: for a file to be read told by its content
+    (:func:`~pinframes.tree_file_kind.tree_format_of`), for one to be written by its name."""
     path = Path(path)
+    if not writing:
+        return tree_format_of(path)
     suffix = path.suffix.lower()
     if suffix == ".asdf":
         return "asdf"
@@ -42,16 +42,7 @@ def detect_format(path: str | Path, *, writing: bool = False) -> str:
     if suffix not in (".yaml", ".yml"):
         raise FileFormatError(f"unknown file type {suffix or '(none)'!r}; expected .yaml "
                               "(scene or frames.yaml), .asdf or .urdf", file=path)
-    named_frames = path.name.lower().startswith("frames")
-    if writing:
-        return "frames.yaml" if named_frames else "scene"
-    content = load_yaml(path)
-    if isinstance(content, dict) and SCENE_FORMAT_KEY in content:
-        return "scene"
-    if (isinstance(content, dict) and "frames" in content) or named_frames:
-        return "frames.yaml"
-    raise FileFormatError(f"neither a scene (no '{SCENE_FORMAT_KEY}' key) nor a frames.yaml "
-                          "(no 'frames' key)", file=path)
+    return "frames.yaml" if path.name.lower().startswith("frames") else "scene"
 
 
 def read_tree(path: str | Path, fmt: str | None = None) -> FrameTree:
@@ -71,15 +62,24 @@ def require_frames(tree: FrameTree, path: str | Path, *names: str | None) -> Non
 
 
 def write_tree(tree: FrameTree, path: str | Path, fmt: str | None = None, *,
-               schema: str | None = None, time: Any = None) -> None:
+               schema: str | None = None, time: Any = None,
+               slash_replacement: str | None = None) -> None:
     """Write ``tree`` to ``path`` in ``fmt`` (default: told from the name), atomically.
 
     ``schema`` is the ASDF schema version; ``time`` writes the poses at that time for the
-    formats that cannot hold motion or when a static snapshot is wanted (not ASDF).
+    formats that cannot hold motion or when a static snapshot is wanted (not ASDF);
+    ``slash_replacement`` stands for ``/`` in frames.yaml keys where a name's ``/`` would
+    put a frame under another.
     """
     fmt = fmt or detect_format(path, writing=True)
     if schema is not None and fmt != "asdf":
         raise FileFormatError(f"--schema is for ASDF files, not {fmt}", file=path)
+    if slash_replacement is not None:
+        if fmt != "frames.yaml":
+            raise FileFormatError(f"--slash-replacement is for frames.yaml files, not {fmt}",
+                                  file=path)
+        _function("write", fmt)(tree, path, time=time, slash_replacement=slash_replacement)
+        return
     if fmt == "asdf":
         if time is not None:
             raise FileFormatError("--time is not for ASDF files, which keep the motion",

@@ -24,16 +24,22 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     parser.add_argument("--to", choices=FORMATS, help="format of OUT (default: from its name)")
     parser.add_argument("--schema", choices=("1.0.0", "0.1.0"),
                         help="ASDF schema version: 0.1.0 (weldx 0.6 and later) or 1.0.0 "
-                        "(legacy, weldx up to 0.4)")
+                        "(legacy, weldx up to 0.4) (default: 1.0.0)")
     parser.add_argument("--time", metavar="T",
                         help="write every frame at its pose at time T (seconds, duration or "
-                        "timestamp); needed where OUT cannot hold motion")
+                        "timestamp); needed where OUT cannot hold motion (default: none, "
+                        "motion kept)")
+    parser.add_argument("--slash-replacement", metavar="TEXT",
+                        help="frames.yaml only: write TEXT for each '/' of a frame name that "
+                        "would put the frame under another one, e.g. _ (default: none, such "
+                        "names are refused)")
     parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
     """Read, then write."""
     tree = read_tree(args.input)
-    write_tree(tree, args.output, args.to, schema=args.schema, time=args.time)
+    write_tree(tree, args.output, args.to, schema=args.schema, time=args.time,
+               slash_replacement=args.slash_replacement)
     print(f"pinframes: wrote {args.output} ({len(tree)} frames)", file=sys.stderr)
     return 0

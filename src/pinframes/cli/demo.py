@@ -10,13 +10,12 @@ from pathlib import Path
 
 import numpy as np
 
-from .. import read_scene
 from ..errors import FileFormatError, WriteError
-from ..plotting import new_figure, plot_frames, robot_frames, save_figure
+from ..plotting import new_figure, plot_frames, plotting_available, robot_frames, save_figure
 from ..pose import Pose
 from ..tree import FrameTree
 from ._evaluate import evaluate_poses, terminal_stderr
-from ._files import require_frames
+from ._files import read_tree, require_frames
 from ._output import write_poses
 
 __all__ = ["PathSummary", "add_parser", "bundled_scene", "run", "summarize"]
@@ -36,12 +35,14 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "demo", parents=parents, help="torch path of the bundled welding cell",
         description="Load the bundled welding cell (robot, positioner, workpiece), compute "
         "the pose of the torch tip relative to the workpiece at every sample of the motion, "
-        f"print a summary and write the poses ({POSES_FILE}) and a plot ({PLOT_FILE}).")
+        f"print a summary and write the poses ({POSES_FILE}) and, with matplotlib "
+        f"(pip install \"pinframes[plot]\"), a plot ({PLOT_FILE}).")
     parser.add_argument("--out", metavar="DIR", default=".",
                         help="folder for the CSV and PNG files (default: the current folder; "
                         "created if missing, but not its parent folders)")
     parser.add_argument("--scene", metavar="FILE",
-                        help="another scene file (default: the bundled welding cell)")
+                        help="another tree file: scene, frames.yaml, ASDF or URDF (default: "
+                        "the bundled welding cell)")
     parser.add_argument("--tool", default="torch_tcp", metavar="FRAME",
                         help="the tool frame (default: torch_tcp)")
     parser.add_argument("--workpiece", default="workpiece", metavar="FRAME",
@@ -102,7 +103,7 @@ def summarize(pose: Pose) -> PathSummary:
 def run(args: argparse.Namespace) -> int:
     """Compute, print the summary, write the files."""
     scene = Path(args.scene) if args.scene else bundled_scene()
-    tree = read_scene(scene)
+    tree = read_tree(scene)
     require_frames(tree, scene, args.tool, args.workpiece)
     pose = evaluate_poses(tree, args.tool, args.workpiece, None, progress=terminal_stderr())
     if not pose.is_time_dependent or len(pose) < 2:
@@ -116,10 +117,17 @@ def run(args: argparse.Namespace) -> int:
         raise WriteError(f"cannot create the output folder: {exc.strerror}", file=out) from None
     write_poses(pose, "csv", str(out / POSES_FILE), frame=args.tool,
                 relative_to=args.workpiece)
-    _plot(tree, pose, summary, args.tool, args.workpiece, out / PLOT_FILE)
+    plotted = plotting_available()
+    if plotted:
+        _plot(tree, pose, summary, args.tool, args.workpiece, out / PLOT_FILE)
     print(f"{args.tool} relative to {args.workpiece} ({scene.name})")
     sys.stdout.write(summary.table())
-    print(f"pinframes: wrote {out / POSES_FILE} and {out / PLOT_FILE}", file=sys.stderr)
+    if plotted:
+        print(f"pinframes: wrote {out / POSES_FILE} and {out / PLOT_FILE}", file=sys.stderr)
+    else:
+        print(f"pinframes: wrote {out / POSES_FILE}; pip install \"pinframes[plot]\" adds "
+              f"matplotlib, and the demo then also draws the cell and the path "
+              f"({PLOT_FILE})", file=sys.stderr)
     return 0
 
 
