@@ -76,6 +76,8 @@ def test_repr_shows_seconds_and_timestamps():
     absolute = Pose(np.zeros((2, 3)), times=[0.0, 2.5], reference_time=REFERENCE)
     assert repr(absolute) == ("Pose(2 samples from 0 s to 2.5 s after 2024-03-01T08:00:00, "
                               "2024-03-01T08:00:00 to 2024-03-01T08:00:02.5)")
+    assert repr(absolute[1]) == ("Pose(1 sample at 2.5 s after 2024-03-01T08:00:00, "
+                                 "2024-03-01T08:00:02.5)")
 
 
 def test_quaternion_series_is_sign_continuous_and_the_same_rotations():

@@ -291,13 +291,15 @@ class Pose:
             qx, qy, qz, qw = self.quaternion
             return (f"Pose(translation=({x:.6g}, {y:.6g}, {z:.6g}), "
                     f"quaternion=({qx:.6g}, {qy:.6g}, {qz:.6g}, {qw:.6g}))")
-        seconds = self._times[[0, -1]] / 1e9
-        text = f"Pose({len(self)} samples from {seconds[0]:.9g} s to {seconds[1]:.9g} s"
+        first, last = self._times[[0, -1]] / 1e9
+        text = (f"Pose(1 sample at {first:.9g} s" if len(self) == 1 else
+                f"Pose({len(self)} samples from {first:.9g} s to {last:.9g} s")
         if self._reference is None:
             return text + ")"
-        first, last = (format_timestamp_iso(stamp) for stamp in
-                       self._reference + self._times[[0, -1]].astype("timedelta64[ns]"))
-        return f"{text} after {format_timestamp_iso(self._reference)}, {first} to {last})"
+        stamps = [format_timestamp_iso(stamp) for stamp in
+                  self._reference + self._times[[0, -1]].astype("timedelta64[ns]")]
+        return (f"{text} after {format_timestamp_iso(self._reference)}, "
+                f"{' to '.join(stamps[:len(self)])})")
 
 
 def _same_timeline(a: Pose, b: Pose) -> bool:

@@ -18,11 +18,10 @@ NPZ
 
 from __future__ import annotations
 
-import io
 import json
 import os
 from pathlib import Path
-from typing import BinaryIO
+from typing import IO, Any
 
 import numpy as np
 
@@ -106,7 +105,7 @@ def _json_text(pose: Pose, frame: str | None, relative_to: str | None) -> str:
     return json.dumps(document, indent=1) + "\n"
 
 
-def _write_npz(handle: BinaryIO | io.BufferedWriter, pose: Pose, frame: str | None,
+def _write_npz(handle: IO[Any], pose: Pose, frame: str | None,
                relative_to: str | None) -> None:
     seconds, values = _rows(pose)
     np.savez(handle, time_s=seconds, translation=values[:, :3], quaternion=values[:, 3:],

@@ -99,7 +99,7 @@ def test_info_json_describes_frames_and_joints(run_cli):
     assert result.returncode == 0, result.stderr
     document = json.loads(result.stdout)
     tree = read_scene(bundled_scene())
-    assert [frame["name"] for frame in document["frames"]][0] == "world"
+    assert document["frames"][0]["name"] == "world"
     assert sorted(frame["name"] for frame in document["frames"]) == sorted(tree.frames)
     by_name = {frame["name"]: frame for frame in document["frames"]}
     assert by_name["positioner"]["kind"] == "moving"
