@@ -13,10 +13,10 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from pinframes import BrokenMimicWarning, FileFormatError, FrameTree
+from pinframes import BrokenMimicWarning, FileFormatError, FrameTree, read_urdf
 from urdf.test_robots_against_pinocchio import ROBOTS, pinocchio_configuration
 
-pytestmark = pytest.mark.skipif(ROBOTS is None, reason="example-robot-data is not installed")
+needs_robots = pytest.mark.skipif(ROBOTS is None, reason="example-robot-data is not installed")
 URDFS = sorted(ROBOTS.rglob("*.urdf")) if ROBOTS is not None else []
 
 
@@ -38,6 +38,7 @@ def missing_primaries(urdf):
                   and joint.find("mimic").get("joint") not in names)
 
 
+@needs_robots
 @pytest.mark.parametrize("urdf", URDFS, ids=[str(p.relative_to(ROBOTS)) for p in URDFS])
 def test_every_link_matches_pinocchio(urdf, rng):
     model = pinocchio_model(urdf)
@@ -68,6 +69,25 @@ def test_every_link_matches_pinocchio(urdf, rng):
                                    atol=1e-12, err_msg=link)
 
 
+def test_a_mimic_of_an_unknown_joint_warns_once_and_moves_on_its_own():
+    urdf = """<robot name="r"><link name="a"/><link name="b"/>
+      <joint name="j1" type="revolute"><parent link="a"/><child link="b"/><axis xyz="0 0 1"/>
+        <limit lower="-1" upper="1" effort="1" velocity="1"/><mimic joint="x"/></joint>
+    </robot>"""
+    with pytest.warns(BrokenMimicWarning, match="joint 'j1' mimics joint 'x'") as caught:
+        tree = read_urdf(urdf)
+    assert len(caught) == 1
+    assert tree.joints["j1"].mimic is None
+    tree.set_joint_trajectory([0.0], [[0.5]], ["j1"])  # driven like any joint
+    rotation = tree.pose("b", relative_to="a", times=[0.0]).rotation[0]
+    np.testing.assert_allclose(rotation[:2, :2], [[np.cos(0.5), -np.sin(0.5)],
+                                                  [np.sin(0.5), np.cos(0.5)]], atol=1e-15)
+    with pytest.raises(FileFormatError, match="mimics unknown joint 'x'") as info:
+        read_urdf(urdf, strict=True)
+    assert (info.value.frame, info.value.field) == ("j1", "mimic.joint")
+
+
+@needs_robots
 def test_a_missing_mimic_primary_is_an_error_when_strict():
     urdf = ROBOTS / "alex_description/urdf/alex_psyonic_hands.urdf"
     with pytest.raises(FileFormatError, match="mimics unknown joint 'index_q1'") as info:
