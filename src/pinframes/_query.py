@@ -308,8 +308,11 @@ def _warn_joints_without_samples(tree: FrameTree) -> None:
             if joint.is_actuated and tree.joint_track(name) is None]
     named = ", ".join(repr(name) for name in idle[:4]) + (
         f" and {len(idle) - 4} more" if len(idle) > 4 else "")
+    many = len(idle) > 1
+    subject = f"joints {named} have" if many else f"joint {named} has"
     warnings.warn(
-        f"joints {named} have no samples and hold their rest value (0, or the limit nearest "
-        "to 0); give values with FrameTree.set_joint_trajectory(times, positions, "
-        "joint_names) or a scene robot's 'trajectory' file", JointWithoutSamplesWarning,
+        f"{subject} no samples and {'hold' if many else 'holds'} the rest value (0, or the "
+        "limit nearest to 0); give values with FrameTree.set_joint_trajectory(times, "
+        "positions, joint_names) or a scene robot's 'trajectory' file",
+        JointWithoutSamplesWarning,
         stacklevel=2)

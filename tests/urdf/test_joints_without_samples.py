@@ -38,7 +38,8 @@ def test_driven_joints_do_not_warn():
     tree = FrameTree()
     tree.attach_urdf(urdf, "world")
     actuated = [name for name, joint in tree.joints.items() if joint.is_actuated]
-    tree.set_joint_trajectory([0.0, 1.0], np.full((2, len(actuated)), 0.01), actuated)
+    rest = [tree.joints[name].rest_value for name in actuated]
+    tree.set_joint_trajectory([0.0, 1.0], [rest, rest], actuated)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         tree.pose("panda_hand", relative_to="world")

@@ -153,7 +153,7 @@ def test_bad_urdfs_raise_named_errors_and_leave_the_tree_unchanged(urdf, field):
     tree = FrameTree()
     tree.add("table", "world")
     with pytest.raises(FileFormatError) as info:
-        tree.attach_urdf(urdf, "table")
+        tree.attach_urdf(urdf, "table", strict=True)  # strict: a mimic of an unknown joint too
     assert info.value.file == "<urdf string>"
     assert info.value.field == field
     assert tree.frames == ["world", "table"] and tree.joints == {}
