@@ -22,7 +22,7 @@ import numpy as np
 
 from _machine import describe_machine, median_time
 from pinframes import FrameTree, Pose
-from pinframes.rotations import matrix_from_quaternion
+from pinframes.values.rotations import matrix_from_quaternion
 
 
 def random_unit_quaternions(rng: np.random.Generator, count: int, step: float) -> np.ndarray:

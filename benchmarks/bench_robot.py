@@ -22,7 +22,7 @@ import pinocchio as pin
 from _machine import describe_machine, median_time
 from bench_queries import reference_interpolate
 from pinframes import FrameTree, Pose
-from pinframes.rotations import matrix_from_axis_angle, quaternion_from_matrix
+from pinframes.values.rotations import matrix_from_axis_angle, quaternion_from_matrix
 
 
 def panda_urdf() -> Path:

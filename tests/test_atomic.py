@@ -3,8 +3,8 @@ import stat
 
 import pytest
 
-from pinframes._atomic import atomic_write
 from pinframes.errors import WriteError
+from pinframes.formats._atomic import atomic_write
 
 
 def test_new_files_get_the_umask_mode_and_replaced_files_keep_theirs(tmp_path):

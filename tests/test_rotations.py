@@ -1,7 +1,7 @@
 import numpy as np
 import pinocchio as pin
 
-from pinframes.rotations import (
+from pinframes.values.rotations import (
     matrix_from_axis_angle,
     matrix_from_quaternion,
     matrix_from_rpy,

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from pinframes.errors import InvalidTimeError
-from pinframes.timeconv import (
+from pinframes.values.timeconv import (
     format_timedelta_iso,
     format_timestamp_iso,
     parse_time_axis,

@@ -2,13 +2,16 @@
 
 from .errors import (
     ArgumentTypeError,
+    BrokenMimicWarning,
     ExtrapolationError,
     FileFormatError,
     FrameExistsError,
     FrameNotFoundError,
+    FramesYamlWarning,
     InvalidPoseError,
     InvalidTimeError,
     JointError,
+    JointLimitWarning,
     JointWithoutSamplesWarning,
     PinframesError,
     ReadError,
@@ -17,17 +20,18 @@ from .errors import (
     UnsupportedFeatureError,
     WriteError,
 )
-from .joint import Joint, Mimic
-from .joint_track import JointTrack
-from .pinocchio_tree import PinocchioTree
-from .pose import Pose
-from .pose_files import write_poses
-from .scene import read_scene
-from .scene_writer import write_scene
-from .subsystem import Subsystem
-from .trajectory_io import read_joint_trajectory
+from .formats import read, read_joint_trajectory, write
+from .formats.frames_yaml import read_frames_yaml, write_frames_yaml
+from .formats.pose_files import write_poses
+from .formats.scene import read_scene, write_scene
+from .formats.urdf import read_urdf, write_urdf
+from .kinematics import PinocchioTree
 from .tree import FrameTree
-from .urdf import BrokenMimicWarning, read_urdf, write_urdf
+from .values.joint import Joint, Mimic
+from .values.joint_trajectory import JointTrack, JointTrajectory
+from .values.pose import Pose
+from .values.subsystem import Subsystem
+from .values.timeconv import TimeAxis
 
 __version__ = "0.1.0"
 
@@ -39,11 +43,14 @@ __all__ = [
     "FrameExistsError",
     "FrameNotFoundError",
     "FrameTree",
+    "FramesYamlWarning",
     "InvalidPoseError",
     "InvalidTimeError",
     "Joint",
     "JointError",
+    "JointLimitWarning",
     "JointTrack",
+    "JointTrajectory",
     "JointWithoutSamplesWarning",
     "Mimic",
     "PinframesError",
@@ -52,21 +59,22 @@ __all__ = [
     "ReadError",
     "ReferenceTimeError",
     "Subsystem",
+    "TimeAxis",
     "TreeStructureError",
     "UnsupportedFeatureError",
     "WriteError",
     "__version__",
+    "read",
+    "read_frames_yaml",
     "read_joint_trajectory",
     "read_scene",
     "read_urdf",
+    "write",
+    "write_frames_yaml",
     "write_poses",
     "write_scene",
     "write_urdf",
 ]
-
-from .frames_yaml import FramesYamlWarning, read_frames_yaml, write_frames_yaml
-
-__all__ += ["FramesYamlWarning", "read_frames_yaml", "write_frames_yaml"]
 
 # The ASDF functions load the asdf package: they are imported on first use.
 _ASDF_FUNCTIONS = ("read_asdf", "write_asdf")
@@ -75,7 +83,7 @@ __all__ += list(_ASDF_FUNCTIONS)
 
 def __getattr__(name: str) -> object:
     if name in _ASDF_FUNCTIONS:
-        from . import asdf as _asdf_format
+        from .formats import asdf as _asdf_format
 
         return getattr(_asdf_format, name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,4 +1,4 @@
-"""Exceptions raised by pinframes.
+"""Exceptions raised by pinframes, and the warnings it gives.
 
 Every error carries, where known, the ``file`` it came from, the ``frame`` it concerns and the
 ``field`` that is wrong, and puts them at the front of its message::
@@ -17,13 +17,16 @@ from collections.abc import Iterable
 
 __all__ = [
     "ArgumentTypeError",
+    "BrokenMimicWarning",
     "ExtrapolationError",
     "FileFormatError",
     "FrameExistsError",
     "FrameNotFoundError",
+    "FramesYamlWarning",
     "InvalidPoseError",
     "InvalidTimeError",
     "JointError",
+    "JointLimitWarning",
     "JointWithoutSamplesWarning",
     "PinframesError",
     "ReadError",
@@ -124,11 +127,6 @@ class JointError(PinframesError, ValueError):
     """A robot joint that is unknown, mis-specified or driven with bad values."""
 
 
-class JointWithoutSamplesWarning(UserWarning):
-    """Robot joints evaluated without samples: they hold their rest value
-    (:attr:`pinframes.Joint.rest_value`). Issued once per tree."""
-
-
 class FileFormatError(PinframesError, ValueError):
     """A file whose content does not follow its format."""
 
@@ -164,3 +162,21 @@ def near_misses(name: object, known: Iterable[str], kind: str = "frame") -> str:
     if not matches:
         return ""
     return f"; did you mean {kind} " + " or ".join(repr(match) for match in matches) + "?"
+
+
+class JointLimitWarning(UserWarning):
+    """Joint values outside the limits written in the URDF."""
+
+
+class FramesYamlWarning(UserWarning):
+    """A ``frames.yaml`` oddity that pinframes reads anyway (unknown fields, undeclared frames)."""
+
+
+class BrokenMimicWarning(UserWarning):
+    """A URDF mimic joint that names a joint the file does not have: it is loaded as an
+    independent joint (``strict=True`` refuses the file instead)."""
+
+
+class JointWithoutSamplesWarning(UserWarning):
+    """Robot joints evaluated without samples: they hold their rest value
+    (:attr:`pinframes.Joint.rest_value`). Issued once per tree."""

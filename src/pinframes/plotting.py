@@ -13,11 +13,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ._atomic import atomic_write
 from .errors import ReferenceTimeError, UnsupportedFeatureError
-from .timeconv import TimeAxis, timestamp_ns
+from .formats._atomic import atomic_write
+from .formats.urdf import URDF_METADATA_KEY
 from .tree import FrameTree
-from .urdf import URDF_METADATA_KEY
+from .values.timeconv import TimeAxis, timestamp_ns
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes

@@ -21,7 +21,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 import pinframes
-from pinframes.joint_trajectory import JointLimitWarning
+from pinframes import JointLimitWarning
 
 
 def axis_rotation(axis, angles) -> np.ndarray:

@@ -7,8 +7,7 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from pinframes import FrameTree, Pose
-from pinframes.joint_trajectory import JointLimitWarning
+from pinframes import FrameTree, JointLimitWarning, Pose
 
 
 def robot_data_dir() -> Path | None:

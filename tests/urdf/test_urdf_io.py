@@ -7,7 +7,7 @@ import pinocchio as pin
 import pytest
 import yourdfpy
 
-from pinframes import FrameTree, Pose
+from pinframes import FrameTree, JointLimitWarning, Pose
 from pinframes.errors import (
     FileFormatError,
     FrameExistsError,
@@ -15,8 +15,7 @@ from pinframes.errors import (
     JointError,
     ReadError,
 )
-from pinframes.joint_trajectory import JointLimitWarning
-from pinframes.urdf import read_urdf, write_urdf
+from pinframes.formats.urdf import read_urdf, write_urdf
 
 from geometry import rot_z
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from pinframes import FrameTree, Pose, UnsupportedFeatureError, read_asdf, write_asdf
-from pinframes.asdf._depth import MAX_GRAPH_DEPTH
+from pinframes.formats.asdf._depth import MAX_GRAPH_DEPTH
 from weldx_asdf.weldx_env import weldx_pose
 
 from geometry import homogeneous, rot_x, rot_z
@@ -67,7 +67,7 @@ def test_deeper_chain_written_by_someone_else_is_refused_clearly(tmp_path):
     script = ("import sys, threading, asdf; sys.setrecursionlimit(200_000); "
               "threading.stack_size(512 * 2**20); "
               "from test_asdf_deep import chain; "
-              "from pinframes.asdf._writer import _graph_hierarchy; "
+              "from pinframes.formats.asdf._writer import _graph_hierarchy; "
               "asdf.get_config().validate_on_write = False; "
               "write = lambda: asdf.AsdfFile("
               f"{{'h': _graph_hierarchy(chain({depth}))}}).write_to({str(path)!r}); "

@@ -11,7 +11,7 @@ import pytest
 from asdf.tagged import TaggedDict
 
 import pinframes
-from pinframes.asdf._extension import bound_schemas
+from pinframes.formats.asdf._extension import bound_schemas
 from weldx_asdf.asdf_texts import (
     digraph_hierarchy,
     digraph_node,

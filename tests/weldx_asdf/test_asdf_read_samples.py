@@ -14,7 +14,7 @@ import pytest
 
 import pinframes
 from conftest import SHARED_DATA
-from pinframes.asdf._asdf_config import temporary_asdf_config
+from pinframes.formats.asdf._asdf_config import temporary_asdf_config
 
 from geometry import homogeneous
 

@@ -12,8 +12,8 @@ import yaml
 
 import pinframes
 from conftest import SHARED_DATA
-from pinframes.asdf._decode import open_raw_tree
-from pinframes.asdf._extension import (
+from pinframes.formats.asdf._decode import open_raw_tree
+from pinframes.formats.asdf._extension import (
     EXTENSION_URI,
     MANIFEST,
     SCHEMA_FOLDER,

@@ -318,9 +318,9 @@ def test_subsystems_that_do_not_nest_as_a_forest_are_refused(tmp_path, nested):
 
 
 def test_an_invalid_hierarchy_fails_validation_before_writing(tmp_path):
-    from pinframes.asdf._encode import LEGACY as generation
-    from pinframes.asdf._encode import tagged
-    from pinframes.asdf._writer import _write
+    from pinframes.formats.asdf._encode import LEGACY as generation
+    from pinframes.formats.asdf._encode import tagged
+    from pinframes.formats.asdf._writer import _write
 
     broken = tagged(generation, "core/transformations/coordinate_system_hierarchy",
                     {"name": "x", "coordinate_systems": []})  # no root_system_name

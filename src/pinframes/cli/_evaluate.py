@@ -9,9 +9,15 @@ from typing import Any, TextIO
 import numpy as np
 
 from ..errors import InvalidTimeError
-from ..pose import Pose
-from ..timeconv import TimeAxis, parse_time_axis, parse_timedelta, parse_timestamp, timestamp_ns
 from ..tree import FrameTree
+from ..values.pose import Pose
+from ..values.timeconv import (
+    TimeAxis,
+    parse_time_axis,
+    parse_timedelta,
+    parse_timestamp,
+    timestamp_ns,
+)
 
 __all__ = ["add_time_arguments", "evaluate_poses", "requested_times", "terminal_stderr"]
 

@@ -1,13 +1,13 @@
-"""The ``pose`` and ``demo`` outputs: :mod:`pinframes.pose_files` to a file or stdout."""
+"""The ``pose`` and ``demo`` outputs: :mod:`pinframes.formats.pose_files` to a file or stdout."""
 
 from __future__ import annotations
 
 import sys
 
 from ..errors import FileFormatError
-from ..pose import Pose
-from ..pose_files import POSE_FILE_FORMATS, pose_file_format, poses_text
-from ..pose_files import write_poses as write_pose_file
+from ..formats.pose_files import POSE_FILE_FORMATS, pose_file_format, poses_text
+from ..formats.pose_files import write_poses as write_pose_file
+from ..values.pose import Pose
 
 __all__ = ["OUTPUT_FORMATS", "output_format", "write_poses"]
 

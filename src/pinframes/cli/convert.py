@@ -5,7 +5,8 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ._files import FORMATS, read_tree, write_tree
+from ..formats import registered_formats
+from ._files import read_tree, write_tree
 
 __all__ = ["add_parser", "run"]
 
@@ -21,7 +22,8 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "atomically.")
     parser.add_argument("input", metavar="IN", help="file to read")
     parser.add_argument("output", metavar="OUT", help="file to write")
-    parser.add_argument("--to", choices=FORMATS, help="format of OUT (default: from its name)")
+    parser.add_argument("--to", choices=registered_formats(),
+                        help="format of OUT (default: from its name)")
     parser.add_argument("--schema", choices=("1.0.0", "0.1.0"),
                         help="ASDF schema version: 0.1.0 (weldx 0.6 and later) or 1.0.0 "
                         "(legacy, weldx up to 0.4) (default: 1.0.0)")

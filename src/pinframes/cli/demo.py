@@ -12,8 +12,8 @@ import numpy as np
 
 from ..errors import FileFormatError, WriteError
 from ..plotting import new_figure, plot_frames, plotting_available, robot_frames, save_figure
-from ..pose import Pose
 from ..tree import FrameTree
+from ..values.pose import Pose
 from ._evaluate import evaluate_poses, terminal_stderr
 from ._files import read_tree, require_frames
 from ._output import write_poses

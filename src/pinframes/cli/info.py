@@ -9,8 +9,8 @@ from typing import Any
 
 import numpy as np
 
-from ..timeconv import format_timestamp_iso
 from ..tree import FrameTree
+from ..values.timeconv import format_timestamp_iso
 from ._files import read_tree
 
 __all__ = ["add_parser", "describe", "describe_json", "run"]
@@ -120,10 +120,10 @@ def _frame_columns(tree: FrameTree, name: str) -> tuple[str, str, str]:
     if joint is not None:
         kind = f"robot joint {joint.name} ({joint.kind}"
         kind += f", mimics {joint.mimic.joint})" if joint.mimic is not None else ")"
-        track = tree.joint_track(joint.name)
-        if track is None:
+        trajectory = tree.joint_trajectory(joint.name)
+        if trajectory is None:
             return kind, "mimic" if joint.mimic is not None else "no trajectory", ""
-        return kind, _span(track.times, "samples"), _reference(track.reference, tree)
+        return kind, _span(trajectory.times, "samples"), _reference(trajectory.reference, tree)
     pose = tree.local_pose(name)
     if not pose.is_time_dependent:
         return "static", "", ""

@@ -1,0 +1,392 @@
+"""Reading scene files: one YAML file that puts a whole cell together.
+
+A scene combines frame layers (``frames.yaml`` files and ASDF hierarchies), inline frames,
+robots (URDF files with joint trajectories) and tool frames into one :class:`FrameTree`.
+The format is described in ``docs/scene-format.md``; in short::
+
+    pinframes_scene: 1
+    root: world
+    layers:  [{file: cell.frames.yaml, mount: world}]
+    frames:  [{name: table, parent: world, xyz: [1, 0, 0.8], rpy: [0, 0, 0]}]
+    robots:  [{urdf: robot.urdf, parent: table, prefix: "robot/", trajectory: motion.csv}]
+    tools:   [{name: tcp, parent: robot/flange, xyz: [0, 0, 0.2]}]
+
+Paths inside a scene are relative to the scene file. Lengths in metres, angles in radians.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ...errors import FileFormatError, PinframesError, UnsupportedFeatureError
+from ...tree import FrameTree
+from ...values.pose import Pose
+from ...values.timeconv import parse_timestamp
+from .._registry import detect_format, read
+from .._yaml_loader import load_yaml
+from ..trajectory_files import read_joint_trajectory
+
+__all__ = ["SCENE_FORMAT_KEY", "SCENE_FORMAT_VERSION", "read_scene"]
+
+SCENE_FORMAT_KEY = "pinframes_scene"
+"""The top-level key that marks a scene file; its value is the format version."""
+
+SCENE_FORMAT_VERSION = 1
+"""The scene format version this module reads and writes."""
+
+_LAYER_FORMATS = ("frames.yaml", "asdf")
+"""Formats a scene layer may be in."""
+_TOP_KEYS = {SCENE_FORMAT_KEY, "name", "root", "reference_time", "layers", "frames", "robots",
+             "tools"}
+_POSE_KEYS = {"xyz", "rpy", "quaternion"}
+_ENTRY_KEYS = {
+    "layers": {"file", "mount", "prefix", "key"},
+    "frames": {"name", "parent", "keyframes", "reference_time"} | _POSE_KEYS,
+    "robots": {"name", "urdf", "parent", "prefix", "trajectory"} | _POSE_KEYS,
+    "tools": {"name", "parent"} | _POSE_KEYS,
+}
+_KEYFRAME_KEYS = {"time"} | _POSE_KEYS
+
+
+@dataclass
+class _Entry:
+    """One item of a scene list, waiting for its parent frame to exist."""
+
+    field: str
+    label: str | None
+    parent: str
+    parent_field: str
+    apply: Callable[[FrameTree], None]
+
+
+def read_scene(path: str | os.PathLike[str]) -> FrameTree:
+    """Read a scene file into a new :class:`FrameTree`.
+
+    Entries are added as soon as the frame they hang from exists, so their order in the
+    file does not matter (a tool may name a robot link, a robot a frame of a layer).
+
+    Raises
+    ------
+    FileFormatError
+        Malformed scene; the message names the scene file, the entry and the field. Errors
+        inside a referenced file name that file and say which scene entry referenced it.
+    UnsupportedFeatureError
+        A scene format version newer than this pinframes reads.
+    ReadError
+        The scene file (or a file it names) is missing, a folder, unreadable or not text.
+    """
+    scene = _Scene(Path(path))
+    return scene.build()
+
+
+class _Scene:
+    """The parsed content of one scene file, and how to build its tree."""
+
+    def __init__(self, path: Path) -> None:
+        self.path = path
+        content = load_yaml(path)
+        if not isinstance(content, dict) or SCENE_FORMAT_KEY not in content:
+            raise FileFormatError(f"not a pinframes scene: the file must start with "
+                                  f"'{SCENE_FORMAT_KEY}: {SCENE_FORMAT_VERSION}'", file=path)
+        version = content[SCENE_FORMAT_KEY]
+        if version != SCENE_FORMAT_VERSION:
+            raise UnsupportedFeatureError(
+                f"scene format version {version!r}; this pinframes reads version "
+                f"{SCENE_FORMAT_VERSION}", file=path, field=SCENE_FORMAT_KEY)
+        self._check_keys(content, _TOP_KEYS, None, "")
+        self.content = content
+        self.root = self._name(content.get("root", "world"), None, "root")
+
+    # -- building --------------------------------------------------------------------------
+    def build(self) -> FrameTree:
+        """A fresh tree with every entry added; nothing is returned half-built."""
+        layers = [self._layer(index, item)
+                  for index, item in enumerate(self._list("layers"))]
+        tree = FrameTree(self.root, name=self._optional_str("name"),
+                         reference_time=self._reference_time(layers))
+        entries = [entry for entry, _ in layers]
+        entries += [self._frame(index, item) for index, item in enumerate(self._list("frames"))]
+        entries += [self._robot(index, item) for index, item in enumerate(self._list("robots"))]
+        entries += [self._tool(index, item) for index, item in enumerate(self._list("tools"))]
+        pending = entries
+        while pending:
+            ready = [entry for entry in pending if entry.parent in tree]
+            if not ready:
+                stuck = pending[0]
+                raise FileFormatError(
+                    f"frame {stuck.parent!r} is neither in the scene nor made by another "
+                    "entry", file=self.path, frame=stuck.label, field=stuck.parent_field)
+            for entry in ready:
+                self._apply(entry, tree)
+            pending = [entry for entry in pending if entry not in ready]
+        return tree
+
+    def _apply(self, entry: _Entry, tree: FrameTree) -> None:
+        try:
+            entry.apply(tree)
+        except PinframesError as exc:
+            if exc.file is not None and Path(exc.file) != self.path:
+                raise self._referenced(exc, entry.field) from None
+            raise exc.located(file=self.path, frame=entry.label, field=entry.field) from None
+
+    def _reference_time(self, layers: list[tuple[_Entry, FrameTree]]) -> np.datetime64 | None:
+        """The scene's reference time, else the earliest reference time of its layers."""
+        if "reference_time" in self.content:
+            return self._timestamp(self.content["reference_time"], None, "reference_time")
+        references = [layer.reference_time for _, layer in layers
+                      if layer.reference_time is not None]
+        return min(references) if references else None
+
+    # -- entries ---------------------------------------------------------------------------
+    def _layer(self, index: int, item: Any) -> tuple[_Entry, FrameTree]:
+        field = f"layers[{index}]"
+        self._check_keys(item, _ENTRY_KEYS["layers"], None, field)
+        file = self._file(item, "file", None, field)
+        mount = self._name(item.get("mount", self.root), None, f"{field}.mount")
+        prefix = self._prefix(item, None, field)
+        key = item.get("key")
+        layer = self._read_layer(file, key, field)
+        entry = _Entry(field, None, mount, f"{field}.mount",
+                       lambda tree: _graft(tree, layer, mount, prefix))
+        return entry, layer
+
+    def _read_layer(self, file: Path, key: Any, field: str) -> FrameTree:
+        try:
+            layer_format = detect_format(file, among=_LAYER_FORMATS)
+        except FileFormatError:
+            raise FileFormatError(f"a layer must be a frames.yaml (.yaml) or ASDF (.asdf) "
+                                  f"file, got {file.name!r}", file=self.path,
+                                  field=f"{field}.file") from None
+        if key is not None and layer_format != "asdf":
+            raise FileFormatError("'key' is only for ASDF layers", file=self.path,
+                                  field=f"{field}.key")
+        try:
+            tree: FrameTree = read(file, layer_format, **({} if key is None else {"key": key}))
+        except PinframesError as exc:
+            raise self._referenced(exc, f"{field}.file") from None
+        return tree
+
+    def _frame(self, index: int, item: Any) -> _Entry:
+        field = f"frames[{index}]"
+        name, parent = self._frame_names(item, "frames", field)
+        static = self._pose_parts(item, name, field)
+        pose = Pose(static[0], static[1])
+        if "keyframes" in item:
+            pose = self._keyframes(item, static, name, field)
+        elif "reference_time" in item:
+            raise FileFormatError("a reference_time needs keyframes", file=self.path,
+                                  frame=name, field=f"{field}.reference_time")
+        return _Entry(field, name, parent, f"{field}.parent",
+                      lambda tree: tree.add(name, parent, pose))
+
+    def _tool(self, index: int, item: Any) -> _Entry:
+        field = f"tools[{index}]"
+        name, parent = self._frame_names(item, "tools", field)
+        translation, rotation = self._pose_parts(item, name, field)
+        pose = Pose(translation, rotation)
+        return _Entry(field, name, parent, f"{field}.parent",
+                      lambda tree: tree.add(name, parent, pose))
+
+    def _robot(self, index: int, item: Any) -> _Entry:
+        field = f"robots[{index}]"
+        self._check_keys(item, _ENTRY_KEYS["robots"], None, field)
+        label = self._name(item["name"], None, f"{field}.name") if "name" in item else None
+        urdf = self._file(item, "urdf", label, field)
+        parent = self._name(item.get("parent", self.root), label, f"{field}.parent")
+        prefix = self._prefix(item, label, field)
+        pose = Pose(*self._pose_parts(item, label, field))
+        trajectory, path = None, urdf
+        if "trajectory" in item:
+            path = self._file(item, "trajectory", label, field)
+            try:
+                trajectory = read_joint_trajectory(path)
+            except PinframesError as exc:
+                raise self._referenced(exc, f"{field}.trajectory") from None
+
+        def attach(tree: FrameTree) -> None:
+            try:
+                tree.attach_urdf(str(urdf), parent, pose=pose, prefix=prefix)
+            except PinframesError as exc:
+                if exc.file is None:
+                    raise  # a clash with the scene, located at this entry by _apply
+                raise self._referenced(exc, f"{field}.urdf") from None
+            if trajectory is not None:
+                self._drive(tree, trajectory, prefix, path, label, f"{field}.trajectory")
+
+        return _Entry(field, label, parent, f"{field}.parent", attach)
+
+    def _drive(self, tree: FrameTree, trajectory: tuple[np.ndarray, np.ndarray, list[str]],
+               prefix: str, path: Path, label: str | None, field: str) -> None:
+        times, positions, names = trajectory
+        joints = tree.joints
+        for name in names:
+            if prefix + name not in joints:
+                known = ", ".join(sorted(joints)) or "none"
+                raise self._referenced(FileFormatError(
+                    f"no joint {prefix + name!r} in the tree (joints: {known})", file=path,
+                    frame=name, field="header"), field)
+        try:
+            tree.set_joint_trajectory(times, positions, [prefix + name for name in names])
+        except PinframesError as exc:
+            raise self._referenced(exc.located(file=path), field) from None
+
+    # -- poses -----------------------------------------------------------------------------
+    def _pose_parts(self, item: dict, frame: str | None, field: str
+                    ) -> tuple[np.ndarray, np.ndarray | None]:
+        """Translation (3,) metres and rotation (quaternion (4,) or matrix) or None."""
+        translation = self._numbers(item.get("xyz", (0.0, 0.0, 0.0)), 3, frame, f"{field}.xyz")
+        if "rpy" in item and "quaternion" in item:
+            raise FileFormatError("give either rpy or quaternion, not both", file=self.path,
+                                  frame=frame, field=f"{field}.rpy")
+        rotation = None
+        if "rpy" in item:
+            rpy = self._numbers(item["rpy"], 3, frame, f"{field}.rpy")
+            rotation = Pose.from_xyz_rpy(0.0, 0.0, 0.0, *rpy).rotation
+        elif "quaternion" in item:
+            quaternion = self._numbers(item["quaternion"], 4, frame, f"{field}.quaternion")
+            try:
+                rotation = Pose(rotation=quaternion).rotation
+            except PinframesError as exc:
+                raise FileFormatError(exc.message, file=self.path, frame=frame,
+                                      field=f"{field}.quaternion") from None
+        return translation, rotation
+
+    def _keyframes(self, item: dict, static: tuple[np.ndarray, np.ndarray | None],
+                   frame: str, field: str) -> Pose:
+        keyframes = item["keyframes"]
+        if not isinstance(keyframes, list) or not keyframes:
+            raise FileFormatError("expected a non-empty list of keyframes", file=self.path,
+                                  frame=frame, field=f"{field}.keyframes")
+        times, translations, rotations = [], [], []
+        for position, keyframe in enumerate(keyframes):
+            where = f"{field}.keyframes[{position}]"
+            self._check_keys(keyframe, _KEYFRAME_KEYS, frame, where)
+            if "time" not in keyframe:
+                raise FileFormatError("missing", file=self.path, frame=frame,
+                                      field=f"{where}.time")
+            times.append(keyframe["time"])
+            translation, rotation = self._pose_parts(
+                {"xyz": static[0], **keyframe}, frame, where)
+            translations.append(translation)
+            if rotation is None:
+                rotation = np.eye(3) if static[1] is None else static[1]
+            rotations.append(rotation)
+        reference = None
+        if "reference_time" in item:
+            reference = self._timestamp(item["reference_time"], frame,
+                                        f"{field}.reference_time")
+        try:
+            return Pose(np.array(translations), np.array(rotations), times=times,
+                        reference_time=reference)
+        except PinframesError as exc:
+            raise FileFormatError(exc.message, file=self.path, frame=frame,
+                                  field=f"{field}.keyframes.time") from None
+
+    # -- field readers ---------------------------------------------------------------------
+    def _list(self, key: str) -> list[Any]:
+        value = self.content.get(key, [])
+        if value is None:
+            return []
+        if not isinstance(value, list):
+            raise FileFormatError(f"expected a list, got {type(value).__name__}",
+                                  file=self.path, field=key)
+        return value
+
+    def _check_keys(self, item: Any, allowed: set[str], frame: str | None, field: str) -> None:
+        if not isinstance(item, dict):
+            raise FileFormatError(f"expected a mapping, got {type(item).__name__}",
+                                  file=self.path, frame=frame, field=field or None)
+        unknown = sorted(str(key) for key in item if key not in allowed)
+        if unknown:
+            raise FileFormatError(
+                f"unknown key(s) {', '.join(unknown)}; expected {', '.join(sorted(allowed))}",
+                file=self.path, frame=frame, field=field or None)
+
+    def _frame_names(self, item: Any, kind: str, field: str) -> tuple[str, str]:
+        self._check_keys(item, _ENTRY_KEYS[kind], None, field)
+        if "name" not in item:
+            raise FileFormatError("missing", file=self.path, field=f"{field}.name")
+        name = self._name(item["name"], None, f"{field}.name")
+        if "parent" not in item:
+            raise FileFormatError("missing", file=self.path, frame=name,
+                                  field=f"{field}.parent")
+        return name, self._name(item["parent"], name, f"{field}.parent")
+
+    def _name(self, value: Any, frame: str | None, field: str) -> str:
+        if not isinstance(value, str) or not value:
+            raise FileFormatError(f"expected a non-empty string, got {value!r}",
+                                  file=self.path, frame=frame, field=field)
+        return value
+
+    def _optional_str(self, key: str) -> str | None:
+        value = self.content.get(key)
+        return None if value is None else self._name(value, None, key)
+
+    def _prefix(self, item: dict, frame: str | None, field: str) -> str:
+        prefix = item.get("prefix", "")
+        if not isinstance(prefix, str):
+            raise FileFormatError(f"expected a string, got {prefix!r}", file=self.path,
+                                  frame=frame, field=f"{field}.prefix")
+        return prefix
+
+    def _file(self, item: dict, key: str, frame: str | None, field: str) -> Path:
+        if key not in item:
+            raise FileFormatError("missing", file=self.path, frame=frame, field=f"{field}.{key}")
+        value = self._name(item[key], frame, f"{field}.{key}")
+        path = self.path.parent / value
+        if not path.is_file():
+            raise FileFormatError(f"no such file: {path}", file=self.path, frame=frame,
+                                  field=f"{field}.{key}")
+        return path
+
+    def _numbers(self, value: Any, count: int, frame: str | None, field: str) -> np.ndarray:
+        values = value.tolist() if isinstance(value, np.ndarray) else value
+        if (not isinstance(values, (list, tuple)) or len(values) != count
+                or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                           for v in values)):
+            raise FileFormatError(f"expected a list of {count} numbers, got {value!r}",
+                                  file=self.path, frame=frame, field=field)
+        try:
+            array = np.array(values, dtype=float)
+        except OverflowError:  # an integer too large for a float
+            array = np.full(count, np.inf)
+        if not np.all(np.isfinite(array)):
+            raise FileFormatError("values must be finite", file=self.path, frame=frame,
+                                  field=field)
+        return array
+
+    def _timestamp(self, value: Any, frame: str | None, field: str) -> np.datetime64:
+        try:
+            return parse_timestamp(value, field=field)
+        except PinframesError as exc:
+            raise FileFormatError(exc.message, file=self.path, frame=frame,
+                                  field=field) from None
+
+    def _referenced(self, exc: PinframesError, field: str) -> PinframesError:
+        """``exc`` from a file this scene references, with a note saying which entry."""
+        return type(exc)(f"{exc.message} (referenced by {self.path}: {field})",
+                         file=exc.file, frame=exc.frame, field=exc.field)
+
+
+def _graft(tree: FrameTree, layer: FrameTree, mount: str, prefix: str) -> None:
+    """Add every frame of ``layer`` to ``tree``; the layer's root becomes ``mount``.
+
+    Moving frames keep their absolute times: a frame that counted from the layer's
+    reference time gets that reference time as its own.
+    """
+    if layer.joints:
+        raise UnsupportedFeatureError("layers with robot joints; list robots under 'robots'")
+    for name in layer.frames[1:]:
+        parent = layer.parent(name)
+        pose = layer.local_pose(name)
+        if (pose.is_time_dependent and pose.reference_time is None
+                and layer.reference_time is not None):
+            pose = Pose(pose.translation, pose.rotation, times=pose.times,
+                        reference_time=layer.reference_time)
+        tree.add(prefix + name, mount if parent == layer.root else prefix + parent, pose)

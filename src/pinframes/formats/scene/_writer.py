@@ -1,0 +1,127 @@
+"""Writing a :class:`FrameTree` as a self-contained scene file (inline frames only).
+
+Every frame becomes an inline frame with its pose in its parent: ``xyz`` in metres and a
+``quaternion`` ``(x, y, z, w)``, to double precision. Moving frames get their keyframes.
+A link driven by a robot joint becomes a moving frame keyed at its joint's trajectory
+samples, which is exact: between two samples a revolute joint turns about a fixed axis, as
+SLERP does, and a prismatic joint slides, as linear interpolation does. Joint kinds, limits
+and the URDF itself are not kept; use ``write_urdf`` for those.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any
+
+import numpy as np
+import yaml
+
+from ...tree import FrameTree
+from ...values.pose import Pose
+from ...values.timeconv import format_timedelta_iso
+from .._atomic import atomic_write
+from .._joint_steps import check_joint_steps
+from ._reader import SCENE_FORMAT_KEY, SCENE_FORMAT_VERSION
+
+__all__ = ["write_scene"]
+
+
+def write_scene(tree: FrameTree, path: str | os.PathLike[str], time: Any = None) -> None:
+    """Write ``tree`` as a scene file (atomically).
+
+    Parameters
+    ----------
+    tree : FrameTree
+        The tree to write.
+    path : path-like
+        The ``.yaml`` file to write.
+    time : None or a time
+        None keeps motion as keyframes; a time (seconds, duration, timestamp, counted as in
+        :meth:`FrameTree.pose`) writes every frame at its pose at that time, static.
+
+    Raises
+    ------
+    UnsupportedFeatureError
+        A revolute or continuous joint turns by half a turn or more between two samples,
+        which keyframes cannot say unambiguously (resample the trajectory more densely).
+    WriteError
+        The file cannot be written; an existing file is left untouched.
+    """
+    document: dict[str, Any] = {SCENE_FORMAT_KEY: SCENE_FORMAT_VERSION}
+    if tree.name is not None:
+        document["name"] = tree.name
+    document["root"] = tree.root
+    if tree.reference_time is not None and time is None:
+        document["reference_time"] = str(tree.reference_time)
+    frames = []
+    for name in tree.frames[1:]:
+        parent = tree.parent(name)
+        if time is None:
+            check_joint_steps(tree, name)
+            pose = tree.pose(name, relative_to=parent)
+        else:
+            pose = _at(tree.pose(name, relative_to=parent, times=[time]), 0)
+        frames.append(_frame_entry(name, parent, pose, tree.reference_time))
+    if frames:
+        document["frames"] = frames
+    text = yaml.dump(document, Dumper=_FlowListDumper, sort_keys=False, width=100,
+                     allow_unicode=True)
+    with atomic_write(path, "w") as handle:
+        handle.write(text)
+
+
+class _FlowListDumper(yaml.SafeDumper):
+    """Lists of numbers and keyframes on one line each; everything else in block style."""
+
+
+class _Keyframe(dict):
+    """A keyframe mapping, written on one line."""
+
+
+def _represent_list(dumper: yaml.SafeDumper, data: list) -> yaml.Node:
+    flow = all(isinstance(item, (int, float, str)) for item in data)
+    return dumper.represent_sequence("tag:yaml.org,2002:seq", data, flow_style=flow)
+
+
+def _represent_keyframe(dumper: yaml.SafeDumper, data: _Keyframe) -> yaml.Node:
+    return dumper.represent_mapping("tag:yaml.org,2002:map", data, flow_style=True)
+
+
+_FlowListDumper.add_representer(list, _represent_list)
+_FlowListDumper.add_representer(_Keyframe, _represent_keyframe)
+
+
+def _frame_entry(name: str, parent: str, pose: Pose, tree_reference: np.datetime64 | None
+                 ) -> dict[str, Any]:
+    entry: dict[str, Any] = {"name": name, "parent": parent}
+    if not pose.is_time_dependent:
+        entry.update(_pose_fields(pose.translation, pose.quaternion))
+        return entry
+    if pose.reference_time is not None and pose.reference_time != tree_reference:
+        entry["reference_time"] = str(pose.reference_time)
+    quaternions = pose.quaternion
+    entry["keyframes"] = [
+        _Keyframe(time=_time_value(int(offset)), **_pose_fields(translation, quaternion))
+        for offset, translation, quaternion in zip(
+            pose.times.astype(np.int64), pose.translation, quaternions, strict=True)
+    ]
+    return entry
+
+
+def _pose_fields(translation: np.ndarray, quaternion: np.ndarray) -> dict[str, list[float]]:
+    fields = {}
+    if np.any(translation != 0.0):
+        fields["xyz"] = [float(v) for v in translation]
+    if not np.array_equal(quaternion, [0.0, 0.0, 0.0, 1.0]):
+        fields["quaternion"] = [float(v) for v in quaternion]
+    return fields
+
+
+def _time_value(nanoseconds: int) -> float | str:
+    """Seconds as a float when that is exact to the nanosecond, else an ISO duration."""
+    seconds = nanoseconds / 1e9
+    return seconds if round(seconds * 1e9) == nanoseconds else format_timedelta_iso(nanoseconds)
+
+
+def _at(pose: Pose, index: int) -> Pose:
+    return Pose(pose.translation[index], pose.rotation[index])

@@ -1,0 +1,206 @@
+"""Reading joint trajectories: joint values over time from CSV or NPZ files.
+
+CSV
+    A header line, then one line per sample. The first column is the time: ``time_s``
+    (seconds) or ``time`` (seconds, durations such as ``500ms`` or ISO timestamps such as
+    ``2024-03-01T08:00:00``). Every other column is one joint, named in the header, in
+    radians (revolute, continuous) or metres (prismatic). Empty lines and lines starting
+    with ``#`` are skipped.
+NPZ
+    ``numpy.savez`` arrays ``times`` (T,) (float seconds, ``timedelta64`` or
+    ``datetime64``), ``positions`` (T, n) and ``joint_names`` (n,) strings.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import os
+import zipfile
+import zlib
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import FileFormatError, InvalidTimeError
+from ..values.timeconv import parse_time_axis
+from ._reading import read_bytes, read_text
+from ._registry import detect_format, file_format
+
+__all__ = [
+    "JOINT_TRAJECTORY",
+    "read_csv_trajectory",
+    "read_joint_trajectory",
+    "read_npz_trajectory",
+]
+
+JOINT_TRAJECTORY = "joint trajectory"
+"""Registry kind of joint trajectory files (``.csv``, ``.npz``)."""
+
+_TIME_COLUMNS = ("time_s", "time")
+# What a broken NPZ raises from numpy and zipfile: a bad header, a short file, a bad CRC or
+# deflate stream, a compression method (NotImplementedError, a RuntimeError) or encryption
+# that zipfile does not support.
+_ARCHIVE_ERRORS = (ValueError, EOFError, OSError, zipfile.BadZipFile, zlib.error, RuntimeError)
+
+
+def read_joint_trajectory(
+    path: str | os.PathLike[str],
+) -> tuple[np.ndarray, NDArray[np.float64], list[str]]:
+    """Read joint values over time from a ``.csv`` or ``.npz`` file.
+
+    Returns
+    -------
+    times : ndarray, shape (T,)
+        Strictly increasing. Float seconds (``time_s`` column, float NPZ times),
+        ``timedelta64[ns]`` or ``datetime64[ns]``.
+    positions : ndarray, shape (T, n)
+        Joint values, radians or metres.
+    joint_names : list of str
+        The n joint names, as written in the file.
+
+    Raises
+    ------
+    FileFormatError
+        Malformed content; the message names the file, the column and the line.
+    ReadError
+        The file is missing, a folder, unreadable, or (CSV) not UTF-8 text.
+    """
+    reader = file_format(detect_format(path, kind=JOINT_TRAJECTORY), JOINT_TRAJECTORY).read
+    assert reader is not None
+    times, positions, names = reader(path)
+    _check_times(times, path)
+    if not np.all(np.isfinite(positions)):
+        row, column = np.argwhere(~np.isfinite(positions))[0]
+        raise FileFormatError(f"joint value at sample {row + 1} is not finite", file=path,
+                              frame=names[column], field="positions")
+    return times, positions, names
+
+
+def read_csv_trajectory(
+    path: str | os.PathLike[str],
+) -> tuple[np.ndarray, NDArray[np.float64], list[str]]:
+    """Times, positions and joint names of a ``.csv`` joint trajectory file."""
+    text = read_text(path)
+    try:
+        lines = [(number, row) for number, row in
+                 enumerate(csv.reader(io.StringIO(text, newline="")), start=1)
+                 if row and any(cell.strip() for cell in row)
+                 and not row[0].lstrip().startswith("#")]
+    except csv.Error as exc:
+        raise FileFormatError(f"not a readable CSV file: {exc}", file=path) from None
+    if not lines:
+        raise FileFormatError("empty file: expected a header line and samples", file=path)
+    header_line, header = lines[0]
+    header = [cell.strip() for cell in header]
+    if header[0] not in _TIME_COLUMNS:
+        raise FileFormatError(
+            f"the first column must be the time, named {' or '.join(_TIME_COLUMNS)}; got "
+            f"{header[0]!r}", file=path, field=f"line {header_line}")
+    names = header[1:]
+    _check_names(names, path, f"line {header_line}")
+    rows = lines[1:]
+    if not rows:
+        raise FileFormatError("no samples after the header", file=path)
+    positions = np.empty((len(rows), len(names)))
+    time_cells = []
+    for index, (number, row) in enumerate(rows):
+        if len(row) != len(header):
+            raise FileFormatError(f"{len(row)} values, but the header has {len(header)} columns",
+                                  file=path, field=f"line {number}")
+        time_cells.append(row[0].strip())
+        for column, cell in enumerate(row[1:]):
+            try:
+                positions[index, column] = float(cell)
+            except ValueError:
+                raise FileFormatError(f"expected a number, got {cell.strip()!r}", file=path,
+                                      frame=names[column], field=f"line {number}") from None
+    return _csv_times(time_cells, header[0], rows, path), positions, names
+
+
+def _csv_times(cells: list[str], column: str, rows: list[tuple[int, list[str]]],
+               path: str | os.PathLike[str]) -> np.ndarray:
+    if column == "time_s":
+        times = np.empty(len(cells))
+        for index, cell in enumerate(cells):
+            try:
+                times[index] = float(cell)
+            except ValueError:
+                raise FileFormatError(f"expected seconds, got {cell!r}", file=path,
+                                      frame=column, field=f"line {rows[index][0]}") from None
+        return times
+    try:
+        axis = parse_time_axis(cells, field=column)
+    except InvalidTimeError as exc:
+        raise FileFormatError(exc.message, file=path, frame=column) from None
+    offsets = axis.offsets.astype("timedelta64[ns]")
+    return offsets if axis.reference is None else axis.reference + offsets
+
+
+def read_npz_trajectory(
+    path: str | os.PathLike[str],
+) -> tuple[np.ndarray, NDArray[np.float64], list[str]]:
+    """Times, positions and joint names of a ``.npz`` joint trajectory file."""
+    content = read_bytes(path)
+    try:
+        archive = np.load(io.BytesIO(content), allow_pickle=False)
+    except _ARCHIVE_ERRORS as exc:
+        raise FileFormatError(f"not a readable NPZ file: {exc}", file=path) from None
+    if not isinstance(archive, np.lib.npyio.NpzFile):
+        raise FileFormatError("not an NPZ archive (written by numpy.savez)", file=path)
+    with archive:
+        missing = [key for key in ("times", "positions", "joint_names") if key not in archive]
+        if missing:
+            raise FileFormatError(f"missing array(s) {', '.join(missing)}; expected times, "
+                                  "positions and joint_names", file=path)
+        arrays = {}
+        for key in ("times", "positions", "joint_names"):
+            try:
+                arrays[key] = archive[key]
+            except _ARCHIVE_ERRORS as exc:
+                raise FileFormatError(f"cannot read the array: {exc}", file=path,
+                                      field=key) from None
+    times, positions, names = arrays["times"], arrays["positions"], arrays["joint_names"]
+    if names.ndim != 1 or names.dtype.kind not in "US":
+        raise FileFormatError(f"expected a 1-D array of strings, got {names.dtype} shape "
+                              f"{names.shape}", file=path, field="joint_names")
+    names = [str(name) for name in names]
+    _check_names(names, path, "joint_names")
+    if times.ndim != 1 or times.size == 0 or times.dtype.kind not in "iufmM":
+        raise FileFormatError(f"expected a non-empty 1-D array of times, got {times.dtype} "
+                              f"shape {times.shape}", file=path, field="times")
+    if positions.dtype.kind not in "iuf" or positions.shape != (times.size, len(names)):
+        raise FileFormatError(
+            f"expected numbers of shape ({times.size}, {len(names)}) (times x joint_names), "
+            f"got {positions.dtype} shape {positions.shape}", file=path, field="positions")
+    if times.dtype.kind in "iu":
+        times = times.astype(float)
+    return times, positions.astype(float), names
+
+
+def _check_names(names: list[str], path: str | os.PathLike[str], field: str) -> None:
+    if not names:
+        raise FileFormatError("no joint columns: expected one column per joint", file=path,
+                              field=field)
+    seen = set()
+    for name in names:
+        if not name:
+            raise FileFormatError("a joint name is empty", file=path, field=field)
+        if name in seen:
+            raise FileFormatError("joint named twice", file=path, frame=name, field=field)
+        seen.add(name)
+
+
+def _check_times(times: np.ndarray, path: str | os.PathLike[str]) -> None:
+    if times.dtype.kind == "f" and not np.all(np.isfinite(times)):
+        raise FileFormatError(f"time at sample {int(np.argmin(np.isfinite(times))) + 1} is not "
+                              "finite", file=path, field="times")
+    try:
+        parse_time_axis(times)  # the same range rules as every other time input
+    except InvalidTimeError as exc:
+        raise FileFormatError(exc.message, file=path, field="times") from None
+    steps = np.diff(times)
+    if np.any(steps <= steps.dtype.type(0)):
+        sample = int(np.argmax(steps <= steps.dtype.type(0))) + 2
+        raise FileFormatError(f"times must be strictly increasing; sample {sample} is not "
+                              "after sample " f"{sample - 1}", file=path, field="times")

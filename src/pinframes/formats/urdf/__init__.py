@@ -1,0 +1,16 @@
+"""URDF in and out: robots as frames and joints of a :class:`~pinframes.FrameTree`."""
+
+from ._mount import URDF_METADATA_KEY, mount_robot, mount_urdf
+from ._parse import JointDescription, RobotDescription, parse_urdf
+from ._read_write import read_urdf, write_urdf
+
+__all__ = [
+    "URDF_METADATA_KEY",
+    "JointDescription",
+    "RobotDescription",
+    "mount_robot",
+    "mount_urdf",
+    "parse_urdf",
+    "read_urdf",
+    "write_urdf",
+]

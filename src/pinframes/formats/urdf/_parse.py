@@ -1,0 +1,296 @@
+"""Reading URDF XML into a checked :class:`RobotDescription` (no tree is touched here)."""
+
+from __future__ import annotations
+
+import os
+import warnings
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+
+from ...errors import BrokenMimicWarning, FileFormatError
+from ...values.pose import Pose
+from .._reading import read_text
+
+__all__ = ["URDF_JOINT_TYPES", "JointDescription", "RobotDescription", "parse_urdf"]
+
+URDF_JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
+_DRIVEN_TYPES = ("revolute", "continuous", "prismatic")
+_JOINT_FIELDS_READ = {"parent", "child", "origin", "axis", "limit", "mimic"}
+
+
+@dataclass(frozen=True)
+class JointDescription:
+    """One ``<joint>`` of a URDF, names not yet prefixed.
+
+    ``origin`` is the child link's pose in the parent link at joint value 0; ``extra_xml``
+    keeps the elements pinframes does not interpret (``<dynamics>``, ``<calibration>``,
+    ``<safety_controller>``) as written, for export.
+    """
+
+    name: str
+    type: str
+    parent: str
+    child: str
+    origin: Pose
+    axis: tuple[float, float, float]
+    lower: float | None = None
+    upper: float | None = None
+    effort: float | None = None
+    velocity: float | None = None
+    mimic: tuple[str, float, float] | None = None
+    extra_xml: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class RobotDescription:
+    """A parsed URDF: its links (with their XML kept as written) and joints, root first."""
+
+    name: str
+    source: str
+    root_link: str
+    links: dict[str, tuple[str, ...]]
+    joints: tuple[JointDescription, ...]
+    extra_xml: tuple[str, ...] = field(default=())
+
+
+def parse_urdf(urdf: str | os.PathLike[str], *, strict: bool = False) -> RobotDescription:
+    """Parse a URDF file path or XML string and check that it describes one tree of links.
+
+    Raises :class:`~pinframes.errors.FileFormatError` naming the file (or ``<urdf string>``),
+    the link or joint and the field for malformed XML, missing or duplicate names, unknown
+    joint types, a link with two parents, several root links and mimic cycles. A mimic of a
+    joint the file does not have gives one :class:`BrokenMimicWarning` per such joint, which
+    then stays an independent joint (Pinocchio and urdfdom load such files too); with
+    ``strict`` it is an error. Meshes are never opened; ``package://`` URIs stay as written.
+    """
+    text, source = _read_source(urdf)
+    try:
+        root = ET.fromstring(text)
+    except ET.ParseError as exc:
+        raise FileFormatError(f"malformed XML: {exc}", file=source) from None
+    if root.tag != "robot":
+        raise FileFormatError(f"the root element is <{root.tag}>, expected <robot>",
+                              file=source, field="robot")
+    name = root.get("name")
+    if not name:
+        name = Path(source).stem if source != "<urdf string>" else "robot"
+        warnings.warn(f"{source}: <robot> has no name; using {name!r}", stacklevel=3)
+    try:
+        links, joints, extra = _elements(root, source)
+    except RecursionError:
+        raise FileFormatError("XML elements nested too deeply to keep", file=source) from None
+    ordered, root_link = _check_tree(links, joints, source)
+    ordered = _without_broken_mimics(ordered, source, strict)
+    _check_mimics(ordered, source)
+    return RobotDescription(name, source, root_link, links, tuple(ordered), tuple(extra))
+
+
+def _elements(root: ET.Element, source: str
+              ) -> tuple[dict[str, tuple[str, ...]], list[JointDescription], list[str]]:
+    """The links (their inner XML as written), the joints and the other top-level XML."""
+    links: dict[str, tuple[str, ...]] = {}
+    joints: list[JointDescription] = []
+    extra: list[str] = []
+    for element in root:
+        if element.tag == "link":
+            link_name = _required(element, "name", source, "link")
+            if link_name in links:
+                raise FileFormatError("duplicate link name", file=source, frame=link_name,
+                                      field="name")
+            links[link_name] = tuple(_xml(child) for child in element)
+        elif element.tag == "joint":
+            joints.append(_parse_joint(element, source))
+        elif isinstance(element.tag, str):
+            extra.append(_xml(element))
+    return links, joints, extra
+
+
+def _read_source(urdf: str | os.PathLike[str]) -> tuple[str, str]:
+    if isinstance(urdf, str) and urdf.lstrip().startswith("<"):
+        return urdf, "<urdf string>"
+    return read_text(urdf), os.fspath(urdf)
+
+
+def _parse_joint(element: ET.Element, source: str) -> JointDescription:
+    name = _required(element, "name", source, "joint")
+    joint_type = element.get("type")
+    if joint_type not in URDF_JOINT_TYPES:
+        raise FileFormatError(f"unknown joint type {joint_type!r}; expected one of "
+                              f"{', '.join(URDF_JOINT_TYPES)}", file=source, frame=name,
+                              field="type")
+    parent = _child_attribute(element, "parent", "link", source, name)
+    child = _child_attribute(element, "child", "link", source, name)
+    origin = element.find("origin")
+    xyz = _vector(origin, "xyz", source, name, "origin.xyz", (0.0, 0.0, 0.0))
+    rpy = _vector(origin, "rpy", source, name, "origin.rpy", (0.0, 0.0, 0.0))
+    axis = _vector(element.find("axis"), "xyz", source, name, "axis.xyz", (1.0, 0.0, 0.0))
+    if joint_type in ("revolute", "continuous", "prismatic", "planar") and not np.any(axis):
+        raise FileFormatError("the axis must not be zero", file=source, frame=name,
+                              field="axis.xyz")
+    limit = element.find("limit")
+    bounds = {key: _number(limit, key, source, name) for key in
+              ("lower", "upper", "effort", "velocity")}
+    mimic_element = element.find("mimic")
+    mimic = None
+    if mimic_element is not None:
+        target = _required(mimic_element, "joint", source, f"joint {name!r} mimic")
+        multiplier = _number(mimic_element, "multiplier", source, name)
+        offset = _number(mimic_element, "offset", source, name)
+        mimic = (target, 1.0 if multiplier is None else multiplier,
+                 0.0 if offset is None else offset)
+    extra = tuple(_xml(child) for child in element if child.tag not in _JOINT_FIELDS_READ)
+    return JointDescription(
+        name=name, type=joint_type, parent=parent, child=child,
+        origin=Pose.from_xyz_rpy(*xyz, *rpy), axis=tuple(axis), mimic=mimic,
+        extra_xml=extra, **bounds)
+
+
+def _check_tree(
+    links: dict[str, tuple[str, ...]], joints: list[JointDescription], source: str
+) -> tuple[list[JointDescription], str]:
+    """Joints ordered from the root link outwards, and the root link."""
+    by_child: dict[str, JointDescription] = {}
+    names = set()
+    for joint in joints:
+        if joint.name in names:
+            raise FileFormatError("duplicate joint name", file=source, frame=joint.name,
+                                  field="name")
+        names.add(joint.name)
+        for role in ("parent", "child"):
+            if getattr(joint, role) not in links:
+                raise FileFormatError(f"{role} link {getattr(joint, role)!r} is not defined",
+                                      file=source, frame=joint.name, field=f"{role}.link")
+        if joint.child in by_child:
+            raise FileFormatError(
+                f"link {joint.child!r} has two parents (joints {by_child[joint.child].name!r} "
+                f"and {joint.name!r})", file=source, frame=joint.name, field="child.link")
+        by_child[joint.child] = joint
+    roots = [link for link in links if link not in by_child]
+    if len(roots) != 1:
+        detail = ("no link without a parent: the joints form a cycle" if not roots
+                  else f"several links without a parent: {', '.join(roots)}")
+        raise FileFormatError(f"not one tree of links ({detail})", file=source, field="link")
+    children: dict[str, list[JointDescription]] = {}
+    for joint in joints:
+        children.setdefault(joint.parent, []).append(joint)
+    # Depth first from the root, children in document order (Pinocchio's joint order).
+    ordered: list[JointDescription] = []
+    stack = [iter(children.get(roots[0], []))]
+    while stack:
+        joint = next(stack[-1], None)
+        if joint is None:
+            stack.pop()
+            continue
+        ordered.append(joint)
+        stack.append(iter(children.get(joint.child, [])))
+    if len(ordered) != len(joints):
+        cut_off = sorted({j.child for j in joints} - {j.child for j in ordered})
+        raise FileFormatError(f"links {', '.join(cut_off)} form a cycle", file=source,
+                              field="link")
+    return ordered, roots[0]
+
+
+def _without_broken_mimics(joints: list[JointDescription], source: str, strict: bool
+                           ) -> list[JointDescription]:
+    """``joints`` with the mimic dropped from those whose primary is not in the file."""
+    names = {joint.name for joint in joints}
+    kept = []
+    for joint in joints:
+        if joint.mimic is not None and joint.type in _DRIVEN_TYPES and joint.mimic[0] not in names:
+            if strict:
+                raise FileFormatError(f"mimics unknown joint {joint.mimic[0]!r}", file=source,
+                                      frame=joint.name, field="mimic.joint")
+            warnings.warn(
+                f"{source}: joint {joint.name!r} mimics joint {joint.mimic[0]!r}, which the "
+                "file does not have; it is loaded as an independent joint (strict=True "
+                "refuses the file)", BrokenMimicWarning, stacklevel=4)
+            joint = replace(joint, mimic=None)
+        kept.append(joint)
+    return kept
+
+
+def _check_mimics(joints: list[JointDescription], source: str) -> None:
+    """Mimic targets exist, are driven joints, and no chain of mimics closes on itself.
+
+    A mimic of a mimic is allowed (its value follows the chain to a driven joint).
+    """
+    by_name = {joint.name: joint for joint in joints}
+    for joint in joints:
+        if joint.mimic is None or joint.type not in _DRIVEN_TYPES:
+            continue
+        target = by_name.get(joint.mimic[0])
+        if target is None:
+            raise FileFormatError(f"mimics unknown joint {joint.mimic[0]!r}", file=source,
+                                  frame=joint.name, field="mimic.joint")
+        if target.type not in _DRIVEN_TYPES:
+            raise FileFormatError(
+                f"mimics {target.name!r}, a {target.type} joint; only "
+                f"{', '.join(_DRIVEN_TYPES)} joints have a value to follow", file=source,
+                frame=joint.name, field="mimic.joint")
+        chain = [joint.name]
+        while target.mimic is not None and target.type in _DRIVEN_TYPES:
+            if target.name in chain:
+                cycle = [*chain[chain.index(target.name):], target.name]
+                raise FileFormatError(f"mimic cycle: {' -> '.join(cycle)}", file=source,
+                                      frame=target.name, field="mimic.joint")
+            chain.append(target.name)
+            target = by_name.get(target.mimic[0])
+            if target is None:
+                break  # reported when the loop reaches that joint
+
+
+def _required(element: ET.Element, attribute: str, source: str, what: str) -> str:
+    value = element.get(attribute)
+    if not value:
+        raise FileFormatError(f"<{element.tag}> without {attribute!r}", file=source,
+                              frame=what if what.startswith("joint ") else None,
+                              field=f"{element.tag}.{attribute}")
+    return value
+
+
+def _child_attribute(element: ET.Element, tag: str, attribute: str, source: str,
+                     joint: str) -> str:
+    child = element.find(tag)
+    value = None if child is None else child.get(attribute)
+    if not value:
+        raise FileFormatError(f"missing <{tag} {attribute}=...>", file=source, frame=joint,
+                              field=f"{tag}.{attribute}")
+    return value
+
+
+def _vector(element: ET.Element | None, attribute: str, source: str, joint: str, field: str,
+            default: tuple[float, float, float]) -> tuple[float, float, float]:
+    text = None if element is None else element.get(attribute)
+    if text is None:
+        return default
+    try:
+        values = tuple(float(part) for part in text.split())
+    except ValueError:
+        values = ()
+    if len(values) != 3 or not all(np.isfinite(values)):
+        raise FileFormatError(f"expected three finite numbers, got {text!r}", file=source,
+                              frame=joint, field=field)
+    return values
+
+
+def _number(element: ET.Element | None, attribute: str, source: str, joint: str
+            ) -> float | None:
+    text = None if element is None else element.get(attribute)
+    if text is None:
+        return None
+    try:
+        value = float(text)
+    except ValueError:
+        value = float("nan")
+    if not np.isfinite(value):
+        raise FileFormatError(f"expected a finite number, got {text!r}", file=source,
+                              frame=joint, field=f"{element.tag}.{attribute}")
+    return value
+
+
+def _xml(element: ET.Element) -> str:
+    text = ET.tostring(element, encoding="unicode")
+    return text.strip()

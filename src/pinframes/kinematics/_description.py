@@ -1,0 +1,140 @@
+"""`TreeDescription`: what the evaluator needs of a frame tree, frozen at one tree version.
+
+``FrameTree`` builds one when a query needs it and keeps it until the tree changes; the
+evaluator reads nothing else of the tree. Besides the frames, it holds what the tree's
+version has learnt: the anchor of each frame (its nearest joint frame and its static
+placement there) and the prepared query paths, so a cache dies with the version it
+belongs to.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Any
+
+import numpy as np
+
+from ..values._se3 import IDENTITY, Transform, compose
+from ..values.joint import Joint
+from ..values.joint_trajectory import JointTrajectory
+from ..values.pose import Pose
+
+__all__ = ["TreeDescription", "paths_to_common_ancestor"]
+
+_CACHE_LIMIT = 8192
+"""Prepared query paths kept per tree version (oldest dropped first)."""
+
+
+@dataclass(frozen=True)
+class TreeDescription:
+    """The frames, poses and joints of a tree at one version; never changes.
+
+    Attributes
+    ----------
+    root : str
+        The root frame.
+    parents, depths : mapping
+        Parent and depth (root 0) of every frame (the root has no parent).
+    local_poses : mapping of str to Pose
+        Pose of every frame but the root in its parent (a joint's origin for a joint link).
+    joints : mapping of str to Joint
+        Robot joint by the link frame it moves.
+    joints_by_name : mapping of str to Joint
+        The same joints by joint name.
+    joint_trajectories : mapping of str to JointTrajectory
+        Trajectories of driven joints by joint name.
+    reference_time : numpy.datetime64 or None
+        The tree's reference time.
+    has_frame_references : bool
+        Whether the tree's moving frames and joints carry reference times of their own.
+    """
+
+    root: str
+    parents: Mapping[str, str]
+    depths: Mapping[str, int]
+    local_poses: Mapping[str, Pose]
+    joints: Mapping[str, Joint]
+    joints_by_name: Mapping[str, Joint]
+    joint_trajectories: Mapping[str, JointTrajectory]
+    reference_time: np.datetime64 | None
+    has_frame_references: bool
+    _anchors: dict[str, tuple[str, Transform]] = field(
+        default_factory=dict, init=False, repr=False, compare=False)
+    _evaluations: dict[tuple[str, str], Any] = field(
+        default_factory=dict, init=False, repr=False, compare=False)
+    # not empty once this version has warned about joints without samples
+    _warned_joints_without_samples: list[bool] = field(
+        default_factory=list, init=False, repr=False, compare=False)
+
+    @classmethod
+    def freeze(
+        cls, root: str, parents: Mapping[str, str], depths: Mapping[str, int],
+        local_poses: Mapping[str, Pose], joints: Mapping[str, Joint],
+        joints_by_name: Mapping[str, Joint], joint_trajectories: Mapping[str, JointTrajectory],
+        reference_time: np.datetime64 | None, has_frame_references: bool,
+    ) -> TreeDescription:
+        """A description holding read-only copies of the given tables."""
+        return cls(root, *(MappingProxyType(dict(table)) for table in (
+            parents, depths, local_poses, joints, joints_by_name, joint_trajectories)),
+            reference_time, has_frame_references)
+
+    @property
+    def frames(self) -> list[str]:
+        """Every frame, root first, every parent before its children."""
+        return list(self.depths)
+
+    def is_moving(self, name: str) -> bool:
+        """True when the pose of ``name`` in its parent is time-dependent."""
+        return name != self.root and self.local_poses[name].is_time_dependent
+
+    def anchor(self, name: str) -> tuple[str, Transform]:
+        """The nearest joint frame at or above ``name`` and ``name``'s placement in it.
+
+        A joint frame is a robot joint's link or a moving frame; the root anchors itself.
+        """
+        anchors = self._anchors
+        cached = anchors.get(name)
+        if cached is not None:
+            return cached
+        if not anchors:
+            anchors[self.root] = (self.root, IDENTITY)
+        pending = []
+        frame = name
+        while frame not in anchors:
+            if frame in self.joints or self.is_moving(frame):
+                anchors[frame] = (frame, IDENTITY)
+                break
+            pending.append(frame)
+            frame = self.parents[frame]
+        for frame in reversed(pending):
+            anchor, placement = anchors[self.parents[frame]]
+            pose = self.local_poses[frame]
+            anchors[frame] = (anchor, compose(placement, (pose.rotation, pose.translation)))
+        return anchors[name]
+
+    def cached(self, key: tuple[str, str]) -> Any:
+        """A prepared query path stored with :meth:`store`, or None."""
+        return self._evaluations.get(key)
+
+    def store(self, key: tuple[str, str], prepared: Any) -> None:
+        """Keep a prepared query path for this version of the tree."""
+        if len(self._evaluations) >= _CACHE_LIMIT:
+            del self._evaluations[next(iter(self._evaluations))]
+        self._evaluations[key] = prepared
+
+
+def paths_to_common_ancestor(
+    parents: Mapping[str, str], depths: Mapping[str, int], a: str, b: str
+) -> tuple[list[str], list[str]]:
+    """Frames from ``a`` and from ``b`` up to and including their lowest common ancestor."""
+    up_a, up_b = [a], [b]
+    while depths[up_a[-1]] > depths[up_b[-1]]:
+        up_a.append(parents[up_a[-1]])
+    while depths[up_b[-1]] > depths[up_a[-1]]:
+        up_b.append(parents[up_b[-1]])
+    while up_a[-1] != up_b[-1]:
+        up_a.append(parents[up_a[-1]])
+        up_b.append(parents[up_b[-1]])
+    return up_a, up_b

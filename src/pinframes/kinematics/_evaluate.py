@@ -1,0 +1,300 @@
+"""Answering ``FrameTree.pose`` from a :class:`TreeDescription`: compile once, evaluate per call.
+
+A query between two frames whose nearest joints coincide has nothing moving between them
+and is one cached static transform. Otherwise the frames between them and their lowest
+common ancestor are compiled into a :class:`~pinframes.kinematics._model.CompiledModel`
+rooted at that ancestor, so the cost of a query depends on its path, not on the tree.
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import ExtrapolationError, InvalidTimeError, JointWithoutSamplesWarning
+from ..values._interpolation import Keyframes
+from ..values._se3 import IDENTITY, Transform, compose, inverse
+from ..values._timeline import QueryTimeline, TimedSource, plan_query_timeline
+from ..values.joint import Joint, mimic_chain
+from ..values.pose import Pose
+from ..values.timeconv import TimeAxis, parse_time_axis, timestamp_ns
+from ._description import TreeDescription, paths_to_common_ancestor
+from ._model import CompiledModel, compile_model
+
+__all__ = [
+    "Evaluation",
+    "basis_shifts",
+    "default_times",
+    "evaluate_pose",
+    "model_sources",
+    "plan_timeline",
+    "sample_joint_values",
+    "sample_joints",
+]
+
+_EXTRAPOLATION_POLICIES = ("clamp", "error")
+_CHUNK = 1 << 15
+"""Samples evaluated at once: bounds the temporaries of long queries (about 2 MB each)."""
+
+
+@dataclass(frozen=True)
+class Evaluation:
+    """A query path prepared for repeated evaluation.
+
+    Either ``static`` (the pose of the frame in the reference frame, when nothing between
+    them can move) or ``model`` with, per joint, the moving frame's keyframes with the
+    joint placement folded in (None for robot joints).
+    """
+
+    frame: str
+    relative_to: str
+    static: Transform | None
+    model: CompiledModel | None = None
+    placed_keyframes: tuple[Keyframes | None, ...] = ()
+    sources: tuple[TimedSource, ...] = ()
+
+
+def evaluate_pose(
+    tree: TreeDescription, frame: str, relative_to: str, times: Any, time_ref: Any,
+    extrapolation: str,
+) -> Pose:
+    """``tree.pose(frame, relative_to, times, time_ref)``; arguments already checked."""
+    if extrapolation not in _EXTRAPOLATION_POLICIES:
+        raise ExtrapolationError(f"expected one of {', '.join(_EXTRAPOLATION_POLICIES)}, "
+                                 f"got {extrapolation!r}", field="extrapolation")
+    evaluation = _evaluation(tree, frame, relative_to)
+    sources = list(evaluation.sources)
+    timeline = plan_timeline(tree, sources, times, time_ref)
+    if extrapolation == "error" and timeline.evaluation_times is not None:
+        _check_within_keyframes(sources, timeline)
+    if evaluation.static is not None:
+        rotation, translation = evaluation.static
+    else:
+        rotation, translation = _evaluate_in_chunks(tree, evaluation, sources, timeline)
+    offsets = timeline.result_offsets
+    if offsets is None:
+        return Pose._trusted(rotation, translation)
+    count = offsets.shape[0]
+    if rotation.ndim == 2:
+        rotation = np.broadcast_to(rotation, (count, 3, 3)).copy()
+    if translation.ndim == 1:
+        translation = np.broadcast_to(translation, (count, 3)).copy()
+    return Pose._trusted(rotation, translation, offsets, timeline.reference)
+
+
+def default_times(tree: TreeDescription, frame: str, relative_to: str) -> TimeAxis | None:
+    """The times ``tree.pose(frame, relative_to)`` evaluates at when given none."""
+    evaluation = _evaluation(tree, frame, relative_to)
+    timeline = plan_timeline(tree, list(evaluation.sources), None, None)
+    if timeline.evaluation_times is None:
+        return None
+    return TimeAxis(timeline.result_offsets, timeline.reference)
+
+
+def _evaluation(tree: TreeDescription, frame: str, relative_to: str) -> Evaluation:
+    key = (frame, relative_to)
+    cached = tree.cached(key)
+    if cached is not None:
+        return cached
+    anchor, placement = tree.anchor(frame)
+    reference_anchor, reference_placement = tree.anchor(relative_to)
+    if anchor == reference_anchor:
+        evaluation = Evaluation(frame, relative_to, compose(inverse(reference_placement),
+                                                            placement))
+    else:
+        up, _ = paths_to_common_ancestor(tree.parents, tree.depths, frame, relative_to)
+        model = compile_model(tree, up[-1], [frame, relative_to])
+        keyframes = tuple(
+            None if joint.joint is not None else _placed_keyframes(
+                tree.local_poses[joint.frame].keyframes, model.joint_placements[position])
+            for position, joint in enumerate(model.joints))
+        evaluation = Evaluation(frame, relative_to, None, model, keyframes,
+                                tuple(model_sources(tree, model)))
+    tree.store(key, evaluation)
+    return evaluation
+
+
+def _placed_keyframes(keyframes: Keyframes, placement: Transform) -> Keyframes:
+    """Keyframes of ``placement @ pose``: a static factor on the left commutes with
+    linear interpolation and SLERP, so it can be applied to the keyframes once."""
+    if placement is IDENTITY:
+        return keyframes
+    rotations, translations = compose(placement, (keyframes.rotations, keyframes.translations))
+    return Keyframes(keyframes.times, rotations, translations)
+
+
+def plan_timeline(
+    tree: TreeDescription, sources: list[TimedSource], times: Any, time_ref: Any
+) -> QueryTimeline:
+    """The evaluation times of a query on ``sources`` (SPEC section 4)."""
+    return plan_query_timeline(sources, _requested_times(tree, times), time_ref,
+                               tree.reference_time, tree.has_frame_references)
+
+
+def model_sources(tree: TreeDescription, model: CompiledModel) -> list[TimedSource]:
+    """The moving frames and driven joints whose values a compiled model needs."""
+    sources: dict[str, TimedSource] = {}
+    for joint in model.joints:
+        if joint.joint is None:
+            pose = tree.local_poses[joint.frame]
+            reference = pose.reference_time if pose.reference_time is not None else (
+                tree.reference_time)
+            sources[joint.frame] = TimedSource(joint.frame, pose._times, reference)
+            continue
+        for name in _driving_joints(tree, joint.joint):
+            trajectory = tree.joint_trajectories.get(name)
+            if trajectory is not None:
+                reference = trajectory.reference if trajectory.reference is not None else (
+                    tree.reference_time)
+                sources[name] = TimedSource(name, trajectory.times, reference)
+    return list(sources.values())
+
+
+def _driving_joints(tree: TreeDescription, joint: Joint) -> list[str]:
+    """``joint`` and, for a mimic joint, the chain of joints it follows."""
+    return [link.name for link in mimic_chain(joint, tree.joints_by_name)]
+
+
+def _requested_times(tree: TreeDescription, times: Any) -> TimeAxis | None:
+    if times is None:
+        return None
+    if isinstance(times, str) and times in tree.depths:
+        if not tree.is_moving(times):
+            raise InvalidTimeError(f"frame {times!r} does not move, so it has no times to "
+                                   "take", field="times")
+        pose = tree.local_poses[times]
+        reference = pose.reference_time if pose.reference_time is not None else (
+            tree.reference_time)
+        return TimeAxis(pose._times, reference)
+    return parse_time_axis(times, field="times")
+
+
+def _check_within_keyframes(sources: list[TimedSource], timeline: QueryTimeline) -> None:
+    requested = timeline.evaluation_times
+    first, last = requested.min(), requested.max()
+    for source in sources:
+        keyframes = source.on_basis(timeline.absolute)
+        early, late = keyframes[0] - first, last - keyframes[-1]
+        if early > 0 or late > 0:
+            sides = ([f"{early / 1e9:.9g} s before its first keyframe"] if early > 0 else []) + (
+                [f"{late / 1e9:.9g} s after its last keyframe"] if late > 0 else [])
+            raise ExtrapolationError(
+                f"requested times reach {' and '.join(sides)} (extrapolation='error')",
+                frame=source.name, field="times")
+
+
+def _evaluate_in_chunks(
+    tree: TreeDescription, evaluation: Evaluation, sources: list[TimedSource],
+    timeline: QueryTimeline,
+) -> Transform:
+    """:func:`_evaluate_model` over slices of the timeline, so that the temporary arrays of
+    a long query stay small (and cache-friendly) while the result is filled in place."""
+    times = timeline.evaluation_times
+    if times is None or times.shape[0] <= _CHUNK:
+        return _evaluate_model(tree, evaluation, sources, times, timeline)
+    count = times.shape[0]
+    rotation, translation = np.empty((count, 3, 3)), np.empty((count, 3))
+    for start in range(0, count, _CHUNK):
+        part = slice(start, start + _CHUNK)
+        rotation[part], translation[part] = _evaluate_model(
+            tree, evaluation, sources, times[part], timeline)
+    return rotation, translation
+
+
+def _evaluate_model(
+    tree: TreeDescription, evaluation: Evaluation, sources: list[TimedSource],
+    times: NDArray[np.int64] | None, timeline: QueryTimeline,
+) -> Transform:
+    """The pose of the query frame in the reference frame at ``times`` (timeline basis)."""
+    model = evaluation.model
+    assert model is not None
+    samples = sample_joints(tree, model, evaluation.placed_keyframes, times,
+                            basis_shifts(sources, timeline))
+    local: list[Transform] = []
+    for joint, placement, sample in zip(model.joints, model.joint_placements, samples,
+                                        strict=True):
+        if joint.joint is None:
+            local.append(sample)  # the placement is folded into the keyframes
+            continue
+        rotation, translation = joint.joint.placed_motion(placement, np.atleast_1d(sample))
+        local.append((rotation, translation) if np.ndim(sample) else (rotation[0], translation[0]))
+    frame_pose, reference_pose = model.forward_kinematics(
+        local, [evaluation.frame, evaluation.relative_to])
+    return compose(inverse(reference_pose), frame_pose)
+
+
+def sample_joints(
+    tree: TreeDescription, model: CompiledModel, keyframes: Sequence[Keyframes | None],
+    times: NDArray[np.int64] | None, shifts: dict[str, int],
+) -> list[Any]:
+    """Every joint of ``model`` at ``times`` (timeline basis): the one sampling step of a
+    query and of :meth:`PinocchioTree.configurations`.
+
+    A free-flyer gets its moving frame's ``(rotation, translation)`` from ``keyframes[i]``;
+    a robot joint its value(s) (radians or metres): its trajectory, its mimic primary's, or 0.
+    """
+    cache: dict[str, NDArray[np.float64] | float] = {}
+    samples: list[Any] = []
+    for joint, frames in zip(model.joints, keyframes, strict=True):
+        if joint.joint is None:
+            assert frames is not None and times is not None
+            samples.append(frames.sample(times - shifts[joint.frame]))
+        else:
+            samples.append(sample_joint_values(tree, joint.joint, times, shifts, cache))
+    return samples
+
+
+def basis_shifts(sources: list[TimedSource], timeline: QueryTimeline) -> dict[str, int]:
+    """Per source, what to subtract from timeline times to land on its own time basis."""
+    return {
+        s.name: timestamp_ns(s.reference)
+        if timeline.absolute and s.reference is not None else 0
+        for s in sources
+    }
+
+
+def sample_joint_values(
+    tree: TreeDescription, joint: Joint, times: NDArray[np.int64] | None,
+    shifts: dict[str, int], cache: dict[str, NDArray[np.float64] | float],
+) -> NDArray[np.float64] | float:
+    """Values of ``joint`` at ``times``: its trajectory, its mimic primary's, or its rest
+    value."""
+    if joint.name in cache:
+        return cache[joint.name]
+    trajectory = tree.joint_trajectories.get(joint.name)
+    if joint.mimic is not None:
+        primary = sample_joint_values(tree, tree.joints_by_name[joint.mimic.joint], times, shifts,
+                                      cache)
+        value = joint.mimic.multiplier * primary + joint.mimic.offset
+    elif trajectory is not None:
+        value = trajectory.sample(times - shifts[joint.name])
+    else:
+        value = joint.rest_value
+        _warn_joints_without_samples(tree)
+    cache[joint.name] = value
+    return value
+
+
+def _warn_joints_without_samples(tree: TreeDescription) -> None:
+    """One :class:`JointWithoutSamplesWarning` per version of a tree, naming its joints
+    without samples."""
+    if tree._warned_joints_without_samples:
+        return
+    tree._warned_joints_without_samples.append(True)
+    idle = [name for name, joint in tree.joints_by_name.items()
+            if joint.is_actuated and name not in tree.joint_trajectories]
+    named = ", ".join(repr(name) for name in idle[:4]) + (
+        f" and {len(idle) - 4} more" if len(idle) > 4 else "")
+    many = len(idle) > 1
+    subject = f"joints {named} have" if many else f"joint {named} has"
+    warnings.warn(
+        f"{subject} no samples and {'hold' if many else 'holds'} the rest value (0, or the "
+        "limit nearest to 0); give values with FrameTree.set_joint_trajectory(times, "
+        "positions, joint_names) or a scene robot's 'trajectory' file",
+        JointWithoutSamplesWarning,
+        stacklevel=2)

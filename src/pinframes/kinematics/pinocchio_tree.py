@@ -1,0 +1,69 @@
+"""`PinocchioTree`: a whole frame tree as one Pinocchio model, with its configurations."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pinocchio as pin
+from numpy.typing import NDArray
+
+from . import _evaluate
+from ._description import TreeDescription
+from ._model import compile_model
+
+__all__ = ["PinocchioTree"]
+
+
+class PinocchioTree:
+    """A frame tree compiled to one ``pinocchio.Model``, for running Pinocchio yourself.
+
+    Attributes
+    ----------
+    model : pinocchio.Model
+        Universe = the tree's root; moving frames are free-flyer joints named after the
+        frame, robot joints keep their names and kinds; every frame is an ``OP_FRAME``.
+    frame_ids : dict of str to int
+        Pinocchio frame id of every tree frame.
+    joint_ids : dict of str to int
+        Pinocchio joint id of every joint.
+
+    Examples
+    --------
+    >>> compiled = tree.to_pinocchio()                        # doctest: +SKIP
+    >>> data = compiled.model.createData()                    # doctest: +SKIP
+    >>> q = compiled.configurations([0.0, 0.5])[1]            # doctest: +SKIP
+    >>> pin.framesForwardKinematics(compiled.model, data, q)  # doctest: +SKIP
+    """
+
+    def __init__(self, tree: TreeDescription) -> None:
+        self._tree = tree
+        self._compiled = compile_model(tree, tree.root, tree.frames)
+        self.model: pin.Model = self._compiled.model
+        self.frame_ids = dict(self._compiled.frame_ids)
+        self.joint_ids = self._compiled.joint_ids
+
+    def configurations(self, times: Any = None, time_ref: Any = None) -> NDArray[np.float64]:
+        """Configurations ``q``, shape ``(T, nq)``, at ``times`` (rules of ``FrameTree.pose``).
+
+        Each free-flyer gets the interpolated pose of its frame (``x y z qx qy qz qw``),
+        each robot joint its interpolated value. ``times=None`` takes the union of every
+        moving thing's keyframe times (one configuration if nothing moves).
+        """
+        tree, compiled = self._tree, self._compiled
+        sources = _evaluate.model_sources(tree, compiled)
+        timeline = _evaluate.plan_timeline(tree, sources, times, time_ref)
+        evaluation_times = timeline.evaluation_times
+        if evaluation_times is None:
+            evaluation_times = np.zeros(1, dtype=np.int64)
+        keyframes = [tree.local_poses[joint.frame].keyframes if joint.joint is None else None
+                     for joint in compiled.joints]
+        samples = _evaluate.sample_joints(tree, compiled, keyframes, evaluation_times,
+                                          _evaluate.basis_shifts(sources, timeline))
+        motions = [sample if joint.joint is None else None
+                   for joint, sample in zip(compiled.joints, samples, strict=True)]
+        values = [None if joint.joint is None else np.broadcast_to(sample, evaluation_times.shape)
+                  for joint, sample in zip(compiled.joints, samples, strict=True)]
+        if not compiled.joints:
+            return np.zeros((evaluation_times.shape[0], 0))
+        return compiled.configuration(motions, values)

@@ -1,0 +1,162 @@
+"""`Joint`: a robot joint that moves a child link relative to its parent link.
+
+The pose of the child link in the parent link is ``origin @ motion(q)``, where ``origin`` is
+the URDF ``<origin>`` and ``motion`` rotates about (revolute, continuous) or slides along
+(prismatic) the unit ``axis``, written in the joint frame. Angles in radians, lengths in
+metres.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+from numpy.typing import NDArray
+
+from ..errors import JointError
+
+__all__ = ["JOINT_KINDS", "Joint", "Mimic", "mimic_chain"]
+
+JOINT_KINDS = ("revolute", "continuous", "prismatic")
+"""Joint kinds driven by one value each."""
+
+_AXIS_TOLERANCE = 1e-12
+
+
+@dataclass(frozen=True)
+class Mimic:
+    """A joint whose value is ``multiplier * value(joint) + offset``."""
+
+    joint: str
+    multiplier: float = 1.0
+    offset: float = 0.0
+
+
+@dataclass(frozen=True)
+class Joint:
+    """A one-degree-of-freedom robot joint.
+
+    Attributes
+    ----------
+    name : str
+        Joint name as held by the tree (with the robot's prefix).
+    kind : str
+        ``"revolute"``, ``"continuous"`` or ``"prismatic"``.
+    axis : tuple of float
+        Unit axis in the joint frame.
+    lower, upper : float or None
+        Position limits, radians or metres (None: unlimited).
+    velocity, effort : float or None
+        Limits as written in the URDF (kept for export).
+    mimic : Mimic or None
+        Set when this joint follows another one.
+    """
+
+    name: str
+    kind: str
+    axis: tuple[float, float, float] = (1.0, 0.0, 0.0)
+    lower: float | None = None
+    upper: float | None = None
+    velocity: float | None = None
+    effort: float | None = None
+    mimic: Mimic | None = None
+
+    def __post_init__(self) -> None:
+        if self.kind not in JOINT_KINDS:
+            raise JointError(f"unknown joint kind {self.kind!r}; expected one of {JOINT_KINDS}",
+                             frame=self.name, field="type")
+        axis = np.asarray(self.axis, dtype=float)
+        norm = float(np.linalg.norm(axis))
+        if axis.shape != (3,) or not np.isfinite(norm) or norm < 1e-9:
+            raise JointError(f"axis must be a non-zero 3-vector, got {self.axis!r}",
+                             frame=self.name, field="axis")
+        object.__setattr__(self, "axis", tuple(float(v) for v in axis / norm))
+
+    @property
+    def rest_value(self) -> float:
+        """The value the joint holds while it has no samples, radians or metres: 0, or the
+        limit nearest to 0 when its limits exclude 0."""
+        value = 0.0 if self.lower is None else max(0.0, self.lower)
+        return value if self.upper is None else min(value, self.upper)
+
+    @property
+    def is_actuated(self) -> bool:
+        """True for joints driven by their own value (not mimic joints)."""
+        return self.mimic is None
+
+    def placed_motion(
+        self, placement: tuple[NDArray[np.float64], NDArray[np.float64]],
+        values: NDArray[np.float64],
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """``placement @ motion(values)`` for ``values`` of shape (N,), batched.
+
+        For a rotation, Rodrigues' formula ``R(q) = I + sin q K + (1 - cos q) K^2`` (``K`` the
+        cross-product matrix of the axis) turns ``P @ R(q)`` into
+        ``P + sin q (P K) + (1 - cos q) (P K^2)``: one (N, 3) x (3, 9) matrix product.
+        """
+        rotation, translation = placement
+        axis = np.asarray(self.axis)
+        count = values.shape[0]
+        if self.kind == "prismatic":
+            return (np.broadcast_to(rotation, (count, 3, 3)),
+                    translation + values[:, None] * (rotation @ axis))
+        cross = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]],
+                          [-axis[1], axis[0], 0.0]])
+        rotation_cross = rotation @ cross
+        basis = np.stack([rotation.ravel(), rotation_cross.ravel(),
+                          (rotation_cross @ cross).ravel()])
+        weights = np.empty((count, 3))
+        weights[:, 0] = 1.0
+        np.sin(values, out=weights[:, 1])
+        np.cos(values, out=weights[:, 2])
+        np.subtract(1.0, weights[:, 2], out=weights[:, 2])
+        rotated = (weights @ basis).reshape(count, 3, 3)
+        return rotated, np.broadcast_to(translation, (count, 3))
+
+    def pinocchio_joint_model(self) -> pin.JointModel:
+        """The Pinocchio joint model of this joint (aligned axes get the specialised ones).
+
+        A continuous joint about an unaligned axis becomes a revolute one, which moves the
+        same: pin 4.1's Python bindings build ``JointModelRevoluteUnboundedUnaligned`` only
+        about the x axis.
+        """
+        axis = np.asarray(self.axis)
+        aligned = self._aligned_axis()
+        if aligned is not None:
+            prefix = {"revolute": "R", "continuous": "RUB", "prismatic": "P"}[self.kind]
+            return getattr(pin, f"JointModel{prefix}{aligned}")()
+        if self.kind == "prismatic":
+            return pin.JointModelPrismaticUnaligned(axis)
+        return pin.JointModelRevoluteUnaligned(axis)
+
+    def configuration(self, values: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Pinocchio configuration entries ``(N, nq)`` of this joint for ``values``."""
+        if self.kind == "continuous" and self._aligned_axis() is not None:
+            return np.stack([np.cos(values), np.sin(values)], axis=1)
+        return values[:, None]
+
+    def _aligned_axis(self) -> str | None:
+        """``"X"``, ``"Y"`` or ``"Z"`` when the axis is that unit axis, else None."""
+        index = int(np.argmax(np.abs(self.axis)))
+        return "XYZ"[index] if abs(self.axis[index] - 1.0) < _AXIS_TOLERANCE else None
+
+
+def mimic_chain(joint: Joint, joints: dict[str, Joint]) -> list[Joint]:
+    """``joint``, the joint it mimics, and so on up to a joint that mimics none.
+
+    Raises :class:`~pinframes.errors.JointError` when a joint in the chain mimics one that is
+    not in ``joints`` (by name) or the chain closes on itself.
+    """
+    chain = [joint]
+    while chain[-1].mimic is not None:
+        target = chain[-1].mimic.joint
+        if target not in joints:
+            raise JointError(f"mimics joint {target!r}, which is not in the tree",
+                             frame=chain[-1].name, field="mimic")
+        if any(link.name == target for link in chain):
+            names = [link.name for link in chain]
+            raise JointError(f"mimic joints form a cycle: {' -> '.join([*names, target])}",
+                             frame=chain[-1].name, field="mimic")
+        chain.append(joints[target])
+    return chain

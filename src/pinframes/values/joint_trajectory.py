@@ -1,0 +1,125 @@
+"""Joint trajectories: `JointTrajectory`, one joint's values over time, and building them."""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import (
+    ArgumentTypeError,
+    InvalidTimeError,
+    JointError,
+    JointLimitWarning,
+    near_misses,
+)
+from ._interpolation import segment_positions
+from .joint import Joint
+from .timeconv import parse_time_axis
+
+__all__ = ["JointTrack", "JointTrajectory", "joint_trajectories_from_samples"]
+
+
+@dataclass(frozen=True)
+class JointTrajectory:
+    """Values of one joint at strictly increasing times.
+
+    Attributes
+    ----------
+    times : ndarray of int64, shape (T,)
+        Nanoseconds after ``reference`` (or plain offsets when it is None).
+    reference : numpy.datetime64 or None
+        What ``times`` count from.
+    values : ndarray, shape (T,)
+        Radians or metres. Continuous joints are stored unwrapped, so that linear
+        interpolation takes the short way round.
+    """
+
+    times: NDArray[np.int64]
+    reference: np.datetime64 | None
+    values: NDArray[np.float64]
+
+    def sample(self, times: NDArray[np.int64]) -> NDArray[np.float64]:
+        """Values at ``times`` (ns on this trajectory's own basis), held outside the samples."""
+        index, fraction = segment_positions(self.times, times)
+        if self.values.shape[0] == 1:
+            return np.full(times.shape, self.values[0])
+        return (1.0 - fraction) * self.values[index] + fraction * self.values[index + 1]
+
+
+JointTrack = JointTrajectory
+"""The name :class:`JointTrajectory` had before 0.2 (kept for existing code)."""
+
+
+def joint_trajectories_from_samples(
+    joints: Mapping[str, Joint], times: Any, positions: Any,
+    joint_names: Sequence[str] | None = None,
+) -> dict[str, JointTrajectory]:
+    """One trajectory per named joint from ``positions`` (T, n) at T ``times``, checked.
+
+    ``joints`` are the tree's joints by name; see
+    :meth:`pinframes.FrameTree.set_joint_trajectory` for the rules.
+    """
+    if isinstance(joint_names, str):
+        raise ArgumentTypeError(f"expected a list of joint names, got the string {joint_names!r}",
+                                field="joint_names")
+    if joint_names is None:
+        joint_names = [name for name, joint in joints.items() if joint.is_actuated]
+    joint_names = list(joint_names)
+    for name in joint_names:
+        if name not in joints:
+            raise JointError(f"no joint named {name!r} in the tree"
+                             + near_misses(name, joints, "joint"), field="joint_names")
+        if not joints[name].is_actuated:
+            raise JointError(f"joint {name!r} is a mimic joint of "
+                             f"{joints[name].mimic.joint!r}; drive that joint instead",
+                             field="joint_names")
+    if len(set(joint_names)) != len(joint_names):
+        raise JointError("joint names repeat", field="joint_names")
+    axis = parse_time_axis(times, field="times")
+    count = axis.offsets.shape[0]
+    if count > 1 and np.any(np.diff(axis.offsets) <= 0):
+        raise InvalidTimeError("joint sample times must be strictly increasing", field="times")
+    values = _positions(positions, count, joint_names)
+    trajectories = {}
+    for column, name in enumerate(joint_names):
+        joint = joints[name]
+        column_values = values[:, column]
+        _warn_outside_limits(name, joint.lower, joint.upper, column_values)
+        if joint.kind == "continuous":
+            column_values = np.unwrap(column_values)
+        trajectories[name] = JointTrajectory(axis.offsets, axis.reference, column_values)
+    return trajectories
+
+
+def _positions(positions: Any, count: int, joint_names: list[str]) -> np.ndarray:
+    try:
+        values = np.array(positions, dtype=float)
+    except (TypeError, ValueError, OverflowError) as exc:
+        raise JointError(f"positions must be numbers: {exc}", field="positions") from None
+    if values.ndim == 1 and len(joint_names) == 1:
+        values = values[:, None]
+    if values.shape != (count, len(joint_names)):
+        raise JointError(
+            f"positions have shape {values.shape}, expected ({count}, {len(joint_names)}) for "
+            f"{count} times and joints {', '.join(joint_names) or '(none)'}",
+            field="positions")
+    if not np.all(np.isfinite(values)):
+        row, column = np.argwhere(~np.isfinite(values))[0]
+        raise JointError(f"non-finite value at sample {row}", frame=joint_names[column],
+                         field="positions")
+    return values
+
+
+def _warn_outside_limits(name: str, lower: float | None, upper: float | None,
+                         values: np.ndarray) -> None:
+    below = lower is not None and values.min() < lower
+    above = upper is not None and values.max() > upper
+    if below or above:
+        warnings.warn(
+            f"joint {name!r}: values {values.min():.6g} to {values.max():.6g} leave its "
+            f"limits [{lower}, {upper}]", JointLimitWarning, stacklevel=4)

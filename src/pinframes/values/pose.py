@@ -1,0 +1,394 @@
+"""`Pose`: a rigid transform, static or sampled in time.
+
+A pose of frame A in frame B maps coordinates given in A to coordinates in B:
+``p_B = R @ p_A + t``. The columns of ``R`` are A's axes written in B; ``t`` is A's origin
+in B, in metres.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..errors import InvalidPoseError, InvalidTimeError, ReferenceTimeError
+from ._interpolation import Keyframes
+from ._se3 import compose, inverse
+from ._timeline import QueryTimeline, TimedSource, plan_query_timeline
+from .rotations import (
+    ROTATION_TOLERANCE,
+    matrix_from_quaternion,
+    matrix_from_rpy,
+    quaternion_from_matrix,
+    rotation_matrix_defects,
+    rpy_from_matrix,
+    sign_continuous_quaternions,
+)
+from .timeconv import (
+    TimeAxis,
+    anchor_time_axis,
+    format_timestamp_iso,
+    parse_time_axis,
+    parse_timestamp,
+    shift_ns,
+    timestamp_ns,
+)
+
+__all__ = ["Pose"]
+
+FloatArray = NDArray[np.float64]
+_QUATERNION_NORM_TOLERANCE = 1e-3
+
+
+class Pose:
+    """A rigid transform, static or sampled at strictly increasing times.
+
+    Parameters
+    ----------
+    translation : array_like, shape (3,) or (T, 3)
+        Origin of the frame in its reference frame, metres.
+    rotation : None or array_like, shape (3, 3), (T, 3, 3), (4,) or (T, 4)
+        Rotation matrix or unit quaternion ``(x, y, z, w)``; None is the identity.
+    times : None or sequence of T times
+        None for a static pose. Float seconds, ``timedelta64``, ``datetime64``, ISO strings
+        or pandas times (see :mod:`pinframes.values.timeconv`).
+    reference_time : None or timestamp
+        What relative ``times`` count from. Absolute ``times`` set it to their first value
+        unless it is given.
+
+    A static translation or rotation broadcasts against a time-dependent other part.
+    Poses are immutable.
+    """
+
+    __slots__ = ("_keyframes", "_reference", "_rotation", "_times", "_translation")
+
+    def __init__(
+        self,
+        translation: ArrayLike = (0.0, 0.0, 0.0),
+        rotation: ArrayLike | None = None,
+        times: Any = None,
+        reference_time: Any = None,
+    ) -> None:
+        translation_array = _as_float_array(translation, "translation")
+        rotation_array = _rotation_matrices(rotation)
+        axis = _time_axis(times, reference_time)
+        count = None if axis is None else axis.offsets.shape[0]
+        translation_array = _broadcast_part(translation_array, (3,), count, "translation")
+        rotation_array = _broadcast_part(rotation_array, (3, 3), count, "rotation")
+        self._translation = translation_array
+        self._rotation = rotation_array
+        self._times = None if axis is None else axis.offsets
+        self._reference = None if axis is None else axis.reference
+        self._keyframes: Keyframes | None = None
+
+    # -- construction --------------------------------------------------------------------
+    @classmethod
+    def _trusted(
+        cls,
+        rotation: FloatArray,
+        translation: FloatArray,
+        times: NDArray[np.int64] | None = None,
+        reference: np.datetime64 | None = None,
+    ) -> Pose:
+        """Wrap arrays that are known to be valid, without checks or copies."""
+        pose = cls.__new__(cls)
+        pose._translation = translation
+        pose._rotation = rotation
+        pose._times = times
+        pose._reference = reference
+        pose._keyframes = None
+        return pose
+
+    @classmethod
+    def identity(cls) -> Pose:
+        """The static identity pose."""
+        return cls._trusted(np.eye(3), np.zeros(3))
+
+    @classmethod
+    def from_matrix(
+        cls, matrix: ArrayLike, times: Any = None, reference_time: Any = None
+    ) -> Pose:
+        """A pose from homogeneous matrices of shape ``(4, 4)`` or ``(T, 4, 4)``."""
+        m = _as_float_array(matrix, "matrix")
+        if m.shape[-2:] != (4, 4) or m.ndim not in (2, 3):
+            raise InvalidPoseError(f"expected shape (4, 4) or (T, 4, 4), got {m.shape}",
+                                   field="matrix")
+        bottom = m[..., 3, :]
+        if not np.allclose(bottom, [0.0, 0.0, 0.0, 1.0], atol=1e-9):
+            raise InvalidPoseError("the last row must be (0, 0, 0, 1)", field="matrix")
+        return cls(m[..., :3, 3], m[..., :3, :3], times, reference_time)
+
+    @classmethod
+    def from_xyz_rpy(
+        cls, x: float = 0.0, y: float = 0.0, z: float = 0.0,
+        roll: float = 0.0, pitch: float = 0.0, yaw: float = 0.0,
+    ) -> Pose:
+        """A static pose from a position in metres and roll, pitch, yaw in radians.
+
+        ``R = Rz(yaw) @ Ry(pitch) @ Rx(roll)``, as in URDF.
+        """
+        values = _as_float_array([x, y, z, roll, pitch, yaw], "xyz_rpy")
+        return cls._trusted(matrix_from_rpy(values[3:]), values[:3].copy())
+
+    # -- attributes ----------------------------------------------------------------------
+    @property
+    def translation(self) -> FloatArray:
+        """Origin in the reference frame, metres: shape (3,) or (T, 3)."""
+        return self._translation
+
+    @property
+    def rotation(self) -> FloatArray:
+        """Rotation matrices: shape (3, 3) or (T, 3, 3)."""
+        return self._rotation
+
+    @property
+    def quaternion(self) -> FloatArray:
+        """Unit quaternions ``(x, y, z, w)``: shape (4,) or (T, 4).
+
+        ``q`` and ``-q`` are the same rotation; the sign is chosen so that a series is
+        continuous: the first (or only) quaternion has ``w >= 0`` and each later one the
+        sign that makes its dot product with the one before it ``>= 0``.
+        """
+        return sign_continuous_quaternions(quaternion_from_matrix(self._rotation))
+
+    @property
+    def matrix(self) -> FloatArray:
+        """Homogeneous matrices: shape (4, 4) or (T, 4, 4)."""
+        lead = self._translation.shape[:-1]
+        out = np.zeros((*lead, 4, 4))
+        out[..., :3, :3] = self._rotation
+        out[..., :3, 3] = self._translation
+        out[..., 3, 3] = 1.0
+        return out
+
+    @property
+    def times(self) -> NDArray[np.timedelta64] | None:
+        """Keyframe times after :attr:`reference_time`, ``timedelta64[ns]``; None if static."""
+        return None if self._times is None else self._times.astype("timedelta64[ns]")
+
+    @property
+    def reference_time(self) -> np.datetime64 | None:
+        """The timestamp :attr:`times` count from, ``datetime64[ns]``, or None."""
+        return self._reference
+
+    @property
+    def absolute_times(self) -> NDArray[np.datetime64] | None:
+        """Keyframe times as ``datetime64[ns]``, or None without reference time or times."""
+        if self._times is None or self._reference is None:
+            return None
+        return self._reference + self._times.astype("timedelta64[ns]")
+
+    @property
+    def is_time_dependent(self) -> bool:
+        """True when the pose is sampled in time."""
+        return self._times is not None
+
+    @property
+    def seconds(self) -> FloatArray | None:
+        """Keyframe times as float seconds after :attr:`reference_time`; None if static."""
+        return None if self._times is None else self._times / 1e9
+
+    def __len__(self) -> int:
+        """Number of samples (1 for a static pose)."""
+        return 1 if self._times is None else int(self._times.shape[0])
+
+    def __getitem__(self, key: Any) -> Pose:
+        """The samples that ``key`` selects, with their times and the reference time.
+
+        ``key`` is an index, a slice, a boolean mask of length ``len(pose)`` or an array of
+        increasing indices, as for a numpy array; ``pose[i]`` is a one-sample pose at the
+        i-th time. A static pose is its own only sample (``pose[0]``, ``pose[-1]``).
+        """
+        if self._times is None:
+            if isinstance(key, (int, np.integer)) and key in (0, -1):
+                return self
+            raise InvalidTimeError("a static pose has one sample: select it with 0 or -1",
+                                   field="index")
+        if isinstance(key, (int, np.integer)):
+            key = [key]
+        times = self._times[key]
+        if times.ndim != 1 or times.shape[0] == 0:
+            raise InvalidTimeError("the selection holds no samples", field="index")
+        if np.any(np.diff(times) <= 0):
+            raise InvalidTimeError("selected samples must keep their times increasing",
+                                   field="index")
+        return Pose._trusted(self._rotation[key].copy(), self._translation[key].copy(),
+                             times.copy(), self._reference)
+
+    def to_xyz_rpy(self) -> FloatArray:
+        """``x, y, z`` in metres and ``roll, pitch, yaw`` in radians: shape (6,) or (T, 6)."""
+        return np.concatenate([self._translation, rpy_from_matrix(self._rotation)], axis=-1)
+
+    # -- algebra -------------------------------------------------------------------------
+    def inverse(self) -> Pose:
+        """The inverse transform: the pose of B in A for a pose of A in B."""
+        rotation, translation = inverse((self._rotation, self._translation))
+        return Pose._trusted(rotation, translation, self._times, self._reference)
+
+    def __matmul__(self, other: Pose) -> Pose:
+        """``pose_b_in_c @ pose_a_in_b`` is ``pose_a_in_c``, on one common timeline."""
+        if not isinstance(other, Pose):
+            return NotImplemented
+        left, right = self, other
+        if left.is_time_dependent and right.is_time_dependent and not _same_timeline(left, right):
+            timeline = _union_timeline(left, right)
+            left = left._sampled(timeline.result_offsets, timeline.reference)
+            right = right._sampled(timeline.result_offsets, timeline.reference)
+        rotation, translation = compose((left._rotation, left._translation),
+                                        (right._rotation, right._translation))
+        timed = left if left.is_time_dependent else right
+        return Pose._trusted(rotation, translation, timed._times, timed._reference)
+
+    def at(self, times: Any, time_ref: Any = None) -> Pose:
+        """This pose interpolated at ``times``: one pose per requested time.
+
+        Relative ``times`` count from ``time_ref`` if given, else from this pose's
+        reference time. The result's reference time is ``time_ref``, else this pose's
+        reference time, else the first of absolute ``times``. Outside its keyframes a pose
+        is held at the first or last keyframe.
+        """
+        # the rules of a tree query (SPEC 4) with this pose as the one moving thing; a
+        # time_ref is never ambiguous here, as for a tree whose frames have references
+        timeline = plan_query_timeline(self._sources(), parse_time_axis(times), time_ref,
+                                       None, True)
+        return self._sampled(timeline.result_offsets, timeline.reference)
+
+    def _sampled(self, times: NDArray[np.int64], reference: np.datetime64 | None) -> Pose:
+        """Samples at ``times`` ns after ``reference`` (both on this pose's own basis)."""
+        if not self.is_time_dependent:
+            count = times.shape[0]
+            return Pose._trusted(np.broadcast_to(self._rotation, (count, 3, 3)).copy(),
+                                 np.broadcast_to(self._translation, (count, 3)).copy(),
+                                 times, reference)
+        shift = 0
+        if reference is not None and self._reference is not None:
+            shift = timestamp_ns(reference) - timestamp_ns(self._reference)
+        rotation, translation = self.keyframes.sample(shift_ns(times, shift))
+        return Pose._trusted(rotation, translation, times, reference)
+
+    def _sources(self) -> list[TimedSource]:
+        """This pose as the moving thing of a timeline plan (none when static)."""
+        if self._times is None:
+            return []
+        return [TimedSource("pose", self._times, self._reference)]
+
+    @property
+    def keyframes(self) -> Keyframes:
+        """The keyframes of a time-dependent pose, prepared for interpolation."""
+        if self._times is None:
+            raise InvalidTimeError("a static pose has no keyframes", field="times")
+        if self._keyframes is None:
+            self._keyframes = Keyframes(self._times, self._rotation, self._translation)
+        return self._keyframes
+
+    def __repr__(self) -> str:
+        if not self.is_time_dependent:
+            x, y, z = self._translation
+            qx, qy, qz, qw = self.quaternion
+            return (f"Pose(translation=({x:.6g}, {y:.6g}, {z:.6g}), "
+                    f"quaternion=({qx:.6g}, {qy:.6g}, {qz:.6g}, {qw:.6g}))")
+        first, last = self._times[[0, -1]] / 1e9
+        text = (f"Pose(1 sample at {first:.9g} s" if len(self) == 1 else
+                f"Pose({len(self)} samples from {first:.9g} s to {last:.9g} s")
+        if self._reference is None:
+            return text + ")"
+        stamps = [format_timestamp_iso(stamp) for stamp in
+                  self._reference + self._times[[0, -1]].astype("timedelta64[ns]")]
+        return (f"{text} after {format_timestamp_iso(self._reference)}, "
+                f"{' to '.join(stamps[:len(self)])})")
+
+
+def _same_timeline(a: Pose, b: Pose) -> bool:
+    return (a._reference == b._reference and a._times.shape == b._times.shape
+            and bool(np.array_equal(a._times, b._times)))
+
+
+def _union_timeline(a: Pose, b: Pose) -> QueryTimeline:
+    """The union of two poses' times, by the rules of a tree query without times."""
+    if (a._reference is None) != (b._reference is None):
+        raise ReferenceTimeError(
+            "cannot combine a pose with a reference time and one without", field="times"
+        )
+    return plan_query_timeline([*a._sources(), *b._sources()], None, None, None, True)
+
+
+def _as_float_array(values: ArrayLike, field: str) -> FloatArray:
+    try:
+        array = np.array(values, dtype=float)
+    except (TypeError, ValueError, OverflowError) as exc:
+        raise InvalidPoseError(f"expected numbers: {exc}", field=field) from None
+    if not np.all(np.isfinite(array)):
+        raise InvalidPoseError("values must be finite (no NaN or infinity)", field=field)
+    return array
+
+
+def _rotation_matrices(rotation: ArrayLike | None) -> FloatArray:
+    if rotation is None:
+        return np.eye(3)
+    array = _as_float_array(rotation, "rotation")
+    if array.shape[-1:] == (4,) and array.ndim in (1, 2):
+        norms = np.linalg.norm(array, axis=-1)
+        if np.any(np.abs(norms - 1.0) > _QUATERNION_NORM_TOLERANCE):
+            raise InvalidPoseError(
+                f"quaternion (x, y, z, w) must have unit norm, got norm {np.min(norms):.6g}"
+                + ("" if norms.size == 1 else f" to {np.max(norms):.6g}"),
+                field="rotation",
+            )
+        return matrix_from_quaternion(array / norms[..., None])
+    if array.shape[-2:] == (3, 3) and array.ndim in (2, 3):
+        orthogonality, determinant = rotation_matrix_defects(array)
+        if orthogonality > ROTATION_TOLERANCE:
+            raise InvalidPoseError(
+                f"rotation matrix is not orthonormal (R.T @ R deviates from I by "
+                f"{orthogonality:.3g})", field="rotation")
+        if determinant > ROTATION_TOLERANCE:
+            raise InvalidPoseError(
+                "rotation matrix has determinant -1: a reflection, not a rotation"
+                if np.any(np.linalg.det(array) < 0) else
+                f"rotation matrix determinant deviates from 1 by {determinant:.3g}",
+                field="rotation")
+        return array
+    raise InvalidPoseError(
+        f"expected a (3, 3) or (T, 3, 3) matrix or a (4,) or (T, 4) quaternion, got shape "
+        f"{array.shape}", field="rotation")
+
+
+def _time_axis(times: Any, reference_time: Any) -> TimeAxis | None:
+    if times is None:
+        if reference_time is not None:
+            raise InvalidTimeError("a reference_time needs times", field="reference_time")
+        return None
+    axis = parse_time_axis(times)
+    if axis.offsets.shape[0] > 1 and np.any(np.diff(axis.offsets) <= 0):
+        position = int(np.argmax(np.diff(axis.offsets) <= 0)) + 1
+        raise InvalidTimeError(
+            f"times must be strictly increasing; time {position} is not after time "
+            f"{position - 1}", field="times")
+    if reference_time is None:
+        return axis
+    return anchor_time_axis(axis, parse_timestamp(reference_time))
+
+
+def _broadcast_part(
+    array: FloatArray, item_shape: tuple[int, ...], count: int | None, field: str
+) -> FloatArray:
+    single = array.shape == item_shape
+    stacked = array.ndim == len(item_shape) + 1 and array.shape[1:] == item_shape
+    if not (single or stacked):
+        raise InvalidPoseError(
+            f"expected shape {item_shape} or (T, {', '.join(map(str, item_shape))}), "
+            f"got {array.shape}", field=field)
+    if count is None:
+        if stacked:
+            if array.shape[0] != 1:
+                raise InvalidPoseError(
+                    f"{array.shape[0]} samples given but no times", field=field)
+            return array[0].copy()
+        return array
+    if single:
+        return np.broadcast_to(array, (count, *item_shape)).copy()
+    if array.shape[0] != count:
+        raise InvalidPoseError(
+            f"{array.shape[0]} samples given for {count} times", field=field)
+    return array

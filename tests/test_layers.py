@@ -1,0 +1,129 @@
+"""The package's layers: no module imports a higher layer, and no imports go round in a circle.
+
+Every import is read from the source (module level, inside functions and under
+``TYPE_CHECKING`` alike), so an import hidden in a function counts as much as one at the top.
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+import pinframes
+
+PACKAGE = Path(pinframes.__file__).parent
+
+LAYERS = [
+    ("errors",),
+    ("values",),
+    ("kinematics",),
+    ("tree",),
+    ("formats",),
+    ("",),  # the package's own __init__: the public names
+    ("cli", "plotting", "view", "batch"),
+]
+"""Lowest first; a module may import its own layer and the layers below."""
+
+
+def _module_name(path: Path) -> str:
+    parts = list(path.relative_to(PACKAGE.parent).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+def _imports(path: Path) -> set[str]:
+    """Modules of pinframes that ``path`` imports, resolved to module names."""
+    name = _module_name(path)
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    modules = _all_modules()
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            targets = [alias.name for alias in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.split(".")[: len(package.split(".")) - node.level + 1]
+                stem = ".".join(base + ([node.module] if node.module else []))
+            else:
+                stem = node.module or ""
+            # `from X import Y` imports module X.Y when there is one, else a name of X
+            targets = [f"{stem}.{alias.name}" if f"{stem}.{alias.name}" in modules else stem
+                       for alias in node.names]
+        else:
+            continue
+        found.update(t for t in targets if t == "pinframes" or t.startswith("pinframes."))
+    found.discard(name)
+    return found
+
+
+def _all_modules() -> set[str]:
+    return {_module_name(path) for path in PACKAGE.rglob("*.py")}
+
+
+def _layer(module: str) -> int:
+    first = module.split(".")[1] if "." in module else ""
+    for index, names in enumerate(LAYERS):
+        if first in names:
+            return index
+    raise AssertionError(f"{module} is in no layer; add its folder to LAYERS")
+
+
+def _graph() -> dict[str, set[str]]:
+    return {_module_name(path): _imports(path) for path in sorted(PACKAGE.rglob("*.py"))}
+
+
+def test_the_reader_resolves_relative_imports_and_imports_inside_functions(tmp_path):
+    """The graph reader itself: an import inside a function, relative and absolute forms."""
+    graph = _graph()
+    assert "pinframes.errors" in graph["pinframes.tree.frame_tree"]
+    # `from .formats import asdf` inside __getattr__, seen as the module pinframes.formats.asdf
+    assert "pinframes.formats.asdf" in graph["pinframes"]
+    assert "pinframes.kinematics._model" in graph["pinframes.kinematics._evaluate"]
+
+
+def test_every_module_belongs_to_a_layer():
+    for module in _graph():
+        _layer(module)
+
+
+def test_no_module_imports_a_higher_layer():
+    upward = []
+    for module, imports in _graph().items():
+        for target in imports:
+            if _layer(target) > _layer(module):
+                upward.append(f"{module} -> {target}")
+    assert upward == []
+
+
+def test_no_import_cycles():
+    """No module reaches itself through imports (a package's own __init__ included)."""
+    graph = _graph()
+    cycles = []
+    state: dict[str, int] = {}
+
+    def visit(module: str, stack: list[str]) -> None:
+        state[module] = 1
+        stack.append(module)
+        for target in sorted(graph.get(module, ())):
+            if state.get(target) == 1:
+                cycles.append(" -> ".join([*stack[stack.index(target):], target]))
+            elif target not in state:
+                visit(target, stack)
+        stack.pop()
+        state[module] = 2
+
+    for module in sorted(graph):
+        if module not in state:
+            visit(module, [])
+    assert cycles == []
+
+
+@pytest.mark.parametrize("layer", ["values", "kinematics", "tree"])
+def test_the_core_never_imports_formats_or_the_edge(layer):
+    """Named once more for the layers issue 13 pulled apart (tree -> urdf was a cycle)."""
+    for module, imports in _graph().items():
+        if module.startswith(f"pinframes.{layer}"):
+            assert not [t for t in imports if _layer(t) > _layer(module)], module
