@@ -179,4 +179,4 @@ class BrokenMimicWarning(UserWarning):
 
 class JointWithoutSamplesWarning(UserWarning):
     """Robot joints evaluated without samples: they hold their rest value
-    (:attr:`pinframes.Joint.rest_value`). Issued once per tree."""
+    (:attr:`pinframes.Joint.rest_value`). Issued once until the tree changes."""
