@@ -8,6 +8,7 @@ from .errors import (
     FrameExistsError,
     FrameNotFoundError,
     FramesYamlWarning,
+    InvalidDataError,
     InvalidPoseError,
     InvalidTimeError,
     JointError,
@@ -30,6 +31,7 @@ from .tree import FrameTree
 from .values.joint import Joint, Mimic
 from .values.joint_trajectory import JointTrack, JointTrajectory
 from .values.pose import Pose
+from .values.spatial_data import SpatialData
 from .values.subsystem import Subsystem
 from .values.timeconv import TimeAxis
 
@@ -44,6 +46,7 @@ __all__ = [
     "FrameNotFoundError",
     "FrameTree",
     "FramesYamlWarning",
+    "InvalidDataError",
     "InvalidPoseError",
     "InvalidTimeError",
     "Joint",
@@ -58,6 +61,7 @@ __all__ = [
     "Pose",
     "ReadError",
     "ReferenceTimeError",
+    "SpatialData",
     "Subsystem",
     "TimeAxis",
     "TreeStructureError",

@@ -23,6 +23,7 @@ __all__ = [
     "FrameExistsError",
     "FrameNotFoundError",
     "FramesYamlWarning",
+    "InvalidDataError",
     "InvalidPoseError",
     "InvalidTimeError",
     "JointError",
@@ -108,6 +109,10 @@ class TreeStructureError(PinframesError, ValueError):
 
 class InvalidPoseError(PinframesError, ValueError):
     """A pose that is not a rigid transform: wrong shape, non-finite, not a rotation."""
+
+
+class InvalidDataError(PinframesError, ValueError):
+    """Spatial data that is not points: wrong shape, non-finite, bad triangles or attributes."""
 
 
 class InvalidTimeError(PinframesError, ValueError):

@@ -140,12 +140,14 @@ def plot_frames(
             parent_translation = np.atleast_2d(poses[parent].translation)
             start = parent_translation[time_index if parent_translation.shape[0] > 1 else 0]
             ax.plot(*np.stack([start, origin]).T, color="0.6", linewidth=2.5, zorder=0)
-    for origin, names in texts:
-        ax.text(*origin, " " + ", ".join(names), fontsize=7, color="0.15")
     _equal_axes(ax, points, length)
+    hidden = _place_labels(ax, texts, _short_names(frames))
     legend = [Line2D([], [], color=colour, label=f"{axis} axis")
               for axis, colour in zip("xyz", _AXIS_COLOURS, strict=True)]
     legend.append(Line2D([], [], color="0.35", linewidth=1.0, label="path of a moving frame"))
+    if hidden:
+        legend.append(Line2D([], [], linestyle="none",
+                             label=f"{hidden} names not shown (they would overlap)"))
     ax.legend(handles=legend, loc="upper left", fontsize=7)
     ax.set_xlabel(f"x in {relative_to} [m]")
     ax.set_ylabel(f"y in {relative_to} [m]")
@@ -166,6 +168,44 @@ def _add_label(texts: list[tuple[np.ndarray, list[str]]], origin: np.ndarray, fr
             names.append(frame)
             return
     texts.append((origin, [frame]))
+
+
+def _short_names(frames: list[str]) -> dict[str, str]:
+    """Each frame's last ``/`` part (``map_1/tile_0_7`` -> ``tile_0_7``) where that is unique."""
+    tails = [frame.rsplit("/", 1)[-1] for frame in frames]
+    return {frame: tail if tails.count(tail) == 1 else frame
+            for frame, tail in zip(frames, tails, strict=True)}
+
+
+def _place_labels(ax: Axes, texts: list[tuple[np.ndarray, list[str]]],
+                  short: dict[str, str], fontsize: float = 7.0) -> int:
+    """Write the labels that do not overlap one already written; return how many did.
+
+    Labels of frames higher in the tree (fewer ``/`` in the name) go first. Overlap is judged
+    on the screen: each label's box is estimated from its length and the font size.
+    """
+    from mpl_toolkits.mplot3d import proj3d
+
+    figure = ax.get_figure()
+    assert figure is not None
+    figure.draw_without_rendering()  # the layout settles: screen positions are final
+    points_to_pixels = figure.dpi / 72.0
+    height = 1.3 * fontsize * points_to_pixels
+    placed: list[tuple[float, float, float, float]] = []
+    hidden = 0
+    for origin, names in sorted(texts, key=lambda item: min(n.count("/") for n in item[1])):
+        text = " " + ", ".join(short[name] for name in names)
+        x2, y2, _ = proj3d.proj_transform(*origin, ax.get_proj())
+        x, y = ax.transData.transform((x2, y2))
+        box = (x, y - height / 2, x + 0.6 * fontsize * points_to_pixels * len(text),
+               y + height / 2)
+        if any(box[0] < b[2] and b[0] < box[2] and box[1] < b[3] and b[1] < box[3]
+               for b in placed):
+            hidden += 1
+            continue
+        placed.append(box)
+        ax.text(*origin, text, fontsize=fontsize, color="0.15", verticalalignment="center")
+    return hidden
 
 
 def _common_times(tree: FrameTree, frames: list[str], relative_to: str) -> Any:

@@ -64,11 +64,11 @@ def test_tree_files_are_told_by_content_whatever_their_name(run_cli, tmp_path):
     shutil.copy(tmp_path / "cell.asdf", asdf)
     urdf = tmp_path / "robot.xml"
     shutil.copy(scene.parents[1] / "welding_robot" / "welding_robot.urdf", urdf)
-    scene_copy = tmp_path / "scene.txt"
-    scene_copy.write_text(scene.read_text().replace("../welding_robot/",
-                                                    f"{scene.parents[1]}/welding_robot/")
-                          .replace("robot_motion.csv", f"{scene.parent}/robot_motion.csv"))
-    for path, frames in ((asdf, 15), (urdf, 8), (scene_copy, 15)):
+    shutil.copytree(scene.parents[1], tmp_path / "models")
+    scene_copy = tmp_path / "models" / "welding_cell" / "scene.txt"
+    shutil.copy(scene, scene_copy)  # beside the files it names
+    cell_frames = len(read_scene(scene))
+    for path, frames in ((asdf, cell_frames), (urdf, 8), (scene_copy, cell_frames)):
         result = run_cli("info", path, "-f", "json")
         assert result.returncode == 0, result.stderr
         assert len(json.loads(result.stdout)["frames"]) == frames, path
@@ -158,4 +158,7 @@ def test_demo_without_matplotlib_writes_the_csv_and_says_what_the_plot_extra_add
     assert (tmp_path / "out" / "torch_poses.csv").exists()
     assert not (tmp_path / "out" / "torch_path.png").exists()
     lines = result.stderr.splitlines()
-    assert len(lines) == 1 and 'pip install "pinframes[plot]"' in lines[0]
+    assert lines[0] == f"pinframes: wrote {tmp_path / 'out' / 'torch_poses.csv'}, " \
+        f"{tmp_path / 'out' / 'cell.html'}"
+    plot_lines = [line for line in lines if "pinframes[plot]" in line]
+    assert len(plot_lines) == 1 and 'pip install "pinframes[plot]"' in plot_lines[0]

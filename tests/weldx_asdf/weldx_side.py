@@ -13,7 +13,12 @@ string or null), rotations are (3, 3) matrices. Requests (``op``):
   raised.
 - ``write``: ``{path, name, root, reference_time, frames: [{name, parent, translation_m,
   rotation, times_ns, reference_time}]}``: builds the hierarchy with weldx's API and writes it
-  under the key ``hierarchy`` (weldx's own writer).
+  under the key ``hierarchy`` (weldx's own writer). With ``data: [{name, frame, points_m,
+  triangles, attributes, times_ns, reference_time, bare}]`` it also attaches data (a
+  ``SpatialData``, or with ``bare`` the points alone), in millimetres.
+- ``get_data_many``: ``{path, queries: [{name, relative_to}]}`` -> ``{answers: [{points_m,
+  times_ns, reference_time} or {error}]}``: weldx's ``get_data`` in metres; ``times_ns`` as
+  int64 nanoseconds after ``reference_time`` when the answer has a time axis.
 """
 
 import json
@@ -22,7 +27,7 @@ import sys
 import numpy as np
 import pandas as pd
 import weldx
-from weldx import Q_, CoordinateSystemManager, LocalCoordinateSystem, WeldxFile
+from weldx import Q_, CoordinateSystemManager, LocalCoordinateSystem, SpatialData, WeldxFile
 
 
 def _hierarchy_in(path):
@@ -96,13 +101,55 @@ def write(request):
                                                              unit="ns"),
             time_ref=_timestamp(frame.get("reference_time")))
         csm.add_cs(frame["name"], frame["parent"], lcs)
+    for data in request.get("data", []):
+        csm.assign_data(_spatial_data(data), data["name"], data["frame"])
     with WeldxFile(request["path"], mode="rw", tree={"hierarchy": csm}):
         pass
     return {"weldx": weldx.__version__}
 
 
+def _spatial_data(data):
+    points = Q_(np.asarray(data["points_m"], dtype=float) * 1000.0, "mm")
+    if data.get("bare"):
+        return points
+    time = None
+    if data.get("times_ns") is not None:
+        time = pd.to_timedelta(np.asarray(data["times_ns"], np.int64), unit="ns")
+        if data.get("reference_time") is not None:
+            time = pd.Timestamp(data["reference_time"]) + time
+    attributes = {key: np.asarray(value) for key, value in (data.get("attributes") or {}).items()}
+    return SpatialData(points, triangles=data.get("triangles"), attributes=attributes or None,
+                       time=time)
+
+
+def get_data_many(request):
+    csm = _hierarchy_in(request["path"])
+    answers = []
+    for query in request["queries"]:
+        try:
+            answers.append(_answer_data(csm.get_data(query["name"], query["relative_to"])))
+        except Exception as exc:  # reported back to the test
+            answers.append({"error": f"{type(exc).__name__}: {exc}"})
+    return {"answers": answers}
+
+
+def _answer_data(data):
+    array = data.coordinates if isinstance(data, SpatialData) else data
+    array = array.transpose(*(["time"] if "time" in array.dims else []), ..., "c")
+    points = np.asarray(array.data.to("m").m, dtype=float)
+    times = reference = None
+    if "time" in array.coords:
+        values = array.coords["time"].values
+        if np.issubdtype(values.dtype, np.datetime64):
+            reference = pd.Timestamp(values[0])
+            values = values - values[0]
+        times = values.astype("timedelta64[ns]").astype(np.int64).tolist()
+    return {"points_m": points.tolist(), "times_ns": times,
+            "reference_time": None if reference is None else reference.isoformat()}
+
+
 if __name__ == "__main__":
     request = json.load(sys.stdin)
     json.dump({"hierarchy": hierarchy, "get_cs": get_cs, "get_cs_many": get_cs_many,
-               "write": write}[request["op"]](request),
+               "write": write, "get_data_many": get_data_many}[request["op"]](request),
               sys.stdout)

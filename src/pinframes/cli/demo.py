@@ -10,10 +10,11 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import FileFormatError, WriteError
+from ..errors import FileFormatError, UnsupportedFeatureError, WriteError
 from ..plotting import new_figure, plot_frames, plotting_available, robot_frames, save_figure
 from ..tree import FrameTree
 from ..values.pose import Pose
+from ..view import write_view
 from ._evaluate import evaluate_poses, terminal_stderr
 from ._files import read_tree, require_frames
 from ._output import write_poses
@@ -22,6 +23,7 @@ __all__ = ["PathSummary", "add_parser", "bundled_scene", "run", "summarize"]
 
 POSES_FILE = "torch_poses.csv"
 PLOT_FILE = "torch_path.png"
+VIEW_FILE = "cell.html"
 
 
 def bundled_scene() -> Path:
@@ -35,8 +37,9 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "demo", parents=parents, help="torch path of the bundled welding cell",
         description="Load the bundled welding cell (robot, positioner, workpiece), compute "
         "the pose of the torch tip relative to the workpiece at every sample of the motion, "
-        f"print a summary and write the poses ({POSES_FILE}) and, with matplotlib "
-        f"(pip install \"pinframes[plot]\"), a plot ({PLOT_FILE}).")
+        f"print a summary and write the poses ({POSES_FILE}), a plot ({PLOT_FILE}; needs "
+        f"pinframes[plot]) and an animated 3-D page of the whole run ({VIEW_FILE}; needs "
+        "pinframes[view]).")
     parser.add_argument("--out", metavar="DIR", default=".",
                         help="folder for the CSV and PNG files (default: the current folder; "
                         "created if missing, but not its parent folders)")
@@ -117,17 +120,24 @@ def run(args: argparse.Namespace) -> int:
         raise WriteError(f"cannot create the output folder: {exc.strerror}", file=out) from None
     write_poses(pose, "csv", str(out / POSES_FILE), frame=args.tool,
                 relative_to=args.workpiece)
-    plotted = plotting_available()
-    if plotted:
+    written = [out / POSES_FILE]
+    missing = []
+    if plotting_available():
         _plot(tree, pose, summary, args.tool, args.workpiece, out / PLOT_FILE)
+        written.append(out / PLOT_FILE)
+    else:
+        missing.append(f'no plot: pip install "pinframes[plot]" adds matplotlib, and the demo '
+                       f"then also draws the cell and the path ({PLOT_FILE})")
+    try:
+        write_view(tree, out / VIEW_FILE, paths={args.tool: args.workpiece})
+        written.append(out / VIEW_FILE)
+    except UnsupportedFeatureError as exc:  # meshcat is not installed: the page is optional
+        missing.append(f"no 3-D page: {exc}")
     print(f"{args.tool} relative to {args.workpiece} ({scene.name})")
     sys.stdout.write(summary.table())
-    if plotted:
-        print(f"pinframes: wrote {out / POSES_FILE} and {out / PLOT_FILE}", file=sys.stderr)
-    else:
-        print(f"pinframes: wrote {out / POSES_FILE}; pip install \"pinframes[plot]\" adds "
-              f"matplotlib, and the demo then also draws the cell and the path "
-              f"({PLOT_FILE})", file=sys.stderr)
+    print(f"pinframes: wrote {', '.join(map(str, written))}", file=sys.stderr)
+    for line in missing:
+        print(f"pinframes: {line}", file=sys.stderr)
     return 0
 
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 
 from ..plotting import figure_format, new_figure, plot_frames, save_figure
 from ._files import read_tree, require_frames
@@ -41,7 +42,9 @@ def run(args: argparse.Namespace) -> int:
     ax = figure.add_subplot(projection="3d")
     plot_frames(tree, args.frames, args.relative_to, ax=ax,
                 time_index=0 if args.at == "start" else -1)
-    ax.set_title(f"{tree.name or args.file}: frames in {args.relative_to or tree.root} "
+    source = Path(args.file)
+    ax.set_title(f"{tree.name or source.parent.name + '/' + source.name}: frames in "
+                 f"{args.relative_to or tree.root} "
                  f"(axes at the {args.at})")
     save_figure(figure, args.output)
     print(f"pinframes: wrote {args.output}", file=sys.stderr)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from collections.abc import Iterator, Sequence
 from typing import Any
@@ -13,6 +14,7 @@ from ..errors import (
     FrameExistsError,
     FrameNotFoundError,
     InvalidPoseError,
+    InvalidTimeError,
     JointError,
     ReferenceTimeError,
     TreeStructureError,
@@ -28,6 +30,7 @@ from ..kinematics import (
 from ..values.joint import Joint
 from ..values.joint_trajectory import JointTrajectory, joint_trajectories_from_samples
 from ..values.pose import Pose
+from ..values.spatial_data import SpatialData, apply_pose
 from ..values.subsystem import Subsystem
 from ..values.timeconv import TimeAxis, parse_timestamp
 from ._robot_formats import robot_mounter
@@ -73,6 +76,7 @@ class FrameTree:
         self._frame_metadata: dict[str, dict[str, Any]] = {}
         self.metadata: dict[str, Any] = {}
         self.subsystems: list[Subsystem] = []
+        self._data: dict[str, tuple[str, SpatialData]] = {}
         self._description: TreeDescription | None = None
 
     # -- inspection ------------------------------------------------------------------------
@@ -220,6 +224,58 @@ class FrameTree:
         """
         return robot_mounter("urdf")(self, urdf, parent, pose, prefix, strict=strict)
 
+    def graft(self, other: FrameTree, at: str | None = None, prefix: str = "",
+              name: str | None = None, record: bool = True) -> Subsystem | None:
+        """Mount tree ``other`` here: its root becomes frame ``at``, every other frame of it
+        (moving frames, robot links with joints and trajectories, attached data) is added
+        with ``prefix`` before its name (joints and data too), as weldx's ``merge`` does.
+
+        ``at`` defaults to ``prefix + other.root``, which must be a frame of this tree.
+        Keyframes counting from ``other``'s reference time keep their absolute times. A
+        :class:`Subsystem` named ``name`` (default: ``prefix + other.name``) records the graft; the
+        subsystems of ``other`` come along nested in it (with ``record=False`` there is no
+        record, and they nest in nothing). A name taken twice is a
+        :class:`~pinframes.errors.FrameExistsError`, and any failure leaves both trees as
+        they were. Returns the record.
+        """
+        from .grafting import graft
+
+        return graft(self, other, at, prefix, name, record)
+
+    def subtree(self, frame: str) -> FrameTree:
+        """A new tree rooted at ``frame`` with copies of everything below it: poses, joints
+        and their trajectories, data, frame metadata and the subsystems inside it. A subsystem
+        recording exactly this part (a :meth:`graft`) names the copy, gives its reference
+        time and is not kept, so ``subtree`` undoes ``graft``."""
+        from .grafting import subtree
+
+        return subtree(self, frame)
+
+    def copy(self) -> FrameTree:
+        """An independent copy: frames, joints, trajectories, data, subsystems, metadata."""
+        from .grafting import copy_tree
+
+        return copy_tree(self)
+
+    def time_union(self, frames: Sequence[str] | None = None) -> TimeAxis | None:
+        """Every keyframe and joint sample time of ``frames`` (default: the whole tree), as
+        weldx's ``time_union``: ns offsets after the tree's reference time (else the earliest
+        frame reference time); None when none of them moves."""
+        from .tree_times import time_union
+
+        return time_union(self, frames)
+
+    def resampled(self, times: Any, time_ref: Any = None) -> FrameTree:
+        """A copy whose moving frames and joint trajectories hold samples at ``times`` only
+        (interpolated as :meth:`pose` does, held outside), as weldx's ``interp_time``.
+
+        Relative ``times`` count from ``time_ref``, else from the tree's reference time;
+        static frames and data stay as they are; frames keep their own reference times.
+        """
+        from .tree_times import resampled
+
+        return resampled(self, times, time_ref)
+
     def set_joint_trajectory(
         self, times: Any, positions: Any, joint_names: Sequence[str] | None = None
     ) -> None:
@@ -260,8 +316,11 @@ class FrameTree:
     joint_track = joint_trajectory
     set_joint_track = replace_joint_trajectory
 
-    def remove(self, name: str, recursive: bool = False) -> None:
-        """Remove frame ``name``; with ``recursive``, its whole subtree too."""
+    def remove(self, name: str, recursive: bool = False, drop_data: bool = False) -> None:
+        """Remove frame ``name``; with ``recursive``, its whole subtree too.
+
+        Data attached to a removed frame is an error unless ``drop_data`` (then it goes too).
+        """
         self._require(name)
         if name == self._root:
             raise TreeStructureError("the root frame cannot be removed", frame=name)
@@ -271,6 +330,14 @@ class FrameTree:
                 "remove them too", frame=name)
         doomed = self._subtree(name)
         self._refuse_orphaned_mimics(set(doomed))
+        gone = set(doomed)
+        attached = [data for data, (frame, _) in self._data.items() if frame in gone]
+        if attached and not drop_data:
+            raise TreeStructureError(
+                f"data is attached to the frames it would remove ({', '.join(attached)}); pass "
+                "drop_data=True to remove the data too", frame=name, field="drop_data")
+        for data in attached:
+            del self._data[data]
         del self._children[self._parent[name]][name]
         for frame in doomed:
             pose = self._local.pop(frame)
@@ -284,11 +351,11 @@ class FrameTree:
                     self._uncount_reference(trajectory.reference)
             for table in (self._parent, self._children, self._depth, self._frame_metadata):
                 table.pop(frame, None)
-        gone = set(doomed)
         self.subsystems = [
             _replace_members(s, tuple(m for m in s.members if m not in gone))
             for s in self.subsystems if s.root not in gone
         ]
+        self._forget_data(attached)
         self._invalidate()
 
     def _refuse_orphaned_mimics(self, doomed: set[str]) -> None:
@@ -302,7 +369,7 @@ class FrameTree:
                     frame=frame, field="mimic")
 
     def rename(self, old: str, new: str) -> None:
-        """Rename frame ``old`` to ``new``, keeping its place, pose and metadata."""
+        """Rename frame ``old`` to ``new``, keeping its place, pose, metadata and data."""
         self._require(old)
         _check_name(new)
         if new in self._children:
@@ -317,11 +384,12 @@ class FrameTree:
         for table in ("_depth", "_local", "_joints", "_frame_metadata"):
             setattr(self, table, {renamed(k): v for k, v in getattr(self, table).items()})
         self._joint_frames = {k: renamed(v) for k, v in self._joint_frames.items()}
+        self._data = {k: (renamed(frame), data) for k, (frame, data) in self._data.items()}
         if old == self._root:
             self._root = new
         self.subsystems = [
             Subsystem(s.name, renamed(s.root), tuple(renamed(m) for m in s.members),
-                      s.parent, s.reference_time, s.subsystems)
+                      s.parent, s.reference_time, s.subsystems, s.data)
             for s in self.subsystems
         ]
         self._invalidate()
@@ -344,6 +412,67 @@ class FrameTree:
                 raise
         self._local[name] = pose
         self._invalidate()
+
+    # -- data attached to frames (weldx assign_data / get_data) -----------------------------
+    @property
+    def data_names(self) -> list[str]:
+        """Names of the data attached to frames, in the order they were assigned."""
+        return list(self._data)
+
+    def assign_data(self, name: str, data: SpatialData | Any, frame: str) -> None:
+        """Attach ``data`` (a :class:`SpatialData`, or ``(M, 3)`` points in metres) to ``frame``
+        under ``name``; its coordinates are given in ``frame``."""
+        if not isinstance(name, str) or not name:
+            raise ArgumentTypeError("data names are non-empty strings", field="name")
+        if name in self._data:
+            raise FrameExistsError(f"the tree already has data named {name!r}", field="name")
+        self._require(frame, "frame")
+        self._data[name] = (frame, data if isinstance(data, SpatialData) else SpatialData(data))
+
+    def data_frame(self, name: str) -> str:
+        """The frame data ``name`` is attached to."""
+        if name not in self._data:
+            raise FrameNotFoundError(f"no data named {name!r}", field="name")
+        return self._data[name][0]
+
+    def delete_data(self, name: str) -> None:
+        """Detach and forget data ``name``."""
+        self.data_frame(name)
+        del self._data[name]
+        self._forget_data([name])
+
+    def _forget_data(self, names: list[str]) -> None:
+        """Take data ``names`` off the subsystems' data lists (weldx ``delete_data``)."""
+        if names:
+            self.subsystems = [dataclasses.replace(s, data=tuple(d for d in s.data
+                                                                 if d not in names))
+                               for s in self.subsystems]
+
+    def get_data(self, name: str, relative_to: str | None = None, times: Any = None,
+                 time_ref: Any = None) -> SpatialData:
+        """Data ``name`` with its points in ``relative_to`` (default: as stored).
+
+        Time-dependent data is transformed at its own times (``times`` must be None). Static
+        data follows :meth:`pose`: with ``times`` None, at the union of the path's keyframe
+        times (static points if nothing on the path moves), else at ``times``; moving points
+        come back ``(T, M, 3)`` with the pose's times and reference time.
+        """
+        frame = self.data_frame(name)
+        data = self._data[name][1]
+        if (relative_to is None or relative_to == frame) and times is None:
+            return data
+        target = frame if relative_to is None else relative_to
+        own = data.times
+        if own is not None:
+            if times is not None:
+                raise InvalidTimeError(f"data {name!r} has times of its own; pass times=None",
+                                       frame=frame, field="times")
+            reference = data.reference_time
+            times = own if reference is None else reference + own
+            time_ref = None
+        pose = self.pose(frame, target, times, time_ref)
+        offsets = None if pose.times is None else pose.times.astype(np.int64)
+        return data.with_points(apply_pose(pose, data.points), offsets, pose.reference_time)
 
     # -- queries ---------------------------------------------------------------------------
     def pose(
@@ -510,4 +639,4 @@ def _checked_pose(pose: object, frame: str, field: str) -> Pose:
 
 def _replace_members(subsystem: Subsystem, members: tuple[str, ...]) -> Subsystem:
     return Subsystem(subsystem.name, subsystem.root, members, subsystem.parent,
-                     subsystem.reference_time, subsystem.subsystems)
+                     subsystem.reference_time, subsystem.subsystems, subsystem.data)

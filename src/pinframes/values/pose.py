@@ -16,8 +16,11 @@ from ..errors import InvalidPoseError, InvalidTimeError, ReferenceTimeError
 from ._interpolation import Keyframes
 from ._se3 import compose, inverse
 from ._timeline import QueryTimeline, TimedSource, plan_query_timeline
+from .euler import euler_from_matrix, matrix_from_euler
+from .lengths import metres
 from .rotations import (
     ROTATION_TOLERANCE,
+    matrix_from_axis_vectors,
     matrix_from_quaternion,
     matrix_from_rpy,
     quaternion_from_matrix,
@@ -47,7 +50,7 @@ class Pose:
     Parameters
     ----------
     translation : array_like, shape (3,) or (T, 3)
-        Origin of the frame in its reference frame, metres.
+        Origin of the frame in its reference frame, metres (or a pint length quantity).
     rotation : None or array_like, shape (3, 3), (T, 3, 3), (4,) or (T, 4)
         Rotation matrix or unit quaternion ``(x, y, z, w)``; None is the identity.
     times : None or sequence of T times
@@ -70,7 +73,7 @@ class Pose:
         times: Any = None,
         reference_time: Any = None,
     ) -> None:
-        translation_array = _as_float_array(translation, "translation")
+        translation_array = _as_float_array(metres(translation, "translation"), "translation")
         rotation_array = _rotation_matrices(rotation)
         axis = _time_axis(times, reference_time)
         count = None if axis is None else axis.offsets.shape[0]
@@ -128,8 +131,62 @@ class Pose:
 
         ``R = Rz(yaw) @ Ry(pitch) @ Rx(roll)``, as in URDF.
         """
-        values = _as_float_array([x, y, z, roll, pitch, yaw], "xyz_rpy")
+        values = _as_float_array([metres(x, "x"), metres(y, "y"), metres(z, "z"),
+                                  roll, pitch, yaw], "xyz_rpy")
         return cls._trusted(matrix_from_rpy(values[3:]), values[:3].copy())
+
+    @classmethod
+    def from_euler(
+        cls, sequence: str, angles: ArrayLike, degrees: bool = False,
+        translation: ArrayLike | None = None, times: Any = None, reference_time: Any = None,
+    ) -> Pose:
+        """A pose from Euler angles, as scipy's and weldx's ``from_euler``.
+
+        ``sequence`` is one to three axis letters, lower case for rotations about the fixed
+        axes (extrinsic, ``"xyz"``: ``R = Rz(c) Ry(b) Rx(a)``), upper case about the turning
+        axes (intrinsic, ``"XYZ"``: ``R = Rx(a) Ry(b) Rz(c)``). ``angles`` has one value per
+        letter, shape ``(n,)`` or ``(T, n)`` with T ``times``; radians unless ``degrees``.
+        ``translation`` in metres (or a pint length), default the origin.
+        """
+        theta = _as_float_array(angles, "angles")
+        if degrees:
+            theta = np.deg2rad(theta)
+        rotation = matrix_from_euler(sequence, theta)
+        return cls((0.0, 0.0, 0.0) if translation is None else translation, rotation,
+                   times, reference_time)
+
+    def to_euler(self, sequence: str, degrees: bool = False) -> FloatArray:
+        """Angles of a three-axis ``sequence`` (see :meth:`from_euler`): ``(3,)`` or ``(T, 3)``.
+
+        Radians unless ``degrees``. First and last angles in ``[-pi, pi]``, the middle in
+        ``[0, pi]`` (same first and last axis) or ``[-pi/2, pi/2]``; at a gimbal lock the
+        last angle is 0.
+        """
+        angles = euler_from_matrix(sequence, self._rotation)
+        return np.rad2deg(angles) if degrees else angles
+
+    @classmethod
+    def from_axis_vectors(
+        cls, x: ArrayLike | None = None, y: ArrayLike | None = None,
+        z: ArrayLike | None = None, translation: ArrayLike | None = None, times: Any = None,
+        reference_time: Any = None,
+    ) -> Pose:
+        """A pose whose axes point along two (or three) of ``x, y, z``, given in the reference
+        frame as ``(3,)`` or ``(T, 3)`` vectors, as weldx's ``from_axis_vectors``.
+
+        The first given axis (in ``x, y, z`` order) keeps its direction, the second is made
+        orthogonal to it, the third completes a right-handed frame (a third given axis must
+        agree with it). Parallel or zero axes are an :class:`InvalidPoseError`.
+        """
+        vectors = {name: None if value is None else _as_float_array(value, name)
+                   for name, value in (("x", x), ("y", y), ("z", z))}
+        try:
+            rotation = matrix_from_axis_vectors(**vectors)
+        except ValueError as exc:
+            named = [name for name in "xyz" if vectors[name] is not None]
+            raise InvalidPoseError(str(exc), field=",".join(named)) from None
+        return cls((0.0, 0.0, 0.0) if translation is None else translation, rotation,
+                   times, reference_time)
 
     # -- attributes ----------------------------------------------------------------------
     @property

@@ -13,6 +13,7 @@ from numpy.typing import ArrayLike, NDArray
 __all__ = [
     "ROTATION_TOLERANCE",
     "matrix_from_axis_angle",
+    "matrix_from_axis_vectors",
     "matrix_from_quaternion",
     "matrix_from_rpy",
     "quaternion_from_matrix",
@@ -163,3 +164,46 @@ def rotation_matrix_defects(matrix: ArrayLike) -> tuple[float, float]:
     orthogonality = float(np.max(np.abs(gram - np.eye(3)), initial=0.0))
     determinant = float(np.max(np.abs(np.linalg.det(m) - 1.0), initial=0.0))
     return orthogonality, determinant
+
+
+def matrix_from_axis_vectors(
+    x: ArrayLike | None = None, y: ArrayLike | None = None, z: ArrayLike | None = None
+) -> FloatArray:
+    """Rotation matrices ``(..., 3, 3)`` whose columns point along two or three given axes.
+
+    Of two given axes the first in ``x, y, z`` order keeps its direction, the second is made
+    orthogonal to it (Gram-Schmidt), the third is their right-handed cross product. A third
+    given axis must point along that product. Vectors may be ``(3,)`` or stacks ``(..., 3)``;
+    their lengths do not matter. Raises ``ValueError`` naming the axis for a zero vector or
+    parallel axes.
+    """
+    given = {name: np.asarray(v, dtype=float) for name, v in (("x", x), ("y", y), ("z", z))
+             if v is not None}
+    if len(given) < 2:
+        raise ValueError("give at least two of the axes x, y, z")
+    names = list(given)[:2]
+    first = _unit(given[names[0]], names[0])
+    second = given[names[1]]
+    second = second - np.sum(second * first, axis=-1, keepdims=True) * first
+    if np.any(np.linalg.norm(second, axis=-1) <= 1e-9 * np.linalg.norm(given[names[1]], axis=-1)):
+        raise ValueError(f"the axes {names[0]} and {names[1]} are parallel")
+    second = _unit(second, names[1])
+    columns = {names[0]: first, names[1]: second}
+    third = next(name for name in "xyz" if name not in columns)
+    # x = y × z, y = z × x, z = x × y
+    after, before = {"x": ("y", "z"), "y": ("z", "x"), "z": ("x", "y")}[third]
+    columns[third] = np.cross(columns[after], columns[before])
+    if third in given:
+        agreement = np.sum(_unit(given[third], third) * columns[third], axis=-1)
+        if np.any(agreement < 1.0 - 1e-6):
+            raise ValueError(f"the axis {third} does not point along the right-handed "
+                             f"cross product of {names[0]} and {names[1]}")
+    return np.stack([columns["x"], columns["y"], columns["z"]], axis=-1)
+
+
+def _unit(vector: FloatArray, name: str) -> FloatArray:
+    norm = np.linalg.norm(vector, axis=-1, keepdims=True)
+    if vector.shape[-1:] != (3,) or not np.all(np.isfinite(vector)) or np.any(norm == 0.0):
+        raise ValueError(f"the axis {name} must be finite non-zero 3-vectors, got shape "
+                         f"{vector.shape}")
+    return vector / norm

@@ -27,6 +27,8 @@ class Subsystem:
         Its own reference time.
     subsystems : tuple of str
         Names of the subsystems nested directly inside it.
+    data : tuple of str
+        Names of the data sets (:meth:`FrameTree.assign_data`) that came with it.
     """
 
     name: str
@@ -35,3 +37,4 @@ class Subsystem:
     parent: str | None = None
     reference_time: np.datetime64 | None = None
     subsystems: tuple[str, ...] = ()
+    data: tuple[str, ...] = ()

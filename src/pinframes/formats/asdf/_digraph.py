@@ -4,7 +4,7 @@ The graph's ``root_node`` is the root frame; each node lists ``edges`` to its ch
 node P with target C, a ``bwd`` edge holds the pose of C in P, a ``fwd`` edge the pose of P
 in C (inverted here). ``subsystems`` nest; each is kept with the node it shares with the
 hierarchy it was merged into (``common_node``) as its root (SPEC 7.2). Data attached to
-nodes (``attributes.data``) is not read.
+nodes (``attributes.data``) is read by ``_data``.
 """
 
 from __future__ import annotations
@@ -14,6 +14,7 @@ from typing import Any
 from ...errors import FileFormatError
 from ...values.pose import Pose
 from ...values.subsystem import Subsystem
+from ._data import read_data
 from ._decode import as_list, required
 from ._hierarchy import Hierarchy, read_header, read_subsystem
 from ._lcs import pose_from_lcs
@@ -28,18 +29,19 @@ def read_digraph_hierarchy(node: Any) -> Hierarchy:
     graph = required(node, "graph", "graph")
     root_node = required(graph, "root_node", "graph")
     hierarchy = read_header(node, _node_name(root_node, None, "graph.root_node"))
-    hierarchy.frames = _frames_depth_first(root_node)
+    hierarchy.frames, hierarchy.data = _frames_depth_first(root_node)
     hierarchy.subsystems = _subsystems(node.get("subsystems") or [], hierarchy.name,
                                        "subsystems")
     return hierarchy
 
 
-def _frames_depth_first(root_node: Any) -> list:
-    """``(frame, parent, pose)`` for every edge, parents first, in file order.
+def _frames_depth_first(root_node: Any) -> tuple[list, list]:
+    """``(frame, parent, pose)`` for every edge, parents first, in file order, and
+    ``(name, frame, data)`` for the data of every node.
 
     Errors on an edge name the frame it leads to, with fields starting at ``edge``.
     """
-    frames = []
+    frames, data = [], []
     seen: set[str] = set()
     stack: list[tuple[Any, str | None, Any, str]] = [(root_node, None, None, "graph.root_node")]
     while stack:
@@ -51,6 +53,10 @@ def _frames_depth_first(root_node: Any) -> list:
         seen.add(name)
         if parent is not None:
             frames.append((name, parent, _edge_pose(edge, name)))
+        attributes = node.get("attributes")
+        sets = attributes.get("data") if isinstance(attributes, dict) else None
+        for key, value in (sets.items() if isinstance(sets, dict) else ()):
+            data.append((str(key), name, read_data(value, name, str(key), "attributes.data")))
         edges = as_list(node.get("edges") or [], "edges")
         for index in reversed(range(len(edges))):
             try:
@@ -58,7 +64,7 @@ def _frames_depth_first(root_node: Any) -> list:
             except FileFormatError as exc:
                 raise exc.located(frame=name) from None
             stack.append((target, name, edges[index], f"edges[{index}].target_node"))
-    return frames
+    return frames, data
 
 
 def _edge_pose(edge: Any, child: str) -> Pose:

@@ -10,6 +10,7 @@ import numpy as np
 from ...errors import FileFormatError, PinframesError
 from ...tree import FrameTree
 from ...values.pose import Pose
+from ...values.spatial_data import SpatialData
 from ...values.subsystem import Subsystem
 from ._decode import as_list, required, timestamp
 
@@ -32,6 +33,8 @@ class Hierarchy:
         Every frame but the root, each after its parent.
     subsystems : list of Subsystem
         The merged subsystems, all nesting levels.
+    data : list of (name, frame, SpatialData)
+        Data attached to frames, in file order.
     """
 
     name: str
@@ -39,6 +42,7 @@ class Hierarchy:
     reference_time: np.datetime64 | None = None
     frames: list[tuple[str, str, Pose]] = field(default_factory=list)
     subsystems: list[Subsystem] = field(default_factory=list)
+    data: list[tuple[str, str, SpatialData]] = field(default_factory=list)
 
     def to_tree(self) -> FrameTree:
         """A new :class:`FrameTree` holding every frame and subsystem."""
@@ -51,6 +55,11 @@ class Hierarchy:
                 tree.add(name, parent, pose)
             except PinframesError as exc:
                 raise exc.located(frame=str(name)) from None
+        for name, frame, data in self.data:
+            try:
+                tree.assign_data(name, data, frame)
+            except PinframesError as exc:
+                raise exc.located(frame=str(frame), field=f"data.{name}") from None
         for subsystem in self.subsystems:
             _check_subsystem(subsystem, tree)
         tree.subsystems = list(self.subsystems)
@@ -70,9 +79,9 @@ def _check_subsystem(subsystem: Subsystem, tree: FrameTree) -> None:
 def read_subsystem(item: Any, field: str, *, root_key: str, parent_key: str | None = None,
                    parent: str | None = None, nested_key: str | None = None,
                    nested: tuple[str, ...] = ()) -> Subsystem:
-    """One subsystem entry: its ``name``, root frame under ``root_key``, ``members`` and
-    ``reference_time``; its parent and nested subsystem names under the given keys, or as
-    given."""
+    """One subsystem entry: its ``name``, root frame under ``root_key``, ``members``,
+    ``reference_time`` and ``data`` names; its parent and nested subsystem names under the
+    given keys, or as given."""
     name = str(required(item, "name", field))
     root = str(required(item, root_key, field))
     if parent_key is not None and item.get(parent_key) is not None:
@@ -83,7 +92,7 @@ def read_subsystem(item: Any, field: str, *, root_key: str, parent_key: str | No
     return Subsystem(
         name, root, tuple(map(str, as_list(item.get("members") or [], f"{field}.members"))),
         parent, None if reference is None else timestamp(reference, f"{field}.reference_time"),
-        nested)
+        nested, tuple(map(str, as_list(item.get("data") or [], f"{field}.data"))))
 
 
 def read_header(node: Any, root: str) -> Hierarchy:

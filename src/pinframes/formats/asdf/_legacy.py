@@ -4,7 +4,7 @@
 any order, and an edge that was defined parent-in-child appears with the two swapped: the
 tree is rebuilt from ``root_system_name``, accepting either end of an entry as the one
 already known (SPEC 7.1). ``subsystems`` lists all nesting levels. weldx 0.4's
-``spatial_data`` (point clouds attached to frames) is not read.
+``spatial_data`` list of ``{coordinate_system, name, data}`` is read by ``_data``.
 """
 
 from __future__ import annotations
@@ -13,6 +13,7 @@ from collections import deque
 from typing import Any
 
 from ...errors import FileFormatError
+from ._data import read_data
 from ._decode import as_list, required
 from ._hierarchy import Hierarchy, read_header, read_subsystem
 from ._lcs import pose_from_lcs
@@ -32,6 +33,12 @@ def read_legacy_hierarchy(node: Any) -> Hierarchy:
         read_subsystem(item, f"subsystems[{index}]", root_key="root_cs",
                        parent_key="parent_system", nested_key="subsystem_names")
         for index, item in enumerate(as_list(node.get("subsystems") or [], "subsystems"))]
+    for index, item in enumerate(as_list(node.get("spatial_data") or [], "spatial_data")):
+        field = f"spatial_data[{index}]"
+        frame = str(required(item, "coordinate_system", field))
+        name = str(required(item, "name", field))
+        hierarchy.data.append((name, frame, read_data(required(item, "data", field), frame,
+                                                      name, field)))
     return hierarchy
 
 

@@ -58,7 +58,9 @@ def read_asdf(path: str | os.PathLike[str], key: str | None = None) -> FrameTree
         Rotations that are not rotations, non-finite values, times that do not increase,
         reference times that cannot be combined.
 
-    Data attached to frames (weldx 0.4 ``spatial_data``, node ``data`` later) is not read.
+    Data attached to frames (weldx 0.4 ``spatial_data``, node ``attributes.data`` later) is
+    read into :meth:`FrameTree.get_data`; data pinframes cannot hold (a ``time_series``, a
+    ``shape``) is an :class:`UnsupportedFeatureError` naming the frame, the data and its tag.
     """
     try:
         with open_raw_tree(path) as tree:

@@ -4,7 +4,8 @@ Every frame but the root is written as its pose in its parent (never parent-in-c
 root and then parents before children. Moving frames keep their keyframe times explicitly
 (never as a regular ``freq`` grid) and their own reference times. Links driven by robot joints
 become frames sampled at their joint's trajectory times (static links: static frames); ASDF
-has no joints. Subsystems keep their names, roots, members and nesting.
+has no joints. Subsystems keep their names, roots, members, data names and nesting. Data
+attached to frames goes into their graph nodes (schema 0.1.0 only).
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from ...values.subsystem import Subsystem
 from .._atomic import atomic_write
 from .._joint_steps import check_joint_steps
 from ._asdf_config import temporary_asdf_config
+from ._data import encode_data
 from ._depth import MAX_GRAPH_DEPTH, deepest_frame, recursion_room, too_deep
 from ._encode import CURRENT, LEGACY, SCHEMAS, Generation, encode_pose, encode_timestamp, tagged
 from ._extension import bound_schemas
@@ -55,8 +57,9 @@ def write_asdf(tree: FrameTree, path: str | os.PathLike[str], schema: str = "1.0
     ------
     UnsupportedFeatureError
         An unknown ``schema``, a revolute joint turning by half a turn or more between
-        two trajectory samples (resample it more densely), or, for ``"0.1.0"``, a frame
-        more than 400 frames below the root (write ``"1.0.0"`` instead).
+        two trajectory samples (resample it more densely), for ``"0.1.0"`` a frame more
+        than 400 frames below the root (write ``"1.0.0"`` instead), for ``"1.0.0"`` data
+        attached to frames (write ``"0.1.0"``).
     TreeStructureError
         Subsystems that name unknown nested subsystems or nest in a cycle.
     WriteError
@@ -72,6 +75,10 @@ def write_asdf(tree: FrameTree, path: str | os.PathLike[str], schema: str = "1.0
             file=str(path), field="schema")
     depth = 0
     if generation is LEGACY:
+        if tree.data_names:
+            raise UnsupportedFeatureError(
+                f"data is attached to frames ({', '.join(tree.data_names)}): pinframes writes "
+                "data in schema '0.1.0' only", file=str(path), field="schema")
         hierarchy = _legacy_hierarchy(tree)
     else:
         deepest, depth = deepest_frame((name, tree.parent(name)) for name in tree.frames[1:])
@@ -159,9 +166,13 @@ def _root_node(tree: FrameTree, generation: Generation) -> Any:
     Built leaves first, so deep trees need no recursion here.
     """
     poses = _frame_poses(tree)
+    data: dict[str, dict[str, Any]] = {}
+    for data_name in tree.data_names:
+        data.setdefault(tree.data_frame(data_name), {})[data_name] = encode_data(
+            generation, tree.get_data(data_name))
     nodes: dict[str, Any] = {}
     for name in reversed(tree.frames):
-        node: dict[str, Any] = {"name": name, "attributes": {"data": {}}}
+        node: dict[str, Any] = {"name": name, "attributes": {"data": data.get(name, {})}}
         edges = [tagged(generation, "core/graph/di_edge", {
             "direction": "bwd",
             "attributes": {"defined": True,
@@ -181,7 +192,7 @@ def _nested_subsystems(tree: FrameTree, generation: Generation) -> list[dict[str
                                 "common_node": subsystem.root}
         if subsystem.reference_time is not None:
             node["reference_time"] = encode_timestamp(generation, subsystem.reference_time)
-        node.update(members=list(subsystem.members), data=[],
+        node.update(members=list(subsystem.members), data=list(subsystem.data),
                     subsystems=[entry(by_name[name]) for name in subsystem.subsystems])
         return node
 

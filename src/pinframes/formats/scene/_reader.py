@@ -375,18 +375,12 @@ class _Scene:
 
 
 def _graft(tree: FrameTree, layer: FrameTree, mount: str, prefix: str) -> None:
-    """Add every frame of ``layer`` to ``tree``; the layer's root becomes ``mount``.
+    """Add every frame of ``layer`` to ``tree``; the layer's root becomes ``mount``
+    (:meth:`FrameTree.graft`, without a subsystem record: layers need no unique names).
 
     Moving frames keep their absolute times: a frame that counted from the layer's
     reference time gets that reference time as its own.
     """
     if layer.joints:
         raise UnsupportedFeatureError("layers with robot joints; list robots under 'robots'")
-    for name in layer.frames[1:]:
-        parent = layer.parent(name)
-        pose = layer.local_pose(name)
-        if (pose.is_time_dependent and pose.reference_time is None
-                and layer.reference_time is not None):
-            pose = Pose(pose.translation, pose.rotation, times=pose.times,
-                        reference_time=layer.reference_time)
-        tree.add(prefix + name, mount if parent == layer.root else prefix + parent, pose)
+    tree.graft(layer, at=mount, prefix=prefix, record=False)

@@ -83,14 +83,20 @@ def mount_robot(
             tree.remove(added[0], recursive=True)
         raise
     robots = tree.metadata.setdefault(URDF_METADATA_KEY, {})
-    robots[root_frame] = {"name": robot.name, "prefix": prefix, "extra_xml": robot.extra_xml}
+    robots[root_frame] = {"name": robot.name, "prefix": prefix, "extra_xml": robot.extra_xml,
+                          "source": _absolute(robot.source)}
     return names
+
+
+def _absolute(source: str) -> str:
+    """The URDF file as an absolute path (its folder resolves relative mesh names)."""
+    return source if source == "<urdf string>" else os.path.abspath(source)
 
 
 def _keep_link(tree: FrameTree, frame: str, robot: RobotDescription, link: str, joint,
                prefix: str) -> None:
     """Remember what export needs and pinframes does not interpret."""
-    kept = {"robot": prefix + robot.root_link, "link_xml": robot.links[link]}
+    kept = {"robot": prefix + robot.root_link, "link": link, "link_xml": robot.links[link]}
     if joint is not None:
         kept["joint"] = {"name": prefix + joint.name, "type": joint.type,
                          "extra_xml": joint.extra_xml, "axis": joint.axis}

@@ -1,0 +1,59 @@
+"""``pinframes view SCENE -o cell.html``: an animated 3-D page of the tree over time."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from ..view import PACKAGE_PATH_VARIABLE, write_view
+from ._evaluate import add_time_arguments, requested_times
+from ._files import read_tree, require_frames
+
+__all__ = ["add_parser", "run"]
+
+
+def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
+    """Register the ``view`` subcommand."""
+    parser = subparsers.add_parser(
+        "view", parents=parents, help="animated 3-D page of the tree (HTML, no server)",
+        description="Write one self-contained HTML page that shows FILE in 3-D over time: "
+        "the robots' URDF geometry moving with their joint samples, every frame's axes and "
+        "name, the paths of moving frames, a time slider with play/pause. It opens from "
+        "disk in a browser, without a server or network. Needs meshcat: "
+        "pip install \"pinframes[view]\".")
+    parser.add_argument("file", metavar="FILE", help="scene, frames.yaml, ASDF or URDF file")
+    parser.add_argument("--frames", nargs="+", metavar="FRAME",
+                        help="frames drawn with axes and names (default: all)")
+    parser.add_argument("--relative-to", "-r", metavar="FRAME",
+                        help="frame the scene is drawn in (default: the root)")
+    parser.add_argument("--path", nargs=2, action="append", metavar=("FRAME", "IN"),
+                        help="draw the path of FRAME in frame IN (repeatable; default: the "
+                        "path of each moving frame without children)")
+    parser.add_argument("--collision", action="store_true",
+                        help="draw the URDF collision geometry instead of the visual one "
+                        "(default: off, the visual geometry)")
+    parser.add_argument("--package-dir", action="append", default=[], metavar="DIR",
+                        help="folder to look for package:// and relative mesh files in "
+                        f"(repeatable; searched before {PACKAGE_PATH_VARIABLE} and the URDF's "
+                        "folder; default: none)")
+    add_time_arguments(parser)
+    parser.add_argument("-o", "--output", metavar="OUT.html", required=True,
+                        help="HTML file to write")
+    parser.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Build and write the page."""
+    tree = read_tree(args.file)
+    paths = None if args.path is None else dict(args.path)
+    require_frames(tree, args.file, args.relative_to, *(args.frames or []),
+                   *(paths or {}), *(paths or {}).values())
+    relative_to = args.relative_to or tree.root
+    drawn = args.frames or tree.frames
+    moving = next((frame for frame in drawn if tree.sample_times(frame, relative_to)), drawn[0])
+    times = requested_times(args, tree, moving, relative_to)
+    size = write_view(tree, args.output, times=times, time_ref=args.time_ref,
+                      relative_to=relative_to, frames=args.frames, paths=paths,
+                      collision=args.collision, package_dirs=args.package_dir)
+    print(f"pinframes: wrote {args.output} ({size / 1e6:.1f} MB)", file=sys.stderr)
+    return 0

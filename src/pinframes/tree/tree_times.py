@@ -1,0 +1,109 @@
+"""Whole-tree time helpers, as weldx's ``time_union`` and ``interp_time`` of a hierarchy.
+
+Keyframes of a moving frame without a reference time of its own, and joint samples likewise,
+count from the tree's reference time (SPEC section 4).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import ArgumentTypeError, InvalidTimeError, ReferenceTimeError
+from ..values.joint import mimic_chain
+from ..values.joint_trajectory import JointTrajectory
+from ..values.pose import Pose
+from ..values.timeconv import TimeAxis, parse_time_axis, parse_timestamp, shift_ns, timestamp_ns
+
+# A FrameTree, by name only: frame_tree imports this module, and an import back would be a
+# cycle (tests/test_layers.py); new trees are made with type(tree).
+FrameTree = Any
+
+__all__ = ["resampled", "time_union"]
+
+_Samples = tuple[NDArray[np.int64], "np.datetime64 | None"]
+
+
+def time_union(tree: FrameTree, frames: Iterable[str] | None = None) -> TimeAxis | None:
+    """Every keyframe and joint sample time of ``frames`` (default: all); see
+    :meth:`pinframes.FrameTree.time_union`."""
+    if isinstance(frames, str):
+        raise ArgumentTypeError(f"expected a list of frame names, got the string {frames!r}",
+                                field="frames")
+    chosen = tree.frames[1:] if frames is None else list(frames)
+    samples: list[_Samples] = []
+    for frame in chosen:
+        tree.parent(frame)  # a FrameNotFoundError for unknown names
+        if frame != tree.root:
+            samples.extend(_frame_samples(tree, frame))
+    if not samples:
+        return None
+    reference = tree.reference_time
+    if reference is None:
+        references = [own for _, own in samples if own is not None]
+        reference = min(references) if references else None
+    offsets = [times if reference is None else
+               shift_ns(times, timestamp_ns(own if own is not None else reference)
+                        - timestamp_ns(reference)) for times, own in samples]
+    return TimeAxis(np.unique(np.concatenate(offsets)), reference)
+
+
+def resampled(tree: FrameTree, times: Any, time_ref: Any = None) -> FrameTree:
+    """A copy of ``tree`` whose moving frames and joint trajectories are sampled at ``times``
+    only; see :meth:`pinframes.FrameTree.resampled`."""
+    axis = parse_time_axis(times)
+    if axis.offsets.shape[0] > 1 and np.any(np.diff(axis.offsets) <= 0):
+        raise InvalidTimeError("times must be strictly increasing", field="times")
+    basis = axis.reference if axis.is_absolute else (
+        parse_timestamp(time_ref, field="time_ref") if time_ref is not None
+        else tree.reference_time)
+    instants = None if basis is None else shift_ns(axis.offsets, timestamp_ns(basis))
+    copy = tree.copy()
+    for frame in copy.frames[1:]:
+        joint = copy.joint_of(frame)
+        if joint is not None:
+            track = copy.joint_trajectory(joint.name)
+            if track is not None:
+                own = _own_basis(axis, instants, track.reference, tree, frame)
+                copy.replace_joint_trajectory(joint.name, JointTrajectory(own, track.reference,
+                                                            track.sample(own)))
+            continue
+        pose = copy.local_pose(frame)
+        if pose.is_time_dependent:
+            own = _own_basis(axis, instants, pose.reference_time, tree, frame)
+            sampled = pose.at(own.astype("timedelta64[ns]"))
+            copy.set_local_pose(frame, Pose(sampled.translation, sampled.rotation,
+                                            times=own.astype("timedelta64[ns]"),
+                                            reference_time=pose.reference_time))
+    return copy
+
+
+def _frame_samples(tree: FrameTree, frame: str) -> list[_Samples]:
+    joint = tree.joint_of(frame)
+    if joint is None:
+        pose = tree.local_pose(frame)
+        times = pose.times
+        return [] if times is None else [(times.astype(np.int64), pose.reference_time)]
+    driver = mimic_chain(joint, tree.joints)[-1]
+    track = tree.joint_trajectory(driver.name)
+    return [] if track is None else [(track.times, track.reference)]
+
+
+def _own_basis(axis: TimeAxis, instants: NDArray[np.int64] | None,
+               own: np.datetime64 | None, tree: FrameTree, frame: str) -> NDArray[np.int64]:
+    """The requested times as ns on the basis of a pose or track (its own reference time,
+    else the tree's, else plain offsets)."""
+    reference = own if own is not None else tree.reference_time
+    if instants is None:
+        if reference is not None:
+            raise ReferenceTimeError("relative times were given, but neither time_ref nor a "
+                                     "tree reference time says what they count from",
+                                     frame=frame, field="times")
+        return axis.offsets
+    if reference is None:
+        raise ReferenceTimeError("absolute times or a time_ref were given, but this moving "
+                                 "frame has no reference time", frame=frame, field="times")
+    return shift_ns(instants, -timestamp_ns(reference))

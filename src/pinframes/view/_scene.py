@@ -1,0 +1,148 @@
+"""What the page shows, as meshcat commands: frames with axes, robot geometry, tool paths.
+
+Every frame of the tree is a group ``/pinframes/frames/<name>`` placed in the drawing frame
+(``relative_to``); its axes and its link geometry hang below it, so moving the group moves
+them. A path of frame A drawn in frame B hangs below B's group and moves with it. Groups
+that move get an animation track (position and quaternion per sample, float32).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..values.rotations import quaternion_from_matrix
+from ._geometry import LinkGeometry
+
+__all__ = ["SceneCommands", "node_path"]
+
+_ROOT = ("pinframes", "frames")
+_FLOAT32 = 0x17  # msgpack extension code that meshcat's viewer reads as a Float32Array
+
+
+def node_path(frame: str) -> str:
+    """The meshcat path of ``frame``'s group (``/`` inside names would nest groups)."""
+    return "/" + "/".join((*_ROOT, frame.replace("/", "\u2215")))
+
+
+@dataclass
+class SceneCommands:
+    """meshcat commands (plain dicts, msgpack-ready) building the scene and its animation."""
+
+    commands: list[dict[str, Any]] = field(default_factory=list)
+    animations: list[dict[str, Any]] = field(default_factory=list)
+
+    def add_frame(self, frame: str, matrices: np.ndarray, times_s: np.ndarray,
+                  axis_length: float) -> None:
+        """A frame's group at ``matrices[0]``, its axes, and a track when it moves.
+
+        ``matrices`` has shape (n, 4, 4): the frame's pose in the drawing frame at ``times_s``
+        (seconds from the start of the page's animation).
+        """
+        path = node_path(frame)
+        self.commands.append({"type": "set_transform", "path": path,
+                              "matrix": _column_major(matrices[0])})
+        self.commands.append(_set_object(path + "/axes", _axes(axis_length)))
+        if len(matrices) > 1 and np.ptp(matrices[:, :3, :], axis=0).max() > 1e-12:
+            self.animations.append(_track(path, matrices, times_s))
+
+    def add_geometry(self, index: int, piece: LinkGeometry) -> None:
+        """One piece of link geometry, fixed in its frame's group."""
+        path = f"{node_path(piece.frame)}/geometry/{index}"
+        vertices = np.asarray(piece.vertices, dtype=np.float32)
+        attributes = {"position": _attribute(vertices)}
+        material: dict[str, Any] = {"type": "MeshLambertMaterial", "side": 2}
+        if piece.colours.ndim == 2:
+            attributes["color"] = _attribute(np.asarray(piece.colours[:, :3], np.float32))
+            material["vertexColors"] = True
+        else:
+            material["color"] = _hex_colour(piece.colours)
+            if piece.colours[3] < 1.0:
+                material.update(transparent=True, opacity=float(piece.colours[3]))
+        geometry = {"type": "BufferGeometry",
+                    "data": {"attributes": attributes,
+                             "index": _attribute(np.asarray(piece.faces, np.uint32))}}
+        self.commands.append(_set_object(path, {"type": "Mesh", "geometry": geometry,
+                                                "material": material}))
+        self.commands.append({"type": "set_transform", "path": path,
+                              "matrix": _column_major(piece.pose_in_frame)})
+
+    def add_path(self, frame: str, drawn_in: str, points: np.ndarray) -> None:
+        """The path of ``frame`` (``points``, shape (n, 3), metres in ``drawn_in``)."""
+        path = f"{node_path(drawn_in)}/paths/{frame.replace('/', chr(0x2215))}"
+        geometry = {"type": "BufferGeometry",
+                    "data": {"attributes": {"position": _attribute(points.astype(np.float32))}}}
+        material = {"type": "LineBasicMaterial", "color": 0xCC00CC, "linewidth": 2}
+        self.commands.append(_set_object(path, {"type": "Line", "geometry": geometry,
+                                                "material": material}))
+
+    def animation_command(self) -> dict[str, Any] | None:
+        """The one ``set_animation`` command (paused at the start), or None if nothing moves."""
+        if not self.animations:
+            return None
+        return {"type": "set_animation", "animations": self.animations, "path": "",
+                "options": {"play": False, "repetitions": 1}}
+
+
+def _track(path: str, matrices: np.ndarray, times_s: np.ndarray) -> dict[str, Any]:
+    """A three.js clip moving the group at ``path`` through ``matrices`` (fps 1: seconds)."""
+    times = _float32(times_s)
+    positions = _float32(matrices[:, :3, 3].reshape(-1))
+    quaternions = quaternion_from_matrix(matrices[:, :3, :3])  # x, y, z, w as three.js
+    return {"path": path, "clip": {"fps": 1, "name": "default", "tracks": [
+        {"name": ".position", "type": "vector3", "times": times, "values": positions},
+        {"name": ".quaternion", "type": "quaternion", "times": times,
+         "values": _float32(quaternions.reshape(-1))}]}}
+
+
+def _set_object(path: str, obj: dict[str, Any]) -> dict[str, Any]:
+    """meshcat's ``set_object`` with a three.js JSON object (uuids made from the path)."""
+    obj = dict(obj, uuid=f"{path}#object")
+    lowered: dict[str, Any] = {"metadata": {"version": 4.5, "type": "Object"},
+                               "object": obj}
+    for kind, plural in (("geometry", "geometries"), ("material", "materials")):
+        if kind in obj:
+            content = dict(obj[kind], uuid=f"{path}#{kind}")
+            lowered[plural] = [content]
+            obj[kind] = content["uuid"]
+    return {"type": "set_object", "path": path, "object": lowered}
+
+
+def _axes(length: float) -> dict[str, Any]:
+    """x, y, z axes as red, green, blue line segments of ``length`` metres."""
+    ends = np.zeros((6, 3), np.float32)
+    ends[[1, 3, 5], [0, 1, 2]] = length
+    colours = np.repeat(np.eye(3, dtype=np.float32), 2, axis=0)
+    geometry = {"type": "BufferGeometry", "data": {"attributes": {
+        "position": _attribute(ends), "color": _attribute(colours)}}}
+    return {"type": "LineSegments", "geometry": geometry,
+            "material": {"type": "LineBasicMaterial", "vertexColors": True, "linewidth": 2}}
+
+
+def _attribute(values: np.ndarray) -> dict[str, Any]:
+    """A three.js buffer attribute (rows are items) as meshcat packs it."""
+    import umsgpack  # type: ignore[import-untyped]
+
+    codes = {np.dtype(np.float32): ("Float32Array", _FLOAT32),
+             np.dtype(np.uint32): ("Uint32Array", 0x16)}
+    name, code = codes[values.dtype]
+    return {"itemSize": 1 if values.ndim == 1 else values.shape[1], "type": name,
+            "array": umsgpack.Ext(code, np.ascontiguousarray(values).tobytes()),
+            "normalized": False}
+
+
+def _float32(values: np.ndarray) -> Any:
+    import umsgpack  # type: ignore[import-untyped]
+
+    return umsgpack.Ext(_FLOAT32, np.ascontiguousarray(values, dtype=np.float32).tobytes())
+
+
+def _column_major(matrix: np.ndarray) -> list[float]:
+    return [float(value) for value in np.asarray(matrix).T.reshape(-1)]
+
+
+def _hex_colour(rgba: np.ndarray) -> int:
+    red, green, blue = (round(255 * float(channel)) for channel in rgba[:3])
+    return (red << 16) + (green << 8) + blue
