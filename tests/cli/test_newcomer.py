@@ -147,9 +147,11 @@ def test_bundled_cell_exports_to_frames_yaml_with_a_slash_replacement(run_cli, t
     np.testing.assert_allclose(flange[1:4], expected, atol=1e-9)
 
 
-def test_demo_without_matplotlib_writes_the_csv_and_says_what_the_plot_extra_adds(
+def test_demo_on_the_base_install_writes_the_csv_and_says_what_the_extras_add(
         tmp_path, cli_env):
-    code = ("import sys; sys.modules['matplotlib'] = None; from pinframes.cli import main; "
+    # the base install: neither the plot extra (matplotlib) nor the view extra (umsgpack)
+    code = ("import sys; sys.modules['matplotlib'] = None; sys.modules['umsgpack'] = None; "
+            "from pinframes.cli import main; "
             f"sys.exit(main(['demo', '--out', {str(tmp_path / 'out')!r}]))")
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                             env=cli_env, timeout=300)
@@ -158,7 +160,8 @@ def test_demo_without_matplotlib_writes_the_csv_and_says_what_the_plot_extra_add
     assert (tmp_path / "out" / "torch_poses.csv").exists()
     assert not (tmp_path / "out" / "torch_path.png").exists()
     lines = result.stderr.splitlines()
-    assert lines[0] == f"pinframes: wrote {tmp_path / 'out' / 'torch_poses.csv'}, " \
-        f"{tmp_path / 'out' / 'cell.html'}"
+    assert lines[0] == f"pinframes: wrote {tmp_path / 'out' / 'torch_poses.csv'}"
     plot_lines = [line for line in lines if "pinframes[plot]" in line]
     assert len(plot_lines) == 1 and 'pip install "pinframes[plot]"' in plot_lines[0]
+    assert lines[2:] == ['pinframes: no 3-D page: the 3-D page needs u-msgpack-python: pip '
+                         'install "pinframes[view]"']
