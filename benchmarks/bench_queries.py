@@ -1,81 +1,51 @@
-"""Time ``FrameTree.pose`` beside a plain vectorised numpy computation of the same work.
+"""Time ``FrameTree.pose`` beside an independent numpy computation of the same work.
 
-Cases (issue 2):
+Cases:
   (a) a chain of 6 frames, 3 of them moving with 1,000 keyframes each on non-aligned time
-      grids, queried at 1,000 / 10,000 / 100,000 times;
-  (b) a 1,000-frame static tree, 10,000 random pair queries;
+      grids, queried at 1,000 / 10,000 / 100,000 times; weldx and pytransform3d beside it
+      when installed;
+  (b) a 1,000-frame static tree, 10,000 random pairs: one ``pose()`` call per pair, and all
+      pairs in one ``poses()`` call;
   (c) the latency of one query at one time (static pair, moving path);
   (d) scale: a tree of 10,000 static and 1,000 moving frames: build time, a query between
-      random frames, resident memory.
+      random frames, resident memory (not with --quick).
 
-Run: ``python benchmarks/bench_queries.py [--quick]``. Prints medians and ratios
-(pinframes / numpy reference); the machine is named at the top.
+Every case runs twice, each time in a child process: with one BLAS/OpenMP thread, and with
+the default threads while a spinning process keeps a core busy. The reference is numpy alone
+(``_reference.py``), run in the same process.
+
+Run: ``python benchmarks/bench_queries.py [--quick]``.
 """
 
 from __future__ import annotations
 
 import argparse
+import json
+import os
 import resource
+import subprocess
+import tempfile
 import time
+from pathlib import Path
 
 import numpy as np
 
-from _machine import describe_machine, median_time
+import _reference as ref
+from _machine import describe_machine, interleaved, print_table, row, run_in_settings
 from pinframes import FrameTree, Pose
-from pinframes.values.rotations import matrix_from_quaternion
+
+try:
+    from pytransform3d.transform_manager import (
+        NumpyTimeseriesTransform,
+        StaticTransform,
+        TemporalTransformManager,
+    )
+except ImportError:
+    TemporalTransformManager = None
 
 
-def random_unit_quaternions(rng: np.random.Generator, count: int, step: float) -> np.ndarray:
-    """A random walk of rotations with steps below ``step`` radians, as quaternions."""
-    axes = rng.normal(size=(count, 3))
-    axes /= np.linalg.norm(axes, axis=1, keepdims=True)
-    angles = rng.uniform(0, step, size=count)
-    steps = np.concatenate([axes * np.sin(angles / 2)[:, None], np.cos(angles / 2)[:, None]],
-                           axis=1)
-    out = np.empty((count, 4))
-    out[0] = [0.0, 0.0, 0.0, 1.0]
-    for i in range(1, count):  # quaternion product out[i-1] * steps[i]
-        x1, y1, z1, w1 = out[i - 1]
-        x2, y2, z2, w2 = steps[i]
-        out[i] = [w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2, w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2,
-                  w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2, w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2]
-    return out
-
-
-# -- the numpy reference: interpolate each frame, then compose 4x4 matrices ----------------
-def reference_interpolate(times, keyframe_times, translations, quaternions):
-    """Linear translation + SLERP at ``times`` (float seconds), held outside, as (N, 4, 4)."""
-    index = np.clip(np.searchsorted(keyframe_times, times, side="right") - 1, 0,
-                    len(keyframe_times) - 2)
-    w = np.clip((times - keyframe_times[index])
-                / (keyframe_times[index + 1] - keyframe_times[index]), 0.0, 1.0)
-    q0, q1 = quaternions[index], quaternions[index + 1]
-    dot = np.sum(q0 * q1, axis=1)
-    q1 = np.where(dot[:, None] < 0, -q1, q1)
-    theta = np.arccos(np.clip(np.abs(dot), -1.0, 1.0))
-    sin_theta = np.sin(theta)
-    small = sin_theta < 1e-9
-    a = np.where(small, 1 - w, np.sin((1 - w) * theta) / np.where(small, 1, sin_theta))
-    b = np.where(small, w, np.sin(w * theta) / np.where(small, 1, sin_theta))
-    q = a[:, None] * q0 + b[:, None] * q1
-    q /= np.linalg.norm(q, axis=1, keepdims=True)
-    out = np.zeros((len(times), 4, 4))
-    out[:, :3, :3] = matrix_from_quaternion(q)
-    out[:, :3, 3] = (1 - w)[:, None] * translations[index] + w[:, None] * translations[index + 1]
-    out[:, 3, 3] = 1.0
-    return out
-
-
-def reference_chain(times, edges):
-    """Compose the chain's edges (static (4, 4) or keyframe tuples) at ``times``."""
-    result = None
-    for edge in edges:
-        matrix = edge if isinstance(edge, np.ndarray) else reference_interpolate(times, *edge)
-        result = matrix if result is None else result @ matrix
-    return result
-
-
-def bench_chain(rng, sizes, repeats):
+def chain_case(rng):
+    """The tree and the reference's edges of case (a)."""
     tree = FrameTree()
     edges, parent = [], "world"
     for index in range(6):
@@ -86,23 +56,82 @@ def bench_chain(rng, sizes, repeats):
             grid = np.round(np.sort(rng.uniform(0, 100, size=1000)), 6)
             grid += np.arange(1000) * 1e-6
             translations = rng.normal(size=(1000, 3))
-            quaternions = random_unit_quaternions(rng, 1000, 0.5)
+            quaternions = ref.random_walk_quaternions(rng, 1000, 0.5)
             tree.add(name, parent, Pose(translations, quaternions, times=grid))
             edges.append((grid, translations, quaternions))
         else:
-            pose = Pose(rng.normal(size=3), random_unit_quaternions(rng, 2, 3.0)[1])
+            pose = Pose(rng.normal(size=3), ref.random_walk_quaternions(rng, 2, 3.0)[1])
             tree.add(name, parent, pose)
             edges.append(pose.matrix)
         parent = name
+    return tree, edges
+
+
+def weldx_chain(edges, times, repeats):
+    """(median seconds, result) of weldx on the chain, in its own interpreter; or None."""
+    python = os.environ.get("PINFRAMES_WELDX_PYTHON")
+    if not python:
+        return None
+    with tempfile.TemporaryDirectory() as folder:
+        arrays = {"query_times": times}
+        for index, edge in enumerate(edges):
+            if isinstance(edge, np.ndarray):
+                arrays[f"edge{index}_matrix"] = edge
+            else:
+                for key, value in zip(("times", "translations", "quaternions"), edge,
+                                      strict=True):
+                    arrays[f"edge{index}_{key}"] = value
+        source, target = Path(folder) / "in.npz", Path(folder) / "out.npz"
+        np.savez(source, **arrays)
+        subprocess.run([python, str(Path(__file__).with_name("_weldx_chain.py")), str(source),
+                        str(target), str(repeats)], check=True, env=os.environ.copy())
+        result = np.load(target)
+        return float(result["seconds"]), result["matrix"]
+
+
+def pytransform3d_chain(edges):
+    """A pytransform3d TemporalTransformManager of the chain (it interpolates with ScLERP)."""
+    manager = TemporalTransformManager()
+    parent = "world"
+    for index, edge in enumerate(edges):
+        if isinstance(edge, np.ndarray):
+            transform = StaticTransform(edge)
+        else:
+            grid, translations, quaternions = edge
+            pqs = np.hstack([translations, quaternions[:, 3:], quaternions[:, :3]])
+            transform = NumpyTimeseriesTransform(grid, pqs, time_clipping=True)
+        manager.add_transform(f"f{index}", parent, transform)
+        parent = f"f{index}"
+    return lambda times: manager.get_transform_at_time(parent, "world", times)
+
+
+def bench_chain(rng, sizes, repeats):
+    tree, edges = chain_case(rng)
+    peer = pytransform3d_chain(edges) if TemporalTransformManager is not None else None
     rows = []
     for size in sizes:
-        times = np.round(np.sort(rng.uniform(-5, 105, size=size)), 6)
-        reference = reference_chain(times, edges)
-        result = tree.pose("f5", "world", times=times)
-        error = float(np.max(np.abs(result.matrix - reference)))
-        ours = median_time(lambda t=times: tree.pose("f5", "world", times=t), repeats)
-        theirs = median_time(lambda t=times: reference_chain(t, edges), repeats)
-        rows.append((f"(a) chain 6 frames, 3 moving, {size:>7,} times", ours, theirs, error))
+        case = f"(a) chain 6 frames, 3 moving, {size:,} times"
+        # unique: weldx refuses repeated query times
+        times = np.unique(np.round(rng.uniform(-5, 105, size=size), 6))
+        reference = ref.chain(times, edges)
+        calls = {"pinframes": lambda t=times: tree.pose("f5", "world", times=t),
+                 "numpy reference": lambda t=times: ref.chain(t, edges)}
+        if peer is not None:
+            calls["pytransform3d"] = lambda t=times: peer(t)
+        measured_rows = interleaved(case, calls, repeats)
+        errors = {"pinframes": tree.pose("f5", "world", times=times).matrix,
+                  "pytransform3d": None if peer is None else peer(times)}
+        for entry in measured_rows:
+            result = errors.get(entry["method"])
+            if result is not None:
+                entry["error"] = float(np.max(np.abs(result - reference)))
+            if entry["method"] == "pytransform3d":
+                entry["note"] = "ScLERP"
+        rows += measured_rows
+        measured = weldx_chain(edges, times, max(1, repeats // 2))
+        if measured is not None:
+            rows.append(row(case, "weldx 0.8.2", measured[0],
+                            float(np.max(np.abs(measured[1] - reference)))))
     return rows
 
 
@@ -112,23 +141,33 @@ def bench_static_pairs(rng, pair_count, repeats):
     world_matrices = [np.eye(4)]
     for index in range(1, 1000):
         parent = int(rng.integers(index))
-        pose = Pose(rng.normal(size=3), random_unit_quaternions(rng, 2, 3.0)[1])
+        pose = Pose(rng.normal(size=3), ref.random_walk_quaternions(rng, 2, 3.0)[1])
         names.append(f"n{index}")
         tree.add(names[-1], names[parent], pose)
         world_matrices.append(world_matrices[parent] @ pose.matrix)
     world = np.array(world_matrices)
     pairs = rng.integers(1000, size=(pair_count, 2))
+    frames = [names[a] for a in pairs[:, 0]]
+    relative_to = [names[b] for b in pairs[:, 1]]
+    case = f"(b) static tree 1,000 frames, {pair_count:,} pairs"
 
-    def ours():
-        return [tree.pose(names[a], names[b]) for a, b in pairs]
+    def one_by_one():
+        return np.array([tree.pose(a, b).matrix for a, b in zip(frames, relative_to,
+                                                                strict=True)])
 
     def reference():
         return np.linalg.inv(world[pairs[:, 1]]) @ world[pairs[:, 0]]
 
-    error = float(np.max(np.abs(np.array([p.matrix for p in ours()]) - reference())))
-    row = (f"(b) static tree 1,000 frames, {pair_count:,} pairs", median_time(ours, repeats),
-           median_time(reference, repeats), error)
-    return [row]
+    calls = {"pinframes pose() loop": one_by_one}
+    if hasattr(tree, "poses"):
+        calls["pinframes poses()"] = lambda: tree.poses(frames, relative_to=relative_to)
+    calls["numpy reference"] = reference
+    rows = interleaved(case, calls, repeats)
+    expected = reference()
+    rows[0]["error"] = float(np.max(np.abs(one_by_one() - expected)))
+    if hasattr(tree, "poses"):
+        rows[1]["error"] = float(np.max(np.abs(calls["pinframes poses()"]().matrix - expected)))
+    return rows
 
 
 def bench_latency(rng, repeats):
@@ -136,24 +175,24 @@ def bench_latency(rng, repeats):
     tree.add("a", "world", Pose.from_xyz_rpy(1, 2, 3, 0.1, 0.2, 0.3))
     tree.add("b", "a", Pose.from_xyz_rpy(0, 1, 0, 0.3, 0.2, 0.1))
     grid = np.linspace(0, 10, 1000)
-    tree.add("m", "a", Pose(rng.normal(size=(1000, 3)), random_unit_quaternions(rng, 1000, 0.3),
-                            times=grid))
+    quaternions = ref.random_walk_quaternions(rng, 1000, 0.3)
+    translations = rng.normal(size=(1000, 3))
+    tree.add("m", "a", Pose(translations, quaternions, times=grid))
     tree.add("tool", "m", Pose([0, 0, 0.4]))
     static_matrix = tree.local_pose("b").matrix
-    moving = (grid, tree.local_pose("m").translation, tree.local_pose("m").quaternion)
-    tool = tree.local_pose("tool").matrix
-    edges = [moving, tool]
+    tool = np.eye(4)
+    tool[2, 3] = 0.4
+    edges = [(grid, translations, quaternions), tool]
     at = np.array([4.321])
     rows = []
-    for label, call, reference in [
+    for case, call, reference in [
         ("(c) one query, static pair", lambda: tree.pose("b", "a"),
          lambda: np.linalg.inv(static_matrix)),
         ("(c) one query, one time, moving path", lambda: tree.pose("tool", "a", times=4.321),
-         lambda: reference_chain(at, edges)),
+         lambda: ref.chain(at, edges)),
     ]:
-        call()
-        rows.append((label, median_time(call, repeats * 200),
-                     median_time(reference, repeats * 200), float("nan")))
+        rows += interleaved(case, {"pinframes": call, "numpy reference": reference},
+                            repeats * 300)
     return rows
 
 
@@ -175,7 +214,7 @@ def bench_scale(rng, static_count, moving_count):
         parent = names[int(rng.integers(len(names)))]
         name = f"n{index}"
         if index in moving_at:
-            pose = Pose(rng.normal(size=(20, 3)), random_unit_quaternions(rng, 20, 0.3),
+            pose = Pose(rng.normal(size=(20, 3)), ref.random_walk_quaternions(rng, 20, 0.3),
                         times=grid)
         else:
             pose = Pose(rng.normal(size=3))
@@ -190,33 +229,35 @@ def bench_scale(rng, static_count, moving_count):
     return build, query, resident_mb() - start_mb, resident_mb()
 
 
+def child(quick: bool) -> None:
+    rng = np.random.default_rng(7)
+    repeats = 3 if quick else 7
+    sizes = [1_000, 10_000] if quick else [1_000, 10_000, 100_000]
+    rows = bench_chain(rng, sizes, repeats)
+    rows += bench_static_pairs(rng, 2_000 if quick else 10_000, repeats)
+    rows += bench_latency(rng, repeats)
+    print(json.dumps(rows))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="fewer repeats and sizes")
+    parser.add_argument("--child", help=argparse.SUPPRESS)
     args = parser.parse_args()
-    rng = np.random.default_rng(7)
-    repeats = 3 if args.quick else 7
-    sizes = [1_000, 10_000] if args.quick else [1_000, 10_000, 100_000]
+    if args.child:
+        child(args.quick)
+        return
     print(describe_machine())
-    build, query, grown_mb, total_mb = bench_scale(rng, 10_000, 1_000)
-    print(f"\n(d) 10,000 static + 1,000 moving frames: build {build:.2f} s, "
-          f"query between random frames at 100 times {query * 1e3:.2f} ms (mean of 200), "
-          f"resident memory grew {grown_mb:.0f} MB (process {total_mb:.0f} MB)")
-    rows = bench_chain(rng, sizes, repeats)
-    rows += bench_static_pairs(rng, 2_000 if args.quick else 10_000, repeats)
-    rows += bench_latency(rng, repeats)
-    print(f"\n{'case':<50} {'pinframes':>12} {'numpy ref':>12} {'ratio':>7} {'max |err|':>10}")
-    for label, ours, theirs, error in rows:
-        print(f"{label:<50} {_fmt(ours):>12} {_fmt(theirs):>12} {ours / theirs:>7.2f} "
-              f"{error:>10.1e}")
-
-
-def _fmt(seconds: float) -> str:
-    if seconds < 1e-3:
-        return f"{seconds * 1e6:.1f} us"
-    if seconds < 1:
-        return f"{seconds * 1e3:.2f} ms"
-    return f"{seconds:.2f} s"
+    if TemporalTransformManager is None:
+        print("pytransform3d is not installed: its rows are skipped (pip install pytransform3d)")
+    if not os.environ.get("PINFRAMES_WELDX_PYTHON"):
+        print("PINFRAMES_WELDX_PYTHON is not set: the weldx rows are skipped")
+    print_table(run_in_settings(__file__, ["--quick"] if args.quick else []))
+    if not args.quick:
+        build, query, grown_mb, total_mb = bench_scale(np.random.default_rng(7), 10_000, 1_000)
+        print(f"\n(d) 10,000 static + 1,000 moving frames: build {build:.2f} s, "
+              f"query between random frames at 100 times {query * 1e3:.2f} ms (mean of 200), "
+              f"resident memory grew {grown_mb:.0f} MB (process {total_mb:.0f} MB)")
 
 
 if __name__ == "__main__":

@@ -1,9 +1,10 @@
-"""Tool poses of a robot per sample: pinframes beside a vectorised numpy forward kinematics.
+"""Tool poses of a robot per sample: pinframes beside an independent numpy forward kinematics.
 
-Case (issue 5): the Panda of example-robot-data on a mount frame that moves with 1,000
-keyframes, 10,000 joint samples, the hand pose in the world at every sample. Also shown: a
-hand-written Pinocchio loop (forwardKinematics per sample) and a 1,000,000-sample run (time
-and peak memory).
+Case: the Panda of example-robot-data on a mount frame that moves with 1,000 keyframes,
+10,000 joint samples, the hand pose in the world at every sample. Also timed: a hand-written
+Pinocchio loop (forwardKinematics per sample, mount poses given). Both thread settings, each
+in a child process (see ``_machine.py``); time and memory against the number of samples are
+in ``bench_curves.py``.
 
 Run: ``python benchmarks/bench_robot.py [--quick]``.
 """
@@ -11,18 +12,18 @@ Run: ``python benchmarks/bench_robot.py [--quick]``.
 from __future__ import annotations
 
 import argparse
-import resource
-import time
+import json
 from importlib import metadata
 from pathlib import Path
 
 import numpy as np
 import pinocchio as pin
 
-from _machine import describe_machine, median_time
-from bench_queries import reference_interpolate
+import _reference as ref
+from _machine import describe_machine, interleaved, print_table, run_in_settings
 from pinframes import FrameTree, Pose
-from pinframes.values.rotations import matrix_from_axis_angle, quaternion_from_matrix
+
+ARM = [f"panda_joint{i}" for i in range(1, 8)]
 
 
 def panda_urdf() -> Path:
@@ -33,44 +34,47 @@ def panda_urdf() -> Path:
 
 
 def build_case(rng, samples):
-    urdf = panda_urdf()
+    """The tree, and the mount's keyframes (seconds, metres, quaternions), times, positions."""
     tree = FrameTree()
     grid = np.round(np.linspace(0.0, 10.0, 1000), 6)  # whole microseconds: exact in ns
     mount_translation = np.cumsum(rng.normal(scale=0.01, size=(1000, 3)), axis=0)
-    mount_rotation = np.array([pin.exp3(np.array([0.0, 0.0, 0.002 * i])) for i in range(1000)])
-    tree.add("mount", "world", Pose(mount_translation, mount_rotation, times=grid))
-    tree.attach_urdf(urdf, "mount")
-    arm = [f"panda_joint{i}" for i in range(1, 8)]
+    turn = 0.001 * np.arange(1000)  # about z: quaternion (0, 0, sin, cos) of half the angle
+    mount_quaternion = np.stack([0 * turn, 0 * turn, np.sin(turn), np.cos(turn)], axis=1)
+    tree.add("mount", "world", Pose(mount_translation, mount_quaternion, times=grid))
+    tree.attach_urdf(panda_urdf(), "mount")
     times = np.round(np.linspace(0.0, 10.0, samples), 6)
-    joints = [tree.joints[name] for name in arm]
+    joints = [tree.joints[name] for name in ARM]
     middle = np.array([(j.lower + j.upper) / 2 for j in joints])
     half_range = np.array([(j.upper - j.lower) / 2 for j in joints])
-    positions = middle + 0.8 * half_range * np.sin(np.outer(times, np.arange(1, 8) * 0.3))
-    tree.set_joint_trajectory(times, positions, arm)
-    return tree, urdf, grid, mount_translation, mount_rotation, times, positions
-
-
-def numpy_reference(model, chain, mount, times, positions):
-    """Vectorised numpy FK of the mount and the 7 revolute joints, straight from the model."""
-    world = reference_interpolate(times, *mount)
-    for column, (placement, axis) in enumerate(chain):
-        step = np.zeros((len(times), 4, 4))
-        step[:, :3, :3] = placement.rotation @ matrix_from_axis_angle(axis, positions[:, column])
-        step[:, :3, 3] = placement.translation
-        step[:, 3, 3] = 1.0
-        world = world @ step
-    return world @ model.frames[model.getFrameId("panda_hand")].placement.homogeneous
+    positions = np.outer(times, np.arange(1, 8) * 0.3)  # in place: 10^7 samples are 560 MB
+    np.sin(positions, out=positions)
+    positions *= 0.8 * half_range
+    positions += middle
+    tree.set_joint_trajectory(times, positions, ARM)
+    return tree, (grid, mount_translation, mount_quaternion), times, positions
 
 
 def arm_chain(model):
+    """Per arm joint: its placement in the parent joint (4, 4) and its unit axis."""
     chain = []
     for joint_id in range(1, 8):
         joint = model.joints[joint_id]
-        axis = {"JointModelRZ": (0.0, 0.0, 1.0)}.get(joint.shortname())
-        if axis is None:
+        if joint.shortname() != "JointModelRZ":
             raise SystemExit(f"unexpected joint {joint.shortname()}")
-        chain.append((model.jointPlacements[joint_id], np.array(axis)))
+        chain.append((model.jointPlacements[joint_id].homogeneous, np.array([0.0, 0.0, 1.0])))
     return chain
+
+
+def numpy_reference(hand, chain, mount, times, positions):
+    """Vectorised numpy FK: the mount interpolated, then each joint's placement @ rotation."""
+    world = ref.interpolate(times, *mount)
+    for column, (placement, axis) in enumerate(chain):
+        step = np.zeros((len(times), 4, 4))
+        step[:, :3, :3] = placement[:3, :3] @ ref.rodrigues(axis, positions[:, column])
+        step[:, :3, 3] = placement[:3, 3]
+        step[:, 3, 3] = 1.0
+        world = world @ step
+    return world @ hand
 
 
 def pinocchio_loop(model, data, frame_id, mount_matrices, positions):
@@ -84,47 +88,38 @@ def pinocchio_loop(model, data, frame_id, mount_matrices, positions):
     return out
 
 
+def child(quick: bool) -> None:
+    tree, mount, times, positions = build_case(np.random.default_rng(3), 10_000)
+    model = pin.buildModelFromUrdf(str(panda_urdf()))
+    data = model.createData()
+    chain = arm_chain(model)
+    hand_id = model.getFrameId("panda_hand")
+    hand = model.frames[hand_id].placement.homogeneous
+    mount_matrices = ref.interpolate(times, *mount)
+    case = "Panda on moving mount, 10,000 samples"
+    calls = {
+        "pinframes": lambda: tree.pose("panda_hand", "world", times=times),
+        "numpy reference": lambda: numpy_reference(hand, chain, mount, times, positions),
+        "Pinocchio loop": lambda: pinocchio_loop(model, data, hand_id, mount_matrices,
+                                                 positions),
+    }
+    rows = interleaved(case, calls, 3 if quick else 9)
+    expected = calls["numpy reference"]()
+    rows[0]["error"] = float(np.max(np.abs(calls["pinframes"]().matrix - expected)))
+    rows[2]["error"] = float(np.max(np.abs(calls["Pinocchio loop"]() - expected)))
+    print(json.dumps(rows))
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="skip the 1,000,000-sample run")
+    parser.add_argument("--quick", action="store_true", help="fewer repeats")
+    parser.add_argument("--child", help=argparse.SUPPRESS)
     args = parser.parse_args()
-    rng = np.random.default_rng(3)
+    if args.child:
+        child(args.quick)
+        return
     print(describe_machine())
-    tree, urdf, grid, translation, rotation, times, positions = build_case(rng, 10_000)
-    model = pin.buildModelFromUrdf(str(urdf))
-    data = model.createData()
-    mount = (grid, translation, quaternion_from_matrix(rotation))
-    chain = arm_chain(model)
-
-    ours = tree.pose("panda_hand", "world", times=times).matrix
-    reference = numpy_reference(model, chain, mount, times, positions)
-    mount_matrices = tree.pose("mount", "world", times=times).matrix
-    loop = pinocchio_loop(model, data, model.getFrameId("panda_hand"), mount_matrices, positions)
-    rows = [
-        ("pinframes tree.pose", median_time(
-            lambda: tree.pose("panda_hand", "world", times=times), 7), ours),
-        ("numpy vectorised FK (reference)", median_time(
-            lambda: numpy_reference(model, chain, mount, times, positions), 7), reference),
-        ("Pinocchio loop per sample", median_time(
-            lambda: pinocchio_loop(model, data, model.getFrameId("panda_hand"), mount_matrices,
-                                   positions), 3), loop),
-    ]
-    base = rows[1][1]
-    print("\nPanda on a moving mount (1,000 keyframes), hand in world at 10,000 samples")
-    print(f"{'method':<34} {'median':>10} {'vs numpy':>9} {'max |diff| to pinframes':>24}")
-    for label, seconds, result in rows:
-        print(f"{label:<34} {seconds * 1e3:>8.2f} ms {seconds / base:>9.2f} "
-              f"{np.max(np.abs(result - ours)):>24.1e}")
-
-    if not args.quick:
-        big_tree, *_ , big_times, _ = build_case(rng, 1_000_000)
-        before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
-        start = time.perf_counter()
-        big_tree.pose("panda_hand", "world", times=big_times)
-        elapsed = time.perf_counter() - start
-        peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
-        print(f"\n1,000,000 samples: {elapsed:.2f} s, process peak resident memory {peak:.0f} MB "
-              f"(before the query {before:.0f} MB)")
+    print_table(run_in_settings(__file__, ["--quick"] if args.quick else []))
 
 
 if __name__ == "__main__":

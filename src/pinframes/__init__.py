@@ -31,6 +31,7 @@ from .tree import FrameTree
 from .values.joint import Joint, Mimic
 from .values.joint_trajectory import JointTrack, JointTrajectory
 from .values.pose import Pose
+from .values.pose_stack import PoseStack
 from .values.spatial_data import SpatialData
 from .values.subsystem import Subsystem
 from .values.timeconv import TimeAxis
@@ -59,6 +60,7 @@ __all__ = [
     "PinframesError",
     "PinocchioTree",
     "Pose",
+    "PoseStack",
     "ReadError",
     "ReferenceTimeError",
     "SpatialData",

@@ -6,6 +6,7 @@ query path (``_model``), plans its times (``_timeline``) and evaluates it (``_ev
 
 from ._description import TreeDescription, paths_to_common_ancestor
 from ._evaluate import default_times, evaluate_pose
+from ._many import evaluate_poses
 from .pinocchio_tree import PinocchioTree
 
 __all__ = [
@@ -13,5 +14,6 @@ __all__ = [
     "TreeDescription",
     "default_times",
     "evaluate_pose",
+    "evaluate_poses",
     "paths_to_common_ancestor",
 ]

@@ -8,6 +8,7 @@ import numpy as np
 import pinocchio as pin
 from numpy.typing import NDArray
 
+from ..values._se3 import samples_first
 from . import _evaluate
 from ._description import TreeDescription
 from ._model import compile_model
@@ -60,7 +61,7 @@ class PinocchioTree:
                      for joint in compiled.joints]
         samples = _evaluate.sample_joints(tree, compiled, keyframes, evaluation_times,
                                           _evaluate.basis_shifts(sources, timeline))
-        motions = [sample if joint.joint is None else None
+        motions = [samples_first(sample) if joint.joint is None else None
                    for joint, sample in zip(compiled.joints, samples, strict=True)]
         values = [None if joint.joint is None else np.broadcast_to(sample, evaluation_times.shape)
                   for joint, sample in zip(compiled.joints, samples, strict=True)]

@@ -25,11 +25,13 @@ from ..kinematics import (
     TreeDescription,
     default_times,
     evaluate_pose,
+    evaluate_poses,
     paths_to_common_ancestor,
 )
 from ..values.joint import Joint
 from ..values.joint_trajectory import JointTrajectory, joint_trajectories_from_samples
 from ..values.pose import Pose
+from ..values.pose_stack import PoseStack
 from ..values.spatial_data import SpatialData, apply_pose
 from ..values.subsystem import Subsystem
 from ..values.timeconv import TimeAxis, parse_timestamp
@@ -514,6 +516,57 @@ class FrameTree:
         self._require(relative_to, "relative_to")
         return evaluate_pose(self._frozen(), frame, relative_to, times, time_ref,
                              extrapolation)
+
+    def poses(
+        self,
+        frames: Sequence[str],
+        relative_to: str | Sequence[str] | None = None,
+        times: Any = None,
+        time_ref: Any = None,
+        *,
+        extrapolation: str = "clamp",
+    ) -> PoseStack:
+        """The poses of many frames in one call, stacked: ``result[i]`` equals
+        ``self.pose(frames[i], relative_to[i], times, time_ref)``.
+
+        Parameters
+        ----------
+        frames : sequence of str
+            F frame names.
+        relative_to : None, str or sequence of F str
+            One frame for all (the poses of several frames in it), one per frame (F pairs),
+            or None for each frame's parent.
+        times, time_ref, extrapolation
+            As for :meth:`pose`, shared by all pairs.
+
+        Returns
+        -------
+        PoseStack
+            Rotations ``(F, 3, 3)`` / translations ``(F, 3)`` when no pair moves and no
+            times are given, else ``(F, T, 3, 3)`` / ``(F, T, 3)`` on the one timeline of the
+            moving pairs (static pairs repeat over it). Pairs whose default timelines or
+            reference times differ are an :class:`~pinframes.errors.InvalidTimeError`:
+            pass ``times`` (and ``time_ref``).
+        """
+        frames = list(frames)
+        if relative_to is None:
+            references = [self._default_reference(frame, None) for frame in frames]
+        elif isinstance(relative_to, str):
+            references = [relative_to] * len(frames)
+        else:
+            references = list(relative_to)
+            if len(references) != len(frames):
+                raise TreeStructureError(
+                    f"relative_to names {len(references)} frames for {len(frames)} frames",
+                    field="relative_to")
+        for name in set(frames):
+            self._require(name, "frame")
+        for name in set(references):
+            self._require(name, "relative_to")
+        if not frames:
+            return PoseStack(np.empty((0, 3, 3)), np.empty((0, 3)))
+        return evaluate_poses(self._frozen(), frames, references, times, time_ref,
+                              extrapolation)
 
     def sample_times(self, frame: str, relative_to: str | None = None) -> TimeAxis | None:
         """The times :meth:`pose` evaluates at when given none, without evaluating.

@@ -11,7 +11,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from .rotations import matrix_from_quaternion, quaternion_from_matrix
+from ._se3 import Transform, to_stacks
+from .rotations import matrix_rows_from_quaternion, quaternion_from_matrix
 
 __all__ = ["Keyframes", "segment_positions"]
 
@@ -57,38 +58,45 @@ class Keyframes:
     times: NDArray[np.int64]
     rotations: NDArray[np.float64]
     translations: NDArray[np.float64]
-    _slerp: tuple[NDArray[np.float64], ...] | None = field(default=None, repr=False)
+    _rows: tuple[NDArray[np.float64], ...] | None = field(default=None, repr=False)
 
     def sample(
         self, times: NDArray[np.int64]
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Rotation matrices ``(N, 3, 3)`` and translations ``(N, 3)`` at ``times`` (ns)."""
+        return to_stacks(self.transform_at(times), times.shape[0])
+
+    def transform_at(self, times: NDArray[np.int64]) -> Transform:
+        """The pose at ``times`` (ns), samples last: rotations ``(3, 3, N)``, translations
+        ``(3, N)``; static ``(3, 3)`` and ``(3,)`` for a single keyframe."""
         if self.times.shape[0] == 1:
-            count = times.shape[0]
-            return (np.broadcast_to(self.rotations[0], (count, 3, 3)).copy(),
-                    np.broadcast_to(self.translations[0], (count, 3)).copy())
+            return self.rotations[0], self.translations[0]
+        if self._rows is None:
+            self._rows = (np.ascontiguousarray(self.translations.T),
+                          *_prepare_slerp(quaternion_from_matrix(self.rotations)))
+        translations, start, end, angle, inverse_sine = self._rows
         index, fraction = segment_positions(self.times, times)
         before = 1.0 - fraction
-        translations = (before[:, None] * self.translations[index]
-                        + fraction[:, None] * self.translations[index + 1])
-        return matrix_from_quaternion(self._slerp_quaternions(index, fraction)), translations
-
-    def _slerp_quaternions(
-        self, index: NDArray[np.intp], fraction: NDArray[np.float64]
-    ) -> NDArray[np.float64]:
-        if self._slerp is None:
-            self._slerp = _prepare_slerp(quaternion_from_matrix(self.rotations))
-        start, end, angle, inverse_sine = self._slerp
+        translation = translations[:, index]
+        translation *= before
+        translation += fraction * translations[:, index + 1]
+        # SLERP weights sin((1 - f) a) / sin(a) and sin(f a) / sin(a) per sample
         angle = angle[index]
         inverse_sine = inverse_sine[index]
         swept = fraction * angle
-        weight_end = np.sin(swept) * inverse_sine
-        weight_start = np.sin(angle - swept) * inverse_sine
-        return weight_start[:, None] * start[index] + weight_end[:, None] * end[index]
+        weight_end = np.sin(swept)
+        weight_end *= inverse_sine
+        weight_start = np.sin(angle - swept)
+        weight_start *= inverse_sine
+        quaternion = start[:, index]
+        quaternion *= weight_start
+        quaternion += weight_end * end[:, index]
+        return matrix_rows_from_quaternion(*quaternion), translation
 
 
 def _prepare_slerp(quaternions: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
-    """Per segment: start and end quaternion on one hemisphere, arc angle, 1 / sin(angle).
+    """Per segment: start and end quaternion on one hemisphere as rows ``(4, K - 1)``, arc
+    angle, 1 / sin(angle).
 
     Arcs below ``_SMALL_ANGLE`` are widened to it: there ``sin(f a) / sin(a)`` equals ``f``
     to machine precision, so SLERP becomes the (exact enough) linear blend of two nearly
@@ -100,4 +108,5 @@ def _prepare_slerp(quaternions: NDArray[np.float64]) -> tuple[NDArray[np.float64
     end[dot < 0.0] *= -1.0
     angle = np.arccos(np.clip(np.abs(dot), 0.0, 1.0))
     angle = np.maximum(angle, _SMALL_ANGLE)
-    return start, end, angle, 1.0 / np.sin(angle)
+    return (np.ascontiguousarray(start.T), np.ascontiguousarray(end.T), angle,
+            1.0 / np.sin(angle))

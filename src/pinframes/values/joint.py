@@ -89,30 +89,25 @@ class Joint:
         self, placement: tuple[NDArray[np.float64], NDArray[np.float64]],
         values: NDArray[np.float64],
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """``placement @ motion(values)`` for ``values`` of shape (N,), batched.
+        """``placement @ motion(values)`` for ``values`` of shape (N,), samples last.
 
-        For a rotation, Rodrigues' formula ``R(q) = I + sin q K + (1 - cos q) K^2`` (``K`` the
-        cross-product matrix of the axis) turns ``P @ R(q)`` into
-        ``P + sin q (P K) + (1 - cos q) (P K^2)``: one (N, 3) x (3, 9) matrix product.
+        Returns a rotation ``(3, 3, N)`` (static ``(3, 3)`` for a prismatic joint) and a
+        translation ``(3, N)`` (static ``(3,)`` for a rotating joint). For a rotation,
+        Rodrigues' formula ``R(q) = I + sin q K + (1 - cos q) K^2`` (``K`` the cross-product
+        matrix of the axis) turns ``P @ R(q)`` into ``P + sin q (P K) + (1 - cos q) (P K^2)``:
+        three element-wise passes over rows of samples.
         """
         rotation, translation = placement
         axis = np.asarray(self.axis)
-        count = values.shape[0]
         if self.kind == "prismatic":
-            return (np.broadcast_to(rotation, (count, 3, 3)),
-                    translation + values[:, None] * (rotation @ axis))
+            return rotation, translation[:, None] + (rotation @ axis)[:, None] * values
         cross = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]],
                           [-axis[1], axis[0], 0.0]])
         rotation_cross = rotation @ cross
-        basis = np.stack([rotation.ravel(), rotation_cross.ravel(),
-                          (rotation_cross @ cross).ravel()])
-        weights = np.empty((count, 3))
-        weights[:, 0] = 1.0
-        np.sin(values, out=weights[:, 1])
-        np.cos(values, out=weights[:, 2])
-        np.subtract(1.0, weights[:, 2], out=weights[:, 2])
-        rotated = (weights @ basis).reshape(count, 3, 3)
-        return rotated, np.broadcast_to(translation, (count, 3))
+        rotated = rotation_cross[:, :, None] * np.sin(values)
+        rotated += (rotation_cross @ cross)[:, :, None] * (1.0 - np.cos(values))
+        rotated += rotation[:, :, None]
+        return rotated, translation
 
     def pinocchio_joint_model(self) -> pin.JointModel:
         """The Pinocchio joint model of this joint (aligned axes get the specialised ones).

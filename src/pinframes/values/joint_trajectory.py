@@ -43,9 +43,16 @@ class JointTrajectory:
     reference: np.datetime64 | None
     values: NDArray[np.float64]
 
-    def sample(self, times: NDArray[np.int64]) -> NDArray[np.float64]:
-        """Values at ``times`` (ns on this trajectory's own basis), held outside the samples."""
-        index, fraction = segment_positions(self.times, times)
+    def sample(
+        self, times: NDArray[np.int64],
+        positions: tuple[NDArray[np.intp], NDArray[np.float64]] | None = None,
+    ) -> NDArray[np.float64]:
+        """Values at ``times`` (ns on this trajectory's own basis), held outside the samples.
+
+        ``positions`` may pass ``segment_positions(self.times, times)`` when it is known
+        (trajectories set together share their times, and so their segment positions).
+        """
+        index, fraction = positions or segment_positions(self.times, times)
         if self.values.shape[0] == 1:
             return np.full(times.shape, self.values[0])
         return (1.0 - fraction) * self.values[index] + fraction * self.values[index + 1]

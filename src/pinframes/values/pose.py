@@ -14,7 +14,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InvalidPoseError, InvalidTimeError, ReferenceTimeError
 from ._interpolation import Keyframes
-from ._se3 import compose, inverse
+from ._se3 import compose, inverse, samples_first, samples_last
 from ._timeline import QueryTimeline, TimedSource, plan_query_timeline
 from .euler import euler_from_matrix, matrix_from_euler
 from .lengths import metres
@@ -280,7 +280,8 @@ class Pose:
     # -- algebra -------------------------------------------------------------------------
     def inverse(self) -> Pose:
         """The inverse transform: the pose of B in A for a pose of A in B."""
-        rotation, translation = inverse((self._rotation, self._translation))
+        rotation, translation = samples_first(
+            inverse(samples_last((self._rotation, self._translation))))
         return Pose._trusted(rotation, translation, self._times, self._reference)
 
     def __matmul__(self, other: Pose) -> Pose:
@@ -292,8 +293,9 @@ class Pose:
             timeline = _union_timeline(left, right)
             left = left._sampled(timeline.result_offsets, timeline.reference)
             right = right._sampled(timeline.result_offsets, timeline.reference)
-        rotation, translation = compose((left._rotation, left._translation),
-                                        (right._rotation, right._translation))
+        rotation, translation = samples_first(compose(
+            samples_last((left._rotation, left._translation)),
+            samples_last((right._rotation, right._translation))))
         timed = left if left.is_time_dependent else right
         return Pose._trusted(rotation, translation, timed._times, timed._reference)
 

@@ -16,6 +16,7 @@ __all__ = [
     "matrix_from_axis_vectors",
     "matrix_from_quaternion",
     "matrix_from_rpy",
+    "matrix_rows_from_quaternion",
     "quaternion_from_matrix",
     "rotation_matrix_defects",
     "rpy_from_matrix",
@@ -28,40 +29,38 @@ ROTATION_TOLERANCE = 1e-6
 FloatArray = NDArray[np.float64]
 
 
-def _quaternion_products_to_matrix() -> FloatArray:
-    """The linear map from the 16 products ``q_i q_j`` to the 9 entries of ``R - I``.
-
-    For a unit quaternion every entry of the rotation matrix is 1 or 0 plus a weighted sum
-    of products of two components (``R00 = 1 - 2 (yy + zz)``, ``R01 = 2 (xy - wz)``, ...),
-    so a whole batch converts with one outer product and one matrix product.
-    """
-    x, y, z, w = range(4)
-    terms = {  # entry of R: [(weight, i, j)] meaning weight * q_i * q_j
-        (0, 0): [(-2, y, y), (-2, z, z)], (0, 1): [(2, x, y), (-2, w, z)],
-        (0, 2): [(2, x, z), (2, w, y)], (1, 0): [(2, x, y), (2, w, z)],
-        (1, 1): [(-2, x, x), (-2, z, z)], (1, 2): [(2, y, z), (-2, w, x)],
-        (2, 0): [(2, x, z), (-2, w, y)], (2, 1): [(2, y, z), (2, w, x)],
-        (2, 2): [(-2, x, x), (-2, y, y)],
-    }
-    mapping = np.zeros((16, 9))
-    for (row, column), products in terms.items():
-        for weight, i, j in products:
-            mapping[4 * i + j, 3 * row + column] += weight
-    return mapping
-
-
-_PRODUCTS_TO_MATRIX = _quaternion_products_to_matrix()
-
-
 def matrix_from_quaternion(quaternion: ArrayLike) -> FloatArray:
     """Rotation matrices ``(..., 3, 3)`` from unit quaternions ``(..., 4)`` ``(x, y, z, w)``."""
     q = np.asarray(quaternion, dtype=float)
-    lead = q.shape[:-1]
-    flat = q.reshape(-1, 4)
-    products = (flat[:, :, None] * flat[:, None, :]).reshape(-1, 16)
-    out = products @ _PRODUCTS_TO_MATRIX
-    out[:, ::4] += 1.0
-    return out.reshape(*lead, 3, 3)
+    rows = matrix_rows_from_quaternion(q[..., 0], q[..., 1], q[..., 2], q[..., 3])
+    return np.ascontiguousarray(np.moveaxis(rows, (0, 1), (-2, -1)))
+
+
+def matrix_rows_from_quaternion(
+    x: FloatArray, y: FloatArray, z: FloatArray, w: FloatArray
+) -> FloatArray:
+    """Rotation matrices ``(3, 3, ...)``, matrix axes first, from quaternion components.
+
+    The closed form ``R00 = 1 - 2 (yy + zz)``, ``R01 = 2 (xy - wz)``, ... evaluated entry by
+    entry on whole rows of samples: about 20 element-wise passes, the same speed with one
+    BLAS thread or many (a matrix product over the 16 component products ran 10x slower
+    beside a busy core).
+    """
+    x2, y2, z2 = x + x, y + y, z + z
+    xx, yy, zz = x * x2, y * y2, z * z2
+    xy, xz, yz = x * y2, x * z2, y * z2
+    wx, wy, wz = w * x2, w * y2, w * z2
+    out = np.empty((3, 3, *np.shape(x)))
+    np.subtract(1.0, yy + zz, out=out[0, 0, ...])
+    np.subtract(xy, wz, out=out[0, 1, ...])
+    np.add(xz, wy, out=out[0, 2, ...])
+    np.add(xy, wz, out=out[1, 0, ...])
+    np.subtract(1.0, xx + zz, out=out[1, 1, ...])
+    np.subtract(yz, wx, out=out[1, 2, ...])
+    np.subtract(xz, wy, out=out[2, 0, ...])
+    np.add(yz, wx, out=out[2, 1, ...])
+    np.subtract(1.0, xx + yy, out=out[2, 2, ...])
+    return out
 
 
 def quaternion_from_matrix(matrix: ArrayLike) -> FloatArray:

@@ -1,0 +1,76 @@
+"""One run's poses, evaluated chunk by chunk as Arrow tables (one row per sample).
+
+Columns: ``run`` (the run id), ``time_s`` (seconds after the result's reference time, or
+the relative time when there is none), ``timestamp`` (the absolute time, ``timestamp[ns]``,
+null without a reference time), ``x_m y_m z_m`` (the translation of ``frame`` in
+``relative_to``, metres) and ``qx qy qz qw`` (its unit quaternion, ``w >= 0``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+import numpy as np
+import pyarrow as pa  # type: ignore[import-untyped]
+
+from .. import FrameTree, Pose
+from ..errors import FrameNotFoundError, InvalidTimeError
+from ._options import BatchOptions
+
+__all__ = ["POSE_SCHEMA", "pose_chunks"]
+
+POSE_SCHEMA = pa.schema([
+    ("run", pa.string()),
+    ("time_s", pa.float64()),
+    ("timestamp", pa.timestamp("ns")),
+    ("x_m", pa.float64()), ("y_m", pa.float64()), ("z_m", pa.float64()),
+    ("qx", pa.float64()), ("qy", pa.float64()), ("qz", pa.float64()), ("qw", pa.float64()),
+])
+
+
+def pose_chunks(tree: FrameTree, run_id: str, options: BatchOptions) -> Iterator[pa.Table]:
+    """The poses of ``options.frame`` in ``options.relative_to`` for one run, at most
+    ``options.chunk_size`` rows per table, so memory stays bounded for long runs."""
+    for name in (options.frame, options.relative_to):
+        if name is not None and name not in tree:
+            raise FrameNotFoundError("no frame of this name in this run", frame=name)
+    relative_to = options.relative_to or tree.parent(options.frame)
+    if relative_to is None:
+        tree.pose(options.frame)  # raises the error for the root, which has no parent
+        raise AssertionError("unreachable: the root has no pose in its parent")
+    values, time_ref = _query_times(tree, options.frame, relative_to, options)
+    for start in range(0, values.shape[0], options.chunk_size):
+        pose = tree.pose(options.frame, relative_to=relative_to,
+                         times=values[start:start + options.chunk_size], time_ref=time_ref)
+        yield _table(run_id, pose)
+
+
+def _query_times(tree: FrameTree, frame: str, relative_to: str, options: BatchOptions
+                 ) -> tuple[np.ndarray, np.datetime64 | None]:
+    """The times to evaluate (timedelta64 or datetime64 [ns]) and the query's time_ref."""
+    axis = options.times if options.times is not None else tree.sample_times(frame, relative_to)
+    if axis is None:
+        raise InvalidTimeError(f"nothing moves between {frame!r} and {relative_to!r} in "
+                               "this run: give explicit times", field="times")
+    time_ref = options.time_ref if options.times is not None else axis.reference
+    offsets = axis.offsets
+    if options.step_ns is not None:
+        offsets = np.arange(offsets[0], offsets[-1] + 1, options.step_ns, dtype=np.int64)
+    as_timedelta = offsets.astype("timedelta64[ns]")
+    return (as_timedelta if axis.reference is None else axis.reference + as_timedelta), time_ref
+
+
+def _table(run_id: str, pose: Pose) -> pa.Table:
+    times = pose.times
+    assert times is not None  # a query at given times is sampled at those times
+    count = times.shape[0]
+    absolute = pose.absolute_times
+    quaternion = pose.quaternion
+    columns = [
+        pa.repeat(pa.scalar(run_id, pa.string()), count),
+        pa.array(times.astype(np.int64) / 1e9),
+        pa.nulls(count, pa.timestamp("ns")) if absolute is None else pa.array(absolute),
+        *(pa.array(pose.translation[:, axis]) for axis in range(3)),
+        *(pa.array(quaternion[:, axis]) for axis in range(4)),
+    ]
+    return pa.Table.from_arrays(columns, schema=POSE_SCHEMA)

@@ -1,0 +1,110 @@
+"""One run on a worker: skip it if unchanged, else read, evaluate in chunks and write.
+
+Runs in a Dask worker process; takes a :class:`RunTask` and returns a :class:`RunResult`
+whose record becomes the run's line in the manifest. Nothing here raises for a bad run:
+a pinframes error is the record's ``error`` (status ``"error"``, kept until the input or
+the options change), anything else status ``"failed"`` (tried again by the next batch).
+"""
+
+from __future__ import annotations
+
+import datetime
+import os
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from .. import FrameTree, read
+from ..errors import PinframesError
+from ._compute import pose_chunks
+from ._inputs import checksums, run_inputs
+from ._options import BatchOptions
+from ._partition import PartitionWriter, partition_path
+from ._runs import Run
+
+__all__ = ["KILL_ONCE_VARIABLE", "RunResult", "RunTask", "process_run"]
+
+KILL_ONCE_VARIABLE = "PINFRAMES_BATCH_TEST_KILL_ONCE"
+"""Test hook: names a marker file. A worker that has written a run's first chunk while the
+marker does not exist creates it and kills its own process (``os._exit``), once: the test
+of a worker lost in the middle of a run."""
+
+_KEPT_STATUSES = ("ok", "error")
+
+
+@dataclass(frozen=True)
+class RunTask:
+    """One run to bring up to date in ``out``; ``previous`` is its last manifest record."""
+
+    run: Run
+    out: Path
+    options: BatchOptions
+    options_digest: str
+    previous: dict[str, Any] | None
+
+
+@dataclass(frozen=True)
+class RunResult:
+    """The run's manifest record, and whether it was computed (False: skipped)."""
+
+    record: dict[str, Any]
+    computed: bool
+
+
+def process_run(task: RunTask) -> RunResult:
+    """Bring one run's output up to date (see the module docstring)."""
+    started = time.perf_counter()
+    inputs = run_inputs(task.run.path)
+    files = checksums(inputs.files)
+    if _unchanged(task, files):
+        assert task.previous is not None
+        return RunResult(task.previous, computed=False)
+    record: dict[str, Any] = {
+        "run": task.run.run_id, "file": os.fspath(task.run.path), "status": "ok",
+        "samples": None, "error": None, "checksums": files, "options": task.options_digest}
+    try:
+        tree = read(task.run.path, format="scene" if inputs.is_scene else None)
+        record["samples"] = _write_poses(tree, task)
+    except PinframesError as exc:
+        record.update(status="error", error=_located(exc, task.run.path))
+    except Exception as exc:  # a bug or the machine, not the input: try again next time
+        record.update(status="failed", error=f"{type(exc).__name__}: {exc}")
+    if record["status"] != "ok":  # no stale poses beside a record that has none
+        partition_path(task.out, task.run.run_id).unlink(missing_ok=True)
+    record["seconds"] = round(time.perf_counter() - started, 6)
+    record["finished"] = datetime.datetime.now(datetime.timezone.utc).isoformat()
+    return RunResult(record, computed=True)
+
+
+def _unchanged(task: RunTask, files: dict[str, str]) -> bool:
+    previous = task.previous
+    return (previous is not None and previous.get("status") in _KEPT_STATUSES
+            and previous.get("options") == task.options_digest
+            and previous.get("checksums") == files
+            and (previous["status"] != "ok"
+                 or partition_path(task.out, task.run.run_id).is_file()))
+
+
+def _write_poses(tree: FrameTree, task: RunTask) -> int:
+    with PartitionWriter(task.out, task.run.run_id) as writer:
+        for table in pose_chunks(tree, task.run.run_id, task.options):
+            writer.write(table)
+            _kill_once_for_tests()
+    return writer.rows
+
+
+def _located(exc: PinframesError, path: Path) -> str:
+    """The error's message, naming the run's file when the error names none."""
+    return str(exc if exc.file is not None else exc.located(file=path))
+
+
+def _kill_once_for_tests() -> None:
+    marker = os.environ.get(KILL_ONCE_VARIABLE)
+    if not marker:
+        return
+    try:
+        os.close(os.open(marker, os.O_CREAT | os.O_EXCL | os.O_WRONLY))
+    except FileExistsError:
+        return
+    os._exit(70)

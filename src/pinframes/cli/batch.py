@@ -1,0 +1,70 @@
+"""``pinframes batch RUNS... --frame F --out DIR``: poses of many runs on Dask, to Parquet."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from ..errors import PinframesError, UnsupportedFeatureError
+from ._evaluate import terminal_stderr
+
+__all__ = ["add_parser", "run"]
+
+
+def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
+    """Register the ``batch`` subcommand."""
+    parser = subparsers.add_parser(
+        "batch", parents=parents, help="poses of a frame in many runs, on Dask, to Parquet",
+        description="Compute the pose of --frame in --relative-to at every sample of every "
+        "run and write OUT/poses/<run>.parquet (columns run, time_s, timestamp, x_m, y_m, "
+        "z_m, qx, qy, qz, qw: seconds, metres, unit quaternion x y z w) and "
+        "OUT/manifest.jsonl (per run: status, samples, error, input checksums). Runs whose "
+        "input files and options did not change since an earlier batch into OUT are "
+        "skipped. Needs pinframes[batch].")
+    parser.add_argument("runs", nargs="+", metavar="RUNS",
+                        help="run files (scene, ASDF, ...), glob patterns (quote them), or "
+                        "runs lists (.csv with header 'run,file')")
+    parser.add_argument("--frame", required=True, metavar="FRAME",
+                        help="the frame whose pose is wanted (the tool)")
+    parser.add_argument("--relative-to", "-r", metavar="OTHER",
+                        help="the frame the pose is expressed in (default: FRAME's parent)")
+    group = parser.add_argument_group(
+        "times", "Default: every keyframe and joint sample on the path, per run.")
+    group.add_argument("--times", nargs="+", metavar="T",
+                       help="these times in every run (seconds, durations, timestamps)")
+    group.add_argument("--step", metavar="DT",
+                       help="resample each run from its first to its last sample every DT")
+    group.add_argument("--time-ref", metavar="TIMESTAMP",
+                       help="reference time that relative --times count from")
+    parser.add_argument("--out", "-o", required=True, metavar="DIR", help="output folder")
+    parser.add_argument("--scheduler", metavar="ADDRESS",
+                        help="address of a running Dask scheduler (default: a local "
+                        "cluster on 127.0.0.1)")
+    parser.add_argument("--workers", type=int, metavar="N",
+                        help="worker processes of the local cluster (default: one per core)")
+    parser.add_argument("--chunk-size", type=int, metavar="N", default=None,
+                        help="samples evaluated and written at a time (default 100000)")
+    parser.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run the batch; exit status 1 when a run has no poses."""
+    try:
+        from ..batch import MANIFEST_NAME, run_batch
+    except ImportError as exc:
+        raise UnsupportedFeatureError(f"pinframes batch needs dask.distributed and pyarrow "
+                                      f"(pip install 'pinframes[batch]'): {exc}") from None
+    extra = {} if args.chunk_size is None else {"chunk_size": args.chunk_size}
+    summary = run_batch(args.runs, args.out, args.frame, relative_to=args.relative_to,
+                        times=args.times, step=args.step, time_ref=args.time_ref,
+                        scheduler=args.scheduler, workers=args.workers,
+                        progress_bar=terminal_stderr() is not None, log=sys.stderr, **extra)
+    total = len(summary.records)
+    print(f"pinframes: {total} runs: {len(summary.computed)} computed, "
+          f"{len(summary.skipped)} unchanged; poses in {summary.dataset}", file=sys.stderr)
+    if summary.bad:
+        for record in summary.bad:
+            print(f"pinframes: run {record['run']}: {record['error']}", file=sys.stderr)
+        raise PinframesError(f"{len(summary.bad)} of {total} runs have no poses (see "
+                             f"{summary.dataset.parent / MANIFEST_NAME})")
+    return 0
