@@ -24,6 +24,9 @@ NOT_RUN_HERE = (
     "PINFRAMES_WELDX_PYTHON=",
     "PYTHONPATH=src .venv/bin/python tests/hardening/fuzz.py",
 )
+# examples that need files or services a checkout does not have: a campaign of recorded runs
+# and a remote Dask scheduler (tests/batch runs pinframes batch on runs it writes itself)
+NEEDS_DATA = ("pinframes batch ",)
 
 
 def shell_commands(path):
@@ -53,7 +56,7 @@ def test_documented_pinframes_commands_run_as_written(tmp_path):
     readme = (ROOT / "README.md").read_text()
     for path in DOCUMENTS:
         for line in shell_commands(path):
-            if not line.startswith("pinframes "):
+            if not line.startswith("pinframes ") or line.startswith(NEEDS_DATA):
                 continue
             result = subprocess.run(["bash", "-c", line], cwd=tmp_path, env=env,
                                     capture_output=True, text=True, timeout=600)
