@@ -24,9 +24,9 @@ NOT_RUN_HERE = (
     "PINFRAMES_WELDX_PYTHON=",
     "PYTHONPATH=src .venv/bin/python tests/hardening/fuzz.py",
 )
-# examples that need files or services a checkout does not have: a campaign of recorded runs
-# and a remote Dask scheduler (tests/batch runs pinframes batch on runs it writes itself)
-NEEDS_DATA = ("pinframes batch ",)
+# examples that need files or services a checkout does not have: a campaign of recorded runs,
+# a remote Dask scheduler (tests/batch runs pinframes batch on runs it writes itself), a scan
+NEEDS_DATA = ("pinframes batch ", "pinframes transform ")
 
 
 def shell_commands(path):

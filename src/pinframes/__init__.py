@@ -26,7 +26,7 @@ from .formats.frames_yaml import read_frames_yaml, write_frames_yaml
 from .formats.pose_files import write_poses
 from .formats.scene import read_scene, write_scene
 from .formats.urdf import read_urdf, write_urdf
-from .kinematics import PinocchioTree
+from .kinematics import FrameJacobian, PinocchioTree, Velocity
 from .tree import FrameTree
 from .values.joint import Joint, Mimic
 from .values.joint_trajectory import JointTrack, JointTrajectory
@@ -44,6 +44,7 @@ __all__ = [
     "ExtrapolationError",
     "FileFormatError",
     "FrameExistsError",
+    "FrameJacobian",
     "FrameNotFoundError",
     "FrameTree",
     "FramesYamlWarning",
@@ -68,6 +69,7 @@ __all__ = [
     "TimeAxis",
     "TreeStructureError",
     "UnsupportedFeatureError",
+    "Velocity",
     "WriteError",
     "__version__",
     "read",

@@ -112,7 +112,8 @@ class InvalidPoseError(PinframesError, ValueError):
 
 
 class InvalidDataError(PinframesError, ValueError):
-    """Spatial data that is not points: wrong shape, non-finite, bad triangles or attributes."""
+    """Points, vectors or other measured or spatial data that is not what it must be: wrong
+    shape, non-finite values, bad triangles or attributes."""
 
 
 class InvalidTimeError(PinframesError, ValueError):

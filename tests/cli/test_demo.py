@@ -71,7 +71,10 @@ def test_demo_prints_summary_and_writes_csv_and_png(run_cli, tmp_path):
     assert summary["time span"] == "0.000 s .. 20.000 s (20.000 s)"
     assert summary["seam length travelled"] == f"{1000 * seam_length:.1f} mm"  # 344.2 mm
     assert summary["mean travel speed"] == f"{1000 * seam_length / DURATION:.2f} mm/s"
-    assert summary["max travel speed"] == f"{1000 * seam_length / DURATION:.2f} mm/s"
+    # the exact speed of the interpolated motion: the joint samples follow the arc, and
+    # linear joint interpolation between them speeds the tip up by at most 0.1 %
+    fastest = float(summary["max travel speed"].removesuffix(" mm/s"))
+    assert 1000 * seam_length / DURATION <= fastest <= 1.001 * 1000 * seam_length / DURATION
 
     text = (tmp_path / "results" / "torch_poses.csv").read_text()
     assert text.startswith("time_s,x_m,y_m,z_m,qx,qy,qz,qw\n")

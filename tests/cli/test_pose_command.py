@@ -153,3 +153,43 @@ def test_verbose_adds_traceback_and_usage_errors_exit_2(run_cli, turntable):
     result = run_cli("pose", turntable)
     assert result.returncode == 2
     assert "usage: pinframes pose" in result.stderr
+
+
+def test_velocity_columns_carry_units(run_cli, turntable):
+    """Hand-derived: 90 deg in 10 s about z, the tip 0.2 m out moves at 0.2 * pi / 20 m/s."""
+    result = run_cli("pose", turntable, "tip", "-r", "world", "--times", "2.5", "12",
+                     "--velocity")
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert lines[0] == ("time_s,x_m,y_m,z_m,qx,qy,qz,qw,vx_m_s,vy_m_s,vz_m_s,wx_rad_s,wy_rad_s,"
+                        "wz_rad_s")
+    rows = np.loadtxt(io.StringIO(result.stdout), delimiter=",", skiprows=1, ndmin=2)
+    np.testing.assert_allclose(rows[:, :8], tip_in_world(np.array([2.5, 12.0])), atol=1e-12)
+    rate = np.pi / 20
+    angle = np.pi / 8
+    np.testing.assert_allclose(rows[0, 8:], [-0.2 * rate * np.sin(angle),
+                                             0.2 * rate * np.cos(angle), 0, 0, 0, rate],
+                               atol=1e-12)
+    np.testing.assert_allclose(rows[1, 8:], 0.0, atol=1e-15)  # held after 10 s
+    result = run_cli("pose", turntable, "tip", "-r", "world", "--times", "2.5", "-f", "json",
+                     "--expressed-in", "tip")
+    document = json.loads(result.stdout)
+    assert document["units"]["v"] == "m/s" and document["units"]["velocity_axes"] == "tip"
+    record = document["poses"][0]
+    np.testing.assert_allclose([record["vx_m_s"], record["vy_m_s"], record["wz_rad_s"]],
+                               [0.0, 0.2 * rate, rate], atol=1e-12)
+    result = run_cli("pose", turntable, "tip", "-r", "world", "--expressed-in", "nowhere")
+    assert result.returncode == 1 and "nowhere" in result.stderr
+
+
+def test_velocity_in_npz_files(run_cli, turntable, tmp_path):
+    out = tmp_path / "tip.npz"
+    result = run_cli("pose", turntable, "tip", "-r", "world", "--times", "2.5", "--velocity",
+                     "-o", out)
+    assert result.returncode == 0, result.stderr
+    with np.load(out) as data:
+        rate = np.pi / 20
+        np.testing.assert_allclose(data["angular_velocity_rad_s"], [[0, 0, rate]], atol=1e-15)
+        np.testing.assert_allclose(np.linalg.norm(data["linear_velocity_m_s"]), 0.2 * rate,
+                                   atol=1e-15)
+        assert str(data["velocity_axes"]) == "world"

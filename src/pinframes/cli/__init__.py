@@ -17,11 +17,11 @@ from collections.abc import Sequence
 
 from .. import __version__
 from ..errors import PinframesError
-from . import batch, convert, demo, info, plot, pose, view
+from . import batch, convert, demo, info, plot, pose, transform, view
 
 __all__ = ["main"]
 
-_SUBCOMMANDS = (demo, info, pose, convert, plot, view, batch)
+_SUBCOMMANDS = (demo, info, pose, transform, convert, plot, view, batch)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -9,6 +9,7 @@ from typing import Any, TextIO
 import numpy as np
 
 from ..errors import InvalidTimeError
+from ..kinematics import Velocity
 from ..tree import FrameTree
 from ..values.pose import Pose
 from ..values.timeconv import (
@@ -19,7 +20,8 @@ from ..values.timeconv import (
     timestamp_ns,
 )
 
-__all__ = ["add_time_arguments", "evaluate_poses", "requested_times", "terminal_stderr"]
+__all__ = ["add_time_arguments", "evaluate_poses", "pose_velocity", "requested_times",
+           "terminal_stderr"]
 
 CHUNK_SIZE = 20_000
 """Times evaluated per call; the progress bar moves once per chunk."""
@@ -126,6 +128,17 @@ def evaluate_poses(tree: FrameTree, frame: str, relative_to: str, times: TimeAxi
     if bar is not None:
         bar.close()
     return parts[0] if len(parts) == 1 else _concatenate(parts)
+
+
+def pose_velocity(tree: FrameTree, pose: Pose, frame: str, relative_to: str,
+                  expressed_in: str | None = None) -> Velocity:
+    """``tree.velocity`` of ``frame`` in ``relative_to`` at the times of ``pose`` (its
+    result), so that rows line up."""
+    offsets, reference = pose.times, pose.reference_time
+    if offsets is None:
+        return tree.velocity(frame, relative_to, expressed_in=expressed_in)
+    times = offsets if reference is None else reference + offsets
+    return tree.velocity(frame, relative_to, times, expressed_in, time_ref=reference)
 
 
 def _time_values(times: TimeAxis) -> np.ndarray:

@@ -1,15 +1,18 @@
-"""The ``pose`` and ``demo`` outputs: :mod:`pinframes.formats.pose_files` to a file or stdout."""
+"""The ``pose``, ``transform`` and ``demo`` outputs: :mod:`pinframes.formats.pose_files` to a
+file or standard output."""
 
 from __future__ import annotations
 
 import sys
 
 from ..errors import FileFormatError
+from ..formats._atomic import atomic_write
 from ..formats.pose_files import POSE_FILE_FORMATS, pose_file_format, poses_text
 from ..formats.pose_files import write_poses as write_pose_file
+from ..kinematics import Velocity
 from ..values.pose import Pose
 
-__all__ = ["OUTPUT_FORMATS", "output_format", "write_poses"]
+__all__ = ["OUTPUT_FORMATS", "output_format", "write_poses", "write_text"]
 
 OUTPUT_FORMATS = POSE_FILE_FORMATS
 
@@ -21,13 +24,25 @@ def output_format(requested: str | None, out: str | None) -> str:
     return (pose_file_format(out) if out is not None else None) or "csv"
 
 
-def write_poses(pose: Pose, fmt: str, out: str | None, *, frame: str, relative_to: str
-                ) -> None:
-    """Write ``pose`` (of ``frame`` in ``relative_to``) to the file ``out`` or stdout."""
+def write_poses(pose: Pose, fmt: str, out: str | None, *, frame: str, relative_to: str,
+                velocity: Velocity | None = None) -> None:
+    """Write ``pose`` (of ``frame`` in ``relative_to``) to the file ``out`` or stdout, with
+    the columns of ``velocity`` (at the same times) after the pose's when given."""
     if out is not None:
-        write_pose_file(pose, out, fmt, frame=frame, relative_to=relative_to)
+        write_pose_file(pose, out, fmt, frame=frame, relative_to=relative_to,
+                        velocity=velocity)
         return
     if fmt == "npz":
         raise FileFormatError("NPZ output is binary: give a file with -o")
-    sys.stdout.write(poses_text(pose, fmt, frame=frame, relative_to=relative_to))
-    sys.stdout.flush()
+    write_text(poses_text(pose, fmt, frame=frame, relative_to=relative_to, velocity=velocity),
+               None)
+
+
+def write_text(text: str, out: str | None) -> None:
+    """``text`` to the file ``out`` (atomically) or to standard output."""
+    if out is None:
+        sys.stdout.write(text)
+        sys.stdout.flush()
+        return
+    with atomic_write(out, "w") as handle:
+        handle.write(text)

@@ -11,11 +11,12 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import FileFormatError, UnsupportedFeatureError, WriteError
+from ..kinematics import Velocity
 from ..plotting import new_figure, plot_frames, plotting_available, robot_frames, save_figure
 from ..tree import FrameTree
 from ..values.pose import Pose
 from ..view import write_view
-from ._evaluate import evaluate_poses, terminal_stderr
+from ._evaluate import evaluate_poses, pose_velocity, terminal_stderr
 from ._files import read_tree, require_frames
 from ._output import write_poses
 
@@ -64,9 +65,11 @@ class PathSummary:
     start_s, end_s : float
         First and last time, seconds after the reference time.
     path_length_m : float
-        Length of the tip's path in the workpiece frame, metres (sum of straight steps).
+        Length of the tip's path in the workpiece frame, metres (sum of straight steps
+        between samples).
     mean_speed_m_s, max_speed_m_s : float
-        Path length over the time span, and the fastest step, metres per second.
+        Path length over the time span, and the highest exact speed at a sample
+        (:meth:`FrameTree.velocity`, not a finite difference), metres per second.
     """
 
     samples: int
@@ -90,17 +93,16 @@ class PathSummary:
         return "\n".join(f"{name.ljust(width)}  {value}" for name, value in rows) + "\n"
 
 
-def summarize(pose: Pose) -> PathSummary:
-    """Travel of the origin of ``pose`` (a time-dependent pose) along its samples."""
+def summarize(pose: Pose, velocity: Velocity) -> PathSummary:
+    """Travel of the origin of ``pose`` (time-dependent) and its ``velocity`` at the same
+    samples."""
     seconds = pose.times.astype(np.int64) / 1e9
-    steps = np.linalg.norm(np.diff(pose.translation, axis=0), axis=1)
-    durations = np.diff(seconds)
-    length = float(steps.sum())
+    length = float(np.linalg.norm(np.diff(pose.translation, axis=0), axis=1).sum())
     span = float(seconds[-1] - seconds[0])
     return PathSummary(
         samples=len(pose), start_s=float(seconds[0]), end_s=float(seconds[-1]),
         path_length_m=length, mean_speed_m_s=length / span if span > 0 else 0.0,
-        max_speed_m_s=float(np.max(steps / durations)) if steps.size else 0.0)
+        max_speed_m_s=float(np.linalg.norm(velocity.linear, axis=1).max()))
 
 
 def run(args: argparse.Namespace) -> int:
@@ -112,7 +114,8 @@ def run(args: argparse.Namespace) -> int:
     if not pose.is_time_dependent or len(pose) < 2:
         raise FileFormatError(f"{args.tool!r} does not move relative to {args.workpiece!r}",
                               file=scene)
-    summary = summarize(pose)
+    velocity = pose_velocity(tree, pose, args.tool, args.workpiece)
+    summary = summarize(pose, velocity)
     out = Path(args.out)
     try:
         out.mkdir(exist_ok=True)  # the output folder itself, never its parents
@@ -123,7 +126,7 @@ def run(args: argparse.Namespace) -> int:
     written = [out / POSES_FILE]
     missing = []
     if plotting_available():
-        _plot(tree, pose, summary, args.tool, args.workpiece, out / PLOT_FILE)
+        _plot(tree, pose, velocity, summary, args.tool, args.workpiece, out / PLOT_FILE)
         written.append(out / PLOT_FILE)
     else:
         missing.append(f'no plot: pip install "pinframes[plot]" adds matplotlib, and the demo '
@@ -141,8 +144,8 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _plot(tree: FrameTree, pose: Pose, summary: PathSummary, tool: str, workpiece: str,
-          path: Path) -> None:
+def _plot(tree: FrameTree, pose: Pose, velocity: Velocity, summary: PathSummary, tool: str,
+          workpiece: str, path: Path) -> None:
     figure = new_figure(13.0, 6.5)
     grid = figure.add_gridspec(2, 2, width_ratios=(1.15, 1.0))
     cell = figure.add_subplot(grid[:, 0], projection="3d")
@@ -161,9 +164,8 @@ def _plot(tree: FrameTree, pose: Pose, summary: PathSummary, tool: str, workpiec
     tip.set_title(f"{tool} path in the {workpiece} frame (x-y plane)")
     figure.colorbar(scatter, ax=tip, label="time [s]")
     speed = figure.add_subplot(grid[1, 1])
-    steps = np.linalg.norm(np.diff(pose.translation, axis=0), axis=1) / np.diff(seconds)
-    speed.step(seconds[1:], 1000 * steps, where="pre", color="tab:blue", linewidth=2.0,
-               label="per sample")
+    speed.plot(seconds, 1000 * np.linalg.norm(velocity.linear, axis=1), color="tab:blue",
+               linewidth=2.0, label="exact, per sample")
     speed.axhline(1000 * summary.mean_speed_m_s, color="tab:orange", linestyle="--",
                   label=f"mean {1000 * summary.mean_speed_m_s:.1f} mm/s")
     speed.set_ylim(0.0, 1000 * summary.max_speed_m_s * 1.25)

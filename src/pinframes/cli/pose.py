@@ -5,7 +5,13 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ._evaluate import add_time_arguments, evaluate_poses, requested_times, terminal_stderr
+from ._evaluate import (
+    add_time_arguments,
+    evaluate_poses,
+    pose_velocity,
+    requested_times,
+    terminal_stderr,
+)
 from ._files import read_tree, require_frames
 from ._output import OUTPUT_FORMATS, output_format, write_poses
 
@@ -18,11 +24,20 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "pose", parents=parents, help="poses of a frame relative to another, per time",
         description="Print the pose of FRAME in --relative-to per time: columns time_s, x, "
         "y, z, qx, qy, qz, qw (seconds after the reference time, metres, unit quaternion "
-        "x y z w). The pose maps coordinates in FRAME to coordinates in the other frame.")
+        "x y z w). The pose maps coordinates in FRAME to coordinates in the other frame. "
+        "--velocity adds the exact velocity of FRAME's origin and its angular velocity, "
+        "relative to the other frame, in its axes (or those of --expressed-in).")
     parser.add_argument("file", metavar="FILE", help="scene, frames.yaml, ASDF or URDF file")
     parser.add_argument("frame", metavar="FRAME", help="the frame whose pose is wanted")
     parser.add_argument("--relative-to", "-r", metavar="OTHER",
                         help="the frame the pose is expressed in (default: FRAME's parent)")
+    parser.add_argument("--velocity", action="store_true",
+                        help="add the exact velocity of FRAME relative to the other frame: "
+                        "columns vx_m_s, vy_m_s, vz_m_s (its origin, m/s) and wx_rad_s, "
+                        "wy_rad_s, wz_rad_s (angular, rad/s) (default: off)")
+    parser.add_argument("--expressed-in", metavar="AXES",
+                        help="the frame whose axes the velocities are written in (default: "
+                        "the --relative-to frame; implies --velocity)")
     add_time_arguments(parser)
     parser.add_argument("--format", "-f", choices=OUTPUT_FORMATS,
                         help="output format (default: from the -o file name, else csv)")
@@ -43,8 +58,13 @@ def run(args: argparse.Namespace) -> int:
     times = requested_times(args, tree, args.frame, relative_to)
     pose = evaluate_poses(tree, args.frame, relative_to, times, args.time_ref,
                           progress=terminal_stderr())
+    velocity = None
+    if args.velocity or args.expressed_in is not None:
+        require_frames(tree, args.file, args.expressed_in)
+        velocity = pose_velocity(tree, pose, args.frame, relative_to, args.expressed_in)
     fmt = output_format(args.format, args.output)
-    write_poses(pose, fmt, args.output, frame=args.frame, relative_to=relative_to)
+    write_poses(pose, fmt, args.output, frame=args.frame, relative_to=relative_to,
+                velocity=velocity)
     if pose.reference_time is not None and fmt == "csv":
         print(f"pinframes: time_s counts from {pose.reference_time}", file=sys.stderr)
     return 0

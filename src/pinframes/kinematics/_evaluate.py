@@ -27,18 +27,22 @@ from ._description import TreeDescription, paths_to_common_ancestor
 from ._model import CompiledModel, compile_model
 
 __all__ = [
+    "CHUNK",
     "Evaluation",
     "basis_shifts",
+    "checked_timeline",
     "default_times",
     "evaluate_pose",
+    "local_transforms",
     "model_sources",
     "plan_timeline",
+    "prepare_evaluation",
     "sample_joint_values",
     "sample_joints",
 ]
 
 _EXTRAPOLATION_POLICIES = ("clamp", "error")
-_CHUNK = 1 << 12
+CHUNK = 1 << 12
 """Samples evaluated at once: the temporaries of a chunk (under 300 kB each) stay in the
 CPU caches; 2,048-8,192 ran alike, 16,384 1.8x slower (Panda, 10^5 samples, one thread)."""
 
@@ -65,14 +69,9 @@ def evaluate_pose(
     extrapolation: str,
 ) -> Pose:
     """``tree.pose(frame, relative_to, times, time_ref)``; arguments already checked."""
-    if extrapolation not in _EXTRAPOLATION_POLICIES:
-        raise ExtrapolationError(f"expected one of {', '.join(_EXTRAPOLATION_POLICIES)}, "
-                                 f"got {extrapolation!r}", field="extrapolation")
-    evaluation = _evaluation(tree, frame, relative_to)
+    evaluation = prepare_evaluation(tree, frame, relative_to)
     sources = list(evaluation.sources)
-    timeline = plan_timeline(tree, sources, times, time_ref)
-    if extrapolation == "error" and timeline.evaluation_times is not None:
-        _check_within_keyframes(sources, timeline)
+    timeline = checked_timeline(tree, evaluation, times, time_ref, extrapolation)
     offsets = timeline.result_offsets
     if evaluation.static is not None and offsets is None:
         rotation, translation = evaluation.static
@@ -86,16 +85,32 @@ def evaluate_pose(
     return Pose._trusted(rotation, translation, offsets, timeline.reference)
 
 
+def checked_timeline(
+    tree: TreeDescription, evaluation: Evaluation, times: Any, time_ref: Any,
+    extrapolation: str,
+) -> QueryTimeline:
+    """The timeline of a query, with its ``extrapolation`` policy checked and applied."""
+    if extrapolation not in _EXTRAPOLATION_POLICIES:
+        raise ExtrapolationError(f"expected one of {', '.join(_EXTRAPOLATION_POLICIES)}, "
+                                 f"got {extrapolation!r}", field="extrapolation")
+    sources = list(evaluation.sources)
+    timeline = plan_timeline(tree, sources, times, time_ref)
+    if extrapolation == "error" and timeline.evaluation_times is not None:
+        _check_within_keyframes(sources, timeline)
+    return timeline
+
+
 def default_times(tree: TreeDescription, frame: str, relative_to: str) -> TimeAxis | None:
     """The times ``tree.pose(frame, relative_to)`` evaluates at when given none."""
-    evaluation = _evaluation(tree, frame, relative_to)
+    evaluation = prepare_evaluation(tree, frame, relative_to)
     timeline = plan_timeline(tree, list(evaluation.sources), None, None)
     if timeline.evaluation_times is None:
         return None
     return TimeAxis(timeline.result_offsets, timeline.reference)
 
 
-def _evaluation(tree: TreeDescription, frame: str, relative_to: str) -> Evaluation:
+def prepare_evaluation(tree: TreeDescription, frame: str, relative_to: str) -> Evaluation:
+    """The query path from ``frame`` to ``relative_to``, compiled once per tree version."""
     key = (frame, relative_to)
     cached = tree.cached(key)
     if cached is not None:
@@ -200,11 +215,11 @@ def _evaluate_in_chunks(
         return to_stacks(_evaluate_model(tree, evaluation, sources, times, timeline), 1)
     count = times.shape[0]
     rotation, translation = np.empty((count, 3, 3)), np.empty((count, 3))
-    for start in range(0, count, _CHUNK):
-        part = slice(start, start + _CHUNK)
+    for start in range(0, count, CHUNK):
+        part = slice(start, start + CHUNK)
         rotation[part], translation[part] = to_stacks(
             _evaluate_model(tree, evaluation, sources, times[part], timeline),
-            min(count, start + _CHUNK) - start)
+            min(count, start + CHUNK) - start)
     return rotation, translation
 
 
@@ -216,8 +231,21 @@ def _evaluate_model(
     samples last (see :mod:`pinframes.values._se3`)."""
     model = evaluation.model
     assert model is not None
-    samples = sample_joints(tree, model, evaluation.placed_keyframes, times,
-                            basis_shifts(sources, timeline))
+    local = local_transforms(tree, evaluation, basis_shifts(sources, timeline), times)
+    frame_pose, reference_pose = model.forward_kinematics(
+        local, [evaluation.frame, evaluation.relative_to])
+    return compose(inverse(reference_pose), frame_pose)
+
+
+def local_transforms(
+    tree: TreeDescription, evaluation: Evaluation, shifts: dict[str, int],
+    times: NDArray[np.int64] | None,
+) -> list[Transform]:
+    """Per joint of the evaluation's (moving) model, its ``liMi`` at ``times`` (timeline
+    basis), samples last."""
+    model = evaluation.model
+    assert model is not None
+    samples = sample_joints(tree, model, evaluation.placed_keyframes, times, shifts)
     local: list[Transform] = []
     for joint, placement, sample in zip(model.joints, model.joint_placements, samples,
                                         strict=True):
@@ -229,9 +257,7 @@ def _evaluate_model(
             rotation = rotation[..., 0] if rotation.ndim == 3 else rotation
             translation = translation[..., 0] if translation.ndim == 2 else translation
         local.append((rotation, translation))
-    frame_pose, reference_pose = model.forward_kinematics(
-        local, [evaluation.frame, evaluation.relative_to])
-    return compose(inverse(reference_pose), frame_pose)
+    return local
 
 
 def sample_joints(

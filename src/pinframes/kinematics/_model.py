@@ -98,6 +98,23 @@ class CompiledModel:
         """Per joint, its static placement in the parent joint frame, read from the model."""
         return tuple(self._joint_placements)
 
+    def joint_placements_in_root(self, local_transforms: Sequence[Transform]
+                                 ) -> list[Transform]:
+        """Per joint, its frame in the root (``oMi``) from each joint's ``liMi``."""
+        world: list[Transform] = []
+        for joint, local in zip(self.joints, local_transforms, strict=True):
+            world.append(local if joint.parent < 0 else compose(world[joint.parent], local))
+        return world
+
+    def frame_placements_in_root(self, world: Sequence[Transform], frames: Sequence[str]
+                                 ) -> list[Transform]:
+        """Placements in the root of ``frames`` (``oMf``) from the joints' ``oMi``."""
+        result = []
+        for name in frames:
+            parent, placement = self._frame_placements[name]
+            result.append(placement if parent < 0 else compose(world[parent], placement))
+        return result
+
     def forward_kinematics(
         self, local_transforms: Sequence[Transform], frames: Sequence[str]
     ) -> list[Transform]:
@@ -106,14 +123,8 @@ class CompiledModel:
         The same recursion as Pinocchio's ``framesForwardKinematics``:
         ``oMi[j] = oMi[parent(j)] @ liMi[j]`` and ``oMf = oMi[parent joint] @ placement``.
         """
-        world: list[Transform] = []
-        for joint, local in zip(self.joints, local_transforms, strict=True):
-            world.append(local if joint.parent < 0 else compose(world[joint.parent], local))
-        result = []
-        for name in frames:
-            parent, placement = self._frame_placements[name]
-            result.append(placement if parent < 0 else compose(world[parent], placement))
-        return result
+        return self.frame_placements_in_root(self.joint_placements_in_root(local_transforms),
+                                             frames)
 
     def configuration(
         self, motions: Sequence[Transform | None], values: Sequence[NDArray[np.float64] | None]

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
 import numpy as np
@@ -16,16 +16,21 @@ from ..errors import (
     InvalidPoseError,
     InvalidTimeError,
     JointError,
+    PinframesError,
     ReferenceTimeError,
     TreeStructureError,
     near_misses,
 )
 from ..kinematics import (
+    FrameJacobian,
     PinocchioTree,
     TreeDescription,
+    Velocity,
     default_times,
+    evaluate_jacobian,
     evaluate_pose,
     evaluate_poses,
+    evaluate_velocity,
     paths_to_common_ancestor,
 )
 from ..values.joint import Joint
@@ -568,6 +573,95 @@ class FrameTree:
         return evaluate_poses(self._frozen(), frames, references, times, time_ref,
                               extrapolation)
 
+    def transform_points(
+        self, points: Any, frame: str, relative_to: str, times: Any = None, *,
+        time_ref: Any = None, extrapolation: str = "clamp",
+    ) -> np.ndarray:
+        """Points given in ``frame`` (metres), returned in ``relative_to``, at ``times``.
+
+        Times follow :meth:`pose` (None: every keyframe and joint sample on the path; a
+        static path keeps the points' shape). Shapes follow :meth:`Pose.transform_points`:
+        with ``T`` times, ``(T, 3)`` is one point per time (row ``i`` at time ``i``),
+        ``(M, 3)`` (``M != T``) the same points at every time giving ``(T, M, 3)``,
+        ``(T, M, 3)`` a profile per time; ``(1, M, 3)`` forces the same points at every time
+        when ``M == T``. Bad data raise :class:`~pinframes.errors.InvalidDataError` naming
+        ``points`` and ``frame``.
+        """
+        pose = self.pose(frame, relative_to, times, time_ref, extrapolation=extrapolation)
+        return _located(pose.transform_points, points, frame)
+
+    def transform_vectors(
+        self, vectors: Any, frame: str, relative_to: str, times: Any = None, *,
+        time_ref: Any = None, extrapolation: str = "clamp",
+    ) -> np.ndarray:
+        """Directions given in ``frame``, returned in ``relative_to``: rotated, never moved.
+
+        Arguments, times and shapes as :meth:`transform_points`.
+        """
+        pose = self.pose(frame, relative_to, times, time_ref, extrapolation=extrapolation)
+        return _located(pose.transform_vectors, vectors, frame)
+
+    def velocity(
+        self, frame: str, relative_to: str | None = None, times: Any = None,
+        expressed_in: str | None = None, *, time_ref: Any = None,
+        extrapolation: str = "clamp",
+    ) -> Velocity:
+        """Linear (m/s) and angular (rad/s) velocity of ``frame`` relative to ``relative_to``.
+
+        Exact derivatives of what :meth:`pose` interpolates, at the times :meth:`pose` would
+        use (arguments as there): translations move linearly and rotations by SLERP between
+        keyframes, and joints linearly between samples (mimic joints at their multiplier
+        times their primary's rate), so velocities are constant on each segment; a frame
+        held outside its keyframes does not move. At a keyframe the segment that starts
+        there counts; at the last keyframe, the segment that ends there.
+
+        ``linear`` is the velocity of the origin of ``frame`` seen from ``relative_to`` (the
+        derivative of ``pose(frame, relative_to).translation``), ``angular`` the angular
+        velocity ``w`` with ``dR/dt = [w]x @ R``. Both are written in the axes of
+        ``expressed_in``: ``relative_to`` by default (Pinocchio's ``LOCAL_WORLD_ALIGNED``
+        frame velocity when ``relative_to`` is the root of the model), ``frame`` (Pinocchio's
+        ``LOCAL``), or any other frame of the tree (rotated by its pose in ``relative_to``).
+
+        Returns
+        -------
+        Velocity
+            ``linear`` and ``angular`` of shape (T, 3), ``times`` and ``reference_time`` as
+            :meth:`pose` gives them (a static path without times: T = 1, ``times`` None).
+        """
+        self._require(frame, "frame")
+        relative_to = self._default_reference(frame, relative_to)
+        self._require(relative_to, "relative_to")
+        if expressed_in is None:
+            expressed_in = relative_to
+        self._require(expressed_in, "expressed_in")
+        return evaluate_velocity(self._frozen(), frame, relative_to, times, time_ref,
+                                 extrapolation, expressed_in)
+
+    def jacobian(
+        self, frame: str, relative_to: str | None = None, times: Any = None,
+        joints: Sequence[str] | None = None, *, time_ref: Any = None,
+        extrapolation: str = "clamp",
+    ) -> FrameJacobian:
+        """Jacobians ``(T, 6, n)`` of ``frame`` relative to ``relative_to`` in the robot joints.
+
+        Column ``k`` holds the velocity (rows: linear m/s of the origin of ``frame``, then
+        angular rad/s, in the axes of ``relative_to``, as :meth:`velocity`) per unit
+        velocity of joint ``k``: every actuated joint of the tree in its order (as
+        :meth:`set_joint_trajectory` takes them), or those named in ``joints``. Joints off
+        the path have zero columns; a mimic joint counts in its primary's column. When
+        ``relative_to`` is an ancestor of ``frame`` this is Pinocchio's
+        ``computeFrameJacobian(..., LOCAL_WORLD_ALIGNED)`` in a model rooted at
+        ``relative_to``; otherwise it is the same in the tree re-rooted at ``relative_to``
+        (joints that move ``relative_to`` count with the opposite sign, about the origin of
+        ``frame``). ``J @ qdot`` is the part of :meth:`velocity` that the joints cause.
+        Times as :meth:`pose`.
+        """
+        self._require(frame, "frame")
+        relative_to = self._default_reference(frame, relative_to)
+        self._require(relative_to, "relative_to")
+        return evaluate_jacobian(self._frozen(), frame, relative_to, times, time_ref,
+                                 extrapolation, joints)
+
     def sample_times(self, frame: str, relative_to: str | None = None) -> TimeAxis | None:
         """The times :meth:`pose` evaluates at when given none, without evaluating.
 
@@ -688,6 +782,14 @@ def _checked_pose(pose: object, frame: str, field: str) -> Pose:
         raise ArgumentTypeError(f"expected a pinframes.Pose or None, got {type(pose).__name__}",
                                 frame=frame, field=field)
     return pose
+
+
+def _located(transform: Callable[[Any], np.ndarray], data: Any, frame: str) -> np.ndarray:
+    """``transform(data)``, with its errors naming the frame the data are given in."""
+    try:
+        return transform(data)
+    except PinframesError as exc:
+        raise exc.located(frame=frame) from None
 
 
 def _replace_members(subsystem: Subsystem, members: tuple[str, ...]) -> Subsystem:

@@ -8,6 +8,7 @@ metres.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -16,7 +17,7 @@ from numpy.typing import NDArray
 
 from ..errors import JointError
 
-__all__ = ["JOINT_KINDS", "Joint", "Mimic", "mimic_chain"]
+__all__ = ["JOINT_KINDS", "Joint", "Mimic", "mimic_chain", "mimic_primary"]
 
 JOINT_KINDS = ("revolute", "continuous", "prismatic")
 """Joint kinds driven by one value each."""
@@ -137,7 +138,7 @@ class Joint:
         return "XYZ"[index] if abs(self.axis[index] - 1.0) < _AXIS_TOLERANCE else None
 
 
-def mimic_chain(joint: Joint, joints: dict[str, Joint]) -> list[Joint]:
+def mimic_chain(joint: Joint, joints: Mapping[str, Joint]) -> list[Joint]:
     """``joint``, the joint it mimics, and so on up to a joint that mimics none.
 
     Raises :class:`~pinframes.errors.JointError` when a joint in the chain mimics one that is
@@ -155,3 +156,15 @@ def mimic_chain(joint: Joint, joints: dict[str, Joint]) -> list[Joint]:
                              frame=chain[-1].name, field="mimic")
         chain.append(joints[target])
     return chain
+
+
+def mimic_primary(joint: Joint, joints: Mapping[str, Joint]) -> tuple[Joint, float]:
+    """The joint that finally drives ``joint`` (itself if it mimics none), and the rate of
+    ``joint`` per unit rate of that joint: the product of the multipliers on the way."""
+    chain = mimic_chain(joint, joints)
+    multiplier = 1.0
+    for link in chain[:-1]:
+        if link.mimic is not None:
+            multiplier *= link.mimic.multiplier
+    return chain[-1], multiplier
+

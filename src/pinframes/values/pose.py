@@ -16,6 +16,7 @@ from ..errors import InvalidPoseError, InvalidTimeError, ReferenceTimeError
 from ._interpolation import Keyframes
 from ._se3 import compose, inverse, samples_first, samples_last
 from ._timeline import QueryTimeline, TimedSource, plan_query_timeline
+from ._transform_data import transform_data
 from .euler import euler_from_matrix, matrix_from_euler
 from .lengths import metres
 from .rotations import (
@@ -298,6 +299,26 @@ class Pose:
             samples_last((right._rotation, right._translation))))
         timed = left if left.is_time_dependent else right
         return Pose._trusted(rotation, translation, timed._times, timed._reference)
+
+    def transform_points(self, points: ArrayLike) -> FloatArray:
+        """Points given in frame A, returned in frame B (``R @ p + t``), metres.
+
+        ``points`` is ``(3,)``, ``(N, 3)`` or ``(T, M, 3)``. A static pose keeps the shape.
+        A pose with ``T`` samples gives ``(T, 3)`` for ``(3,)`` and for ``(T, 3)`` (row ``i``
+        at sample ``i``), ``(T, M, 3)`` for ``(M, 3)`` with ``M != T`` (every point at every
+        sample), for ``(T, M, 3)`` (a profile per sample) and for ``(1, M, 3)``. So
+        ``(N, 3)`` with ``N == T`` is one point per sample; pass ``points[None]`` for the
+        same points at every sample. Bad shapes and NaN are an
+        :class:`~pinframes.errors.InvalidDataError` naming ``points``.
+        """
+        return transform_data(self._rotation, self._translation, points, "points")
+
+    def transform_vectors(self, vectors: ArrayLike) -> FloatArray:
+        """Directions given in frame A, returned in frame B (``R @ v``: rotation only).
+
+        Shapes as :meth:`transform_points`; the field named in errors is ``vectors``.
+        """
+        return transform_data(self._rotation, None, vectors, "vectors")
 
     def at(self, times: Any, time_ref: Any = None) -> Pose:
         """This pose interpolated at ``times``: one pose per requested time.

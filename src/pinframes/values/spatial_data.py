@@ -118,12 +118,9 @@ def apply_pose(pose: Pose, points: FloatArray) -> FloatArray:
     A static pose maps ``(..., 3)`` points; a pose of T samples maps ``(M, 3)`` points to
     ``(T, M, 3)`` and ``(T, M, 3)`` points sample by sample.
     """
-    rotation, translation = pose.rotation, pose.translation
-    if not pose.is_time_dependent:
-        return points @ rotation.T + translation
-    if points.ndim == 2:
-        return np.einsum("tij,mj->tmi", rotation, points) + translation[:, None, :]
-    return np.einsum("tij,tmj->tmi", rotation, points) + translation[:, None, :]
+    # (1, M, 3): the same points at every sample, also when M equals the sample count
+    every_time = points[None] if points.ndim == 2 and pose.is_time_dependent else points
+    return pose.transform_points(every_time)
 
 
 def _float_points(points: Any) -> FloatArray:

@@ -1,0 +1,129 @@
+"""``FrameTree.jacobian``: frame Jacobians with respect to the tree's robot joints, per sample.
+
+Column ``k`` is the velocity of ``frame`` relative to ``relative_to`` (as in
+:mod:`.velocity`: linear velocity of the origin of ``frame``, then angular velocity, both
+in the axes of ``relative_to``) per unit velocity of joint ``k``. A mimic joint adds its
+column, times its multiplier, to its primary's. When ``relative_to`` is the root of the
+query's model (an ancestor of ``frame``) this is Pinocchio's
+``computeFrameJacobian(model, data, q, frame_id, LOCAL_WORLD_ALIGNED)``; otherwise it is
+that Jacobian in the model re-rooted at ``relative_to``: joints that move ``relative_to``
+count with the opposite sign, about the origin of ``frame``. ``J @ qdot`` is the part of
+the velocity that the joints cause; moving (keyframed) frames on the path add the rest.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import ArgumentTypeError, JointError
+from ..values._se3 import IDENTITY
+from ..values.joint import mimic_primary
+from ._description import TreeDescription
+from .sampled_path import SampledPath, plan_query
+from .twists import Twist, jacobian_columns, robot_joint_axes
+
+__all__ = ["FrameJacobian", "evaluate_jacobian"]
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class FrameJacobian:
+    """Jacobians of ``frame`` relative to ``relative_to`` per sample.
+
+    Attributes
+    ----------
+    matrix : ndarray, shape (T, 6, n)
+        Rows: linear velocity (m/s) of the origin of ``frame``, then angular velocity
+        (rad/s), in the axes of ``relative_to``; per unit velocity of each joint (rad/s or
+        m/s).
+    joints : tuple of str
+        The joint of each column.
+    times : ndarray of timedelta64[ns] or None
+        Sample times after :attr:`reference_time` (None: a static path without times).
+    reference_time : numpy.datetime64 or None
+        What :attr:`times` count from.
+    """
+
+    matrix: FloatArray
+    joints: tuple[str, ...]
+    times: NDArray[np.timedelta64] | None
+    reference_time: np.datetime64 | None
+
+
+def evaluate_jacobian(tree: TreeDescription, frame: str, relative_to: str, times: Any,
+                      time_ref: Any, extrapolation: str, joints: Sequence[str] | None
+                      ) -> FrameJacobian:
+    """``tree.jacobian(...)``; frame names already checked."""
+    names = _joint_names(tree, joints, frame)
+    column_of = {name: column for column, name in enumerate(names)}
+    planned = plan_query(tree, frame, relative_to, times, time_ref, extrapolation)
+    matrix = np.zeros((planned.count, 6, len(names)))
+    if planned.evaluation.static is None:
+        for part, path in planned.chunks(tree):
+            matrix[part] = _columns_in_reference(tree, path, column_of)
+    return FrameJacobian(matrix, tuple(names), planned.times, planned.reference_time)
+
+
+def _columns_in_reference(tree: TreeDescription, path: SampledPath,
+                          column_of: dict[str, int]) -> FloatArray:
+    """``(N, 6, n)`` Jacobians of one chunk, rows in the axes of the reference frame."""
+    count = path.times.shape[0]
+    unit_twists: dict[int, Twist] = {}
+    targets: dict[int, tuple[int, float]] = {}
+    for position, compiled in enumerate(path.model.joints):
+        if compiled.joint is None or position not in path.signs:
+            continue
+        primary, multiplier = mimic_primary(compiled.joint, tree.joints_by_name)
+        column = column_of.get(primary.name)
+        if column is None:
+            continue
+        unit_twists[position] = robot_joint_axes(compiled.joint, path.joints[position][0])
+        targets[position] = (column, multiplier)
+    origins = [translation for _, translation in path.joints]
+    root_matrix = np.zeros((count, 6, len(column_of)))
+    for position, (linear, angular) in jacobian_columns(path.signs, origins, unit_twists,
+                                                        path.frame[1]).items():
+        column, multiplier = targets[position]
+        root_matrix[:, :3, column] += multiplier * linear
+        root_matrix[:, 3:, column] += multiplier * angular
+    rotation = path.relative_to[0]
+    if rotation is IDENTITY[0]:  # the root's own axes
+        return root_matrix
+    # R.T @ (3, n) blocks, element by element: row i is sum_j R[j, i] * block[j]
+    weights = rotation[..., None] if rotation.ndim == 3 else rotation[None, :, :, None]
+    out = np.empty_like(root_matrix)
+    for half in (slice(0, 3), slice(3, 6)):
+        block = root_matrix[:, half]
+        for row in range(3):
+            out[:, half.start + row] = (weights[:, 0, row] * block[:, 0]
+                                        + weights[:, 1, row] * block[:, 1]
+                                        + weights[:, 2, row] * block[:, 2])
+    return out
+
+
+def _joint_names(tree: TreeDescription, joints: Sequence[str] | None, frame: str) -> list[str]:
+    """The columns: the named joints, or every actuated joint in the tree's order."""
+    if joints is None:
+        return [name for name, joint in tree.joints_by_name.items() if joint.is_actuated]
+    if isinstance(joints, str) or not isinstance(joints, Sequence):
+        raise ArgumentTypeError(f"expected a list of joint names, got {joints!r}",
+                                frame=frame, field="joints")
+    names = list(joints)
+    known = tree.joints_by_name
+    for name in names:
+        if name not in known:
+            raise JointError(f"no joint named {name!r} in the tree", frame=frame,
+                             field="joints")
+        mimic = known[name].mimic
+        if mimic is not None:
+            raise JointError(f"joint {name!r} mimics {mimic.joint!r}; its motion is in that "
+                             "joint's column", frame=frame, field="joints")
+    if len(set(names)) != len(names):
+        raise JointError("joint names repeat", frame=frame, field="joints")
+    return names

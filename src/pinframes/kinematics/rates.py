@@ -1,0 +1,92 @@
+"""Exact time derivatives of what queries interpolate, per sample.
+
+Between two keyframes a translation moves linearly and a rotation turns by SLERP, so both
+have a constant velocity on each segment: ``(t1 - t0) / dt`` and ``log(R1 @ R0.T) / dt``
+(the rotation vector of the step, taken the short way as SLERP does, over the segment's
+duration). Joint values move linearly between samples, at ``(q1 - q0) / dt``. Outside the
+keyframes a pose or value is held, so its velocity is zero. At a keyframe the velocity is
+that of the segment starting there; at the last keyframe, that of the segment ending there.
+
+Times are int64 nanoseconds on the keyframes' own basis; velocities are per second.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..values._interpolation import Keyframes
+from ..values.joint_trajectory import JointTrajectory
+from ..values.rotations import quaternion_from_matrix
+
+__all__ = ["keyframe_rates", "rotation_steps", "segment_rates", "track_rates"]
+
+FloatArray = NDArray[np.float64]
+_NS_PER_S = 1e9
+
+
+def segment_rates(
+    keyframe_times: NDArray[np.int64], times: NDArray[np.int64]
+) -> tuple[NDArray[np.intp], FloatArray]:
+    """Per time: its segment (the one starting at a keyframe; the last one at the last
+    keyframe) and ``1 / duration`` of that segment in 1/s, 0 where the value is held."""
+    count = keyframe_times.shape[0]
+    if count == 1:
+        return np.zeros(times.shape, dtype=np.intp), np.zeros(times.shape)
+    index = np.searchsorted(keyframe_times, times, side="right") - 1
+    np.minimum(np.maximum(index, 0, out=index), count - 2, out=index)
+    spans = np.diff(keyframe_times).astype(float) / _NS_PER_S
+    inverse = 1.0 / spans[index]
+    held = (times < keyframe_times[0]) | (times > keyframe_times[-1])
+    inverse[held] = 0.0
+    return index, inverse
+
+
+def keyframe_rates(keyframes: Keyframes, times: NDArray[np.int64]
+                   ) -> tuple[FloatArray, FloatArray]:
+    """Linear ``(N, 3)`` m/s and angular ``(N, 3)`` rad/s velocity of a keyframed pose.
+
+    Both are written in the pose's reference frame: the derivative of its translation, and
+    the angular velocity ``w`` with ``dR/dt = [w]x @ R``.
+    """
+    index, inverse = segment_rates(keyframes.times, times)
+    if keyframes.times.shape[0] == 1:
+        return np.zeros((times.shape[0], 3)), np.zeros((times.shape[0], 3))
+    steps = np.diff(keyframes.translations, axis=0)
+    return (steps[index] * inverse[:, None],
+            rotation_steps(keyframes.rotations)[index] * inverse[:, None])
+
+
+def rotation_steps(rotations: FloatArray) -> FloatArray:
+    """Rotation vectors ``log(R[k+1] @ R[k].T)`` ``(K-1, 3)``, radians, the way SLERP turns.
+
+    From the quaternions ``q[k]`` and ``q[k+1]`` put on one hemisphere (SLERP's rule), the
+    step ``q[k+1] * conj(q[k])`` has a non-negative scalar part: its angle is at most pi.
+    """
+    quaternions = quaternion_from_matrix(rotations)
+    start, end = quaternions[:-1], quaternions[1:].copy()
+    end[np.einsum("ij,ij->i", start, end) < 0.0] *= -1.0
+    v0, w0, v1, w1 = start[:, :3], start[:, 3:], end[:, :3], end[:, 3:]
+    vector = w0 * v1 - w1 * v0 + np.cross(v0, v1)
+    scalar = np.einsum("ij,ij->i", start, end)
+    norm = np.linalg.norm(vector, axis=1)
+    # 2 atan2(|v|, w) / |v| is the angle per unit of |v|; it tends to 2 / w as |v| -> 0
+    small = norm < 1e-12
+    scale = np.where(small, 2.0 / np.maximum(scalar, 1e-300),
+                     2.0 * np.arctan2(norm, scalar) / np.where(small, 1.0, norm))
+    return vector * scale[:, None]
+
+
+def track_rates(
+    track: JointTrajectory, times: NDArray[np.int64],
+    segments: tuple[NDArray[np.intp], FloatArray] | None = None,
+) -> FloatArray:
+    """Joint velocities ``(N,)`` (rad/s or m/s) of a sampled joint trajectory.
+
+    ``segments`` is ``segment_rates(track.times, times)`` when the caller has it already
+    (joints driven by one trajectory share their times).
+    """
+    if track.values.shape[0] == 1:
+        return np.zeros(times.shape)
+    index, inverse = segment_rates(track.times, times) if segments is None else segments
+    return np.diff(track.values)[index] * inverse
