@@ -113,8 +113,7 @@ def _json_text(pose: Pose, frame: str | None, relative_to: str | None,
     ]
     units = {"time_s": "s", "x_m y_m z_m": "m", "qx qy qz qw": "unit quaternion"}
     if velocity is not None:
-        units.update({"vx_m_s vy_m_s vz_m_s": "m/s", "wx_rad_s wy_rad_s wz_rad_s": "rad/s",
-                      "velocity_axes": velocity.expressed_in})
+        units.update({"v": "m/s", "w": "rad/s", "velocity_axes": velocity.expressed_in})
     document = {
         "frame": frame,
         "relative_to": relative_to,
