@@ -23,10 +23,11 @@ NOT_RUN_HERE = (
     "python3 -m venv .venv-weldx",
     "PINFRAMES_WELDX_PYTHON=",
     "PYTHONPATH=src .venv/bin/python tests/hardening/fuzz.py",
+    ".venv/bin/mypy src",
 )
 # examples that need files or services a checkout does not have: a campaign of recorded runs,
-# a remote Dask scheduler (tests/batch runs pinframes batch on runs it writes itself), a scan
-NEEDS_DATA = ("pinframes batch ", "pinframes transform ")
+# a remote Dask scheduler (tests/batch runs pinframes batch on runs it writes itself)
+NEEDS_DATA = ("pinframes batch ",)
 
 
 def shell_commands(path):
