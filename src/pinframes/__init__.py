@@ -24,7 +24,7 @@ from .formats.frames_yaml import read_frames_yaml, write_frames_yaml
 from .formats.limits import Limits
 from .formats.scene import read_scene, write_scene
 from .formats.urdf import read_urdf, write_urdf
-from .kinematics import FrameJacobian, PinocchioTree, Velocity
+from .kinematics import FrameJacobian, PinocchioTree, Snapshot, Velocity
 from .tree import FrameTree
 from .values.joint import Joint, Mimic
 from .values.joint_trajectory import JointTrack, JointTrajectory
@@ -61,6 +61,7 @@ __all__ = [
     "PoseStack",
     "ReadError",
     "ReferenceTimeError",
+    "Snapshot",
     "SpatialData",
     "Subsystem",
     "TimeAxis",

@@ -19,8 +19,8 @@ from .tree import FrameTree
 from .values.timeconv import TimeAxis, timestamp_ns
 
 if TYPE_CHECKING:
-    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
+    from mpl_toolkits.mplot3d import Axes3D as Axes
 
 __all__ = ["new_figure", "plot_frames", "robot_frames", "save_figure"]
 

@@ -14,6 +14,7 @@ from pinframes.errors import (
     InvalidTimeError,
     JointError,
     ReadError,
+    UnsupportedFeatureError,
 )
 from pinframes.formats.urdf import read_urdf, write_urdf
 
@@ -205,6 +206,9 @@ def test_floating_and_planar_joints_are_frames_at_their_origin_and_export_their_
     tree.set_local_pose("base", Pose([[1, 0, 0], [3, 0, 0]], times=[0, 1]))
     np.testing.assert_allclose(tree.pose("box", "odom", times=[0.5]).translation, [[2, 2, 0]])
     path = tmp_path / "mobile.urdf"
-    write_urdf(tree, path)
+    with pytest.raises(UnsupportedFeatureError, match=r"frames 'base' move.*pass time="):
+        write_urdf(tree, path)  # a URDF holds one pose: no silent first keyframe
+    write_urdf(tree, path, time=0.5)
     text = path.read_text()
     assert 'name="to_base" type="planar"' in text and 'name="to_box" type="floating"' in text
+    assert '<origin xyz="2.0 0.0 0.0"' in text  # base at 0.5 s, halfway from x=1 to x=3

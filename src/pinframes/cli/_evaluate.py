@@ -95,8 +95,11 @@ def requested_times(args: argparse.Namespace, tree: FrameTree, frame: str,
 def _grid_end(value: str | None, field: str, samples: TimeAxis | None, index: int
               ) -> tuple[bool, int]:
     """One end of a grid: (is absolute, nanoseconds since the epoch or offset)."""
-    axis = (parse_time_axis([value], field=field) if value is not None
-            else TimeAxis(samples.offsets[[index]], samples.reference))
+    if value is not None:
+        axis = parse_time_axis([value], field=field)
+    else:
+        assert samples is not None  # the caller passes the path's samples without a value
+        axis = TimeAxis(samples.offsets[[index]], samples.reference)
     if axis.reference is None:
         return False, int(axis.offsets[0])
     return True, int(axis.offsets[0]) + timestamp_ns(axis.reference)

@@ -8,11 +8,10 @@ follow: ``vx_m_s vy_m_s vz_m_s`` (metres per second) and ``wx_rad_s wy_rad_s wz_
 
 from __future__ import annotations
 
-import io
 import json
 import sys
 from pathlib import Path
-from typing import Any
+from typing import IO, Any
 
 import numpy as np
 
@@ -44,7 +43,7 @@ def pose_rows(pose: Pose) -> tuple[np.ndarray, np.ndarray]:
     """Seconds (T,) (NaN for a static pose) and ``x y z qx qy qz qw`` (T, 7)."""
     if not pose.is_time_dependent:
         return np.array([np.nan]), np.concatenate([pose.translation, pose.quaternion])[None]
-    seconds = pose.times.astype(np.int64) / 1e9
+    seconds = pose.keyframes.times / 1e9
     return seconds, np.concatenate([pose.translation, pose.quaternion], axis=1)
 
 
@@ -110,7 +109,7 @@ def _json_text(pose: Pose, frame: str, relative_to: str, velocity: Velocity | No
     return json.dumps(document, indent=1) + "\n"
 
 
-def _write_npz(handle: io.BufferedWriter, pose: Pose, frame: str, relative_to: str,
+def _write_npz(handle: IO[bytes], pose: Pose, frame: str, relative_to: str,
                velocity: Velocity | None) -> None:
     seconds, values = pose_rows(pose)
     rates: dict[str, Any] = {} if velocity is None else {

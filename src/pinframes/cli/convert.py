@@ -29,13 +29,19 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         "(legacy, weldx up to 0.4)")
     parser.add_argument("--time", metavar="T",
                         help="write every frame at its pose at time T (seconds, duration or "
-                        "timestamp); needed where OUT cannot hold motion")
+                        "timestamp); needed where OUT holds one pose per frame (URDF, "
+                        "frames.yaml) and anything moves")
+    parser.add_argument("--freeze-joints", action="store_true", default=None,
+                        help="URDF: write robot joints as fixed joints at their values at "
+                        "--time (default: keep them as joints and write their values to "
+                        "OUT's name with .joints.csv)")
     parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
     """Read, then write."""
     tree = read_tree(args.input)
-    write_tree(tree, args.output, args.to, schema=args.schema, time=args.time)
+    write_tree(tree, args.output, args.to, schema=args.schema, time=args.time,
+               freeze_joints=args.freeze_joints)
     print(f"pinframes: wrote {args.output} ({len(tree)} frames)", file=sys.stderr)
     return 0

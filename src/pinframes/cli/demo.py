@@ -95,7 +95,7 @@ class PathSummary:
 def summarize(pose: Pose, velocity: Velocity) -> PathSummary:
     """Travel of the origin of ``pose`` (time-dependent) and its ``velocity`` at the same
     samples."""
-    seconds = pose.times.astype(np.int64) / 1e9
+    seconds = pose.keyframes.times / 1e9
     length = float(np.linalg.norm(np.diff(pose.translation, axis=0), axis=1).sum())
     span = float(seconds[-1] - seconds[0])
     return PathSummary(
@@ -144,7 +144,7 @@ def _plot(tree: FrameTree, pose: Pose, velocity: Velocity, summary: PathSummary,
     labelled = [frame for frame in tree.frames if frame not in robot and frame != tool]
     plot_frames(tree, ax=cell, labels=labelled, skeleton=robot | {tool})
     cell.set_title(f"{tree.name or 'cell'}: frames at the start, paths of moving frames")
-    seconds = pose.times.astype(np.int64) / 1e9
+    seconds = pose.keyframes.times / 1e9
     millimetres = 1000 * pose.translation
     tip = figure.add_subplot(grid[0, 1])
     scatter = tip.scatter(millimetres[:, 0], millimetres[:, 1], c=seconds, s=4, cmap="viridis")

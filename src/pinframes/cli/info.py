@@ -79,7 +79,7 @@ def _frame_columns(tree: FrameTree, name: str) -> tuple[str, str, str]:
     pose = tree.local_pose(name)
     if not pose.is_time_dependent:
         return "static", "", ""
-    return ("moving", _span(pose.times.astype(np.int64), "keyframes"),
+    return ("moving", _span(pose.keyframes.times, "keyframes"),
             _reference(pose.reference_time, tree))
 
 

@@ -79,7 +79,8 @@ def _is_frames_yaml(peek: Peek, writing: bool) -> bool:
 
 register_format(FileFormat("asdf", "ASDF", (".asdf",), _read_asdf, _write_asdf,
                            ("schema", "key")))
-register_format(FileFormat("urdf", "URDF", (".urdf",), read_urdf, write_urdf, ("time",)))
+register_format(FileFormat("urdf", "URDF", (".urdf",), read_urdf, write_urdf,
+                           ("time", "freeze_joints")))
 # .yaml: a scene when it has the scene key; else a frames.yaml ('frames' key or name)
 register_format(FileFormat("scene", "scene", (".yaml", ".yml"), read_scene, write_scene,
                            ("time",), _is_scene, f"no '{SCENE_FORMAT_KEY}' key"))

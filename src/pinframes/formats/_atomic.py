@@ -43,7 +43,7 @@ def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO]
     try:
         try:
             os.fchmod(fd, _mode_for(target))
-            handle = os.fdopen(fd, mode, **({} if "b" in mode else {"encoding": "utf-8"}))
+            handle = os.fdopen(fd, mode, encoding=None if "b" in mode else "utf-8")
         except BaseException:
             os.close(fd)
             raise

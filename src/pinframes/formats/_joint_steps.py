@@ -23,7 +23,8 @@ def check_joint_steps(tree: FrameTree, name: str) -> None:
     if joint is None or joint.kind == "prismatic":
         return
     chain = mimic_chain(joint, tree.joints)
-    multiplier = float(np.prod([link.mimic.multiplier for link in chain[:-1]]))
+    multiplier = float(np.prod([link.mimic.multiplier for link in chain[:-1]
+                                if link.mimic is not None]))
     trajectory = tree.joint_trajectory(chain[-1].name)
     if trajectory is not None and np.any(np.abs(np.diff(trajectory.values) * multiplier) >= np.pi):
         raise UnsupportedFeatureError(

@@ -174,18 +174,18 @@ def read_npz_trajectory(
     if names.ndim != 1 or names.dtype.kind not in "US":
         raise FileFormatError(f"expected a 1-D array of strings, got {names.dtype} shape "
                               f"{names.shape}", file=path, field="joint_names")
-    names = [str(name) for name in names]
-    _check_names(names, path, "joint_names")
+    name_list = [str(name) for name in names]
+    _check_names(name_list, path, "joint_names")
     if times.ndim != 1 or times.size == 0 or times.dtype.kind not in "iufmM":
         raise FileFormatError(f"expected a non-empty 1-D array of times, got {times.dtype} "
                               f"shape {times.shape}", file=path, field="times")
-    if positions.dtype.kind not in "iuf" or positions.shape != (times.size, len(names)):
+    if positions.dtype.kind not in "iuf" or positions.shape != (times.size, len(name_list)):
         raise FileFormatError(
-            f"expected numbers of shape ({times.size}, {len(names)}) (times x joint_names), "
+            f"expected numbers of shape ({times.size}, {len(name_list)}) (times x joint_names), "
             f"got {positions.dtype} shape {positions.shape}", file=path, field="positions")
     if times.dtype.kind in "iu":
         times = times.astype(float)
-    return times, positions.astype(float), names
+    return times, positions.astype(float), name_list
 
 
 def _check_npz_sizes(content: bytes, path: str | os.PathLike[str]) -> None:

@@ -10,6 +10,7 @@ through the joints' twists (``twists``).
 from ._description import TreeDescription, paths_to_common_ancestor
 from ._evaluate import default_times, evaluate_pose
 from ._many import evaluate_poses
+from ._snapshot import Snapshot, snapshot
 from .jacobian import FrameJacobian, evaluate_jacobian
 from .pinocchio_tree import PinocchioTree
 from .velocity import Velocity, evaluate_velocity
@@ -17,6 +18,7 @@ from .velocity import Velocity, evaluate_velocity
 __all__ = [
     "FrameJacobian",
     "PinocchioTree",
+    "Snapshot",
     "TreeDescription",
     "Velocity",
     "default_times",
@@ -25,4 +27,5 @@ __all__ = [
     "evaluate_poses",
     "evaluate_velocity",
     "paths_to_common_ancestor",
+    "snapshot",
 ]

@@ -74,9 +74,11 @@ class TreeDescription:
         reference_time: np.datetime64 | None, has_frame_references: bool,
     ) -> TreeDescription:
         """A description holding read-only copies of the given tables."""
-        return cls(root, *(MappingProxyType(dict(table)) for table in (
-            parents, depths, local_poses, joints, joints_by_name, joint_trajectories)),
-            reference_time, has_frame_references)
+        return cls(root, MappingProxyType(dict(parents)), MappingProxyType(dict(depths)),
+                   MappingProxyType(dict(local_poses)), MappingProxyType(dict(joints)),
+                   MappingProxyType(dict(joints_by_name)),
+                   MappingProxyType(dict(joint_trajectories)), reference_time,
+                   has_frame_references)
 
     @property
     def frames(self) -> list[str]:

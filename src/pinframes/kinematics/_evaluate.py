@@ -20,7 +20,7 @@ from ..values._interpolation import Keyframes, segment_positions
 from ..values._se3 import IDENTITY, Transform, compose, inverse, to_stacks
 from ..values._timeline import QueryTimeline, TimedSource, plan_query_timeline
 from ..values.joint import Joint, mimic_chain
-from ..values.pose import Pose
+from ..values.pose import Pose, trusted_pose
 from ..values.timeconv import TimeAxis, parse_time_axis, timestamp_ns
 from ._description import TreeDescription, paths_to_common_ancestor
 from ._model import CompiledModel, compile_model
@@ -72,16 +72,15 @@ def evaluate_pose(
     sources = list(evaluation.sources)
     timeline = checked_timeline(tree, evaluation, times, time_ref, extrapolation)
     offsets = timeline.result_offsets
-    if evaluation.static is not None and offsets is None:
-        rotation, translation = evaluation.static
-        return Pose._trusted(rotation, translation)
     if evaluation.static is not None:
+        if offsets is None:
+            return trusted_pose(*evaluation.static)
         rotation, translation = to_stacks(evaluation.static, offsets.shape[0])
     else:
         rotation, translation = _evaluate_in_chunks(tree, evaluation, sources, timeline)
     if offsets is None:
-        return Pose._trusted(rotation[0], translation[0])
-    return Pose._trusted(rotation, translation, offsets, timeline.reference)
+        return trusted_pose(rotation[0], translation[0])
+    return trusted_pose(rotation, translation, offsets, timeline.reference)
 
 
 def checked_timeline(
@@ -103,9 +102,10 @@ def default_times(tree: TreeDescription, frame: str, relative_to: str) -> TimeAx
     """The times ``tree.pose(frame, relative_to)`` evaluates at when given none."""
     evaluation = prepare_evaluation(tree, frame, relative_to)
     timeline = plan_timeline(tree, list(evaluation.sources), None, None)
-    if timeline.evaluation_times is None:
+    offsets = timeline.result_offsets
+    if offsets is None:
         return None
-    return TimeAxis(timeline.result_offsets, timeline.reference)
+    return TimeAxis(offsets, timeline.reference)
 
 
 def prepare_evaluation(tree: TreeDescription, frame: str, relative_to: str) -> Evaluation:
@@ -158,7 +158,7 @@ def model_sources(tree: TreeDescription, model: CompiledModel) -> list[TimedSour
             pose = tree.local_poses[joint.frame]
             reference = pose.reference_time if pose.reference_time is not None else (
                 tree.reference_time)
-            sources[joint.frame] = TimedSource(joint.frame, pose._times, reference)
+            sources[joint.frame] = TimedSource(joint.frame, pose.keyframes.times, reference)
             continue
         for name in _driving_joints(tree, joint.joint):
             trajectory = tree.joint_trajectories.get(name)
@@ -186,12 +186,13 @@ def _requested_times(tree: TreeDescription, times: Any) -> TimeAxis | None:
         pose = tree.local_poses[times]
         reference = pose.reference_time if pose.reference_time is not None else (
             tree.reference_time)
-        return TimeAxis(pose._times, reference)
+        return TimeAxis(pose.keyframes.times, reference)
     return parse_time_axis(times, field="times")
 
 
 def _check_within_keyframes(sources: list[TimedSource], timeline: QueryTimeline) -> None:
     requested = timeline.evaluation_times
+    assert requested is not None  # checked only for queries at times
     first, last = requested.min(), requested.max()
     for source in sources:
         keyframes = source.on_basis(timeline.absolute)
@@ -309,6 +310,7 @@ def sample_joint_values(
                                       cache, segments)
         value = joint.mimic.multiplier * primary + joint.mimic.offset
     elif trajectory is not None:
+        assert times is not None  # a driven joint is a source: the query has times
         shifted = times - shifts[joint.name]
         # trajectories set together share one times array: search its segments once
         key = f"segments {id(trajectory.times)} {shifts[joint.name]}"

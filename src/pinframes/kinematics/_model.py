@@ -137,12 +137,14 @@ class CompiledModel:
         columns = []
         for joint, motion, value in zip(self.joints, motions, values, strict=True):
             if joint.joint is None:
+                assert motion is not None
                 rotation, translation = motion
                 count = max(rotation.shape[0] if rotation.ndim == 3 else 1,
                             translation.shape[0] if translation.ndim == 2 else 1)
                 columns.append(np.broadcast_to(translation, (count, 3)))
                 columns.append(np.broadcast_to(quaternion_from_matrix(rotation), (count, 4)))
             else:
+                assert value is not None
                 columns.append(joint.joint.configuration(np.atleast_1d(value)))
         count = max(column.shape[0] for column in columns)
         return np.concatenate([np.broadcast_to(c, (count, c.shape[1])) for c in columns], axis=1)

@@ -23,6 +23,7 @@ from ..errors import (
 from ..kinematics import (
     FrameJacobian,
     PinocchioTree,
+    Snapshot,
     TreeDescription,
     Velocity,
     default_times,
@@ -31,6 +32,7 @@ from ..kinematics import (
     evaluate_poses,
     evaluate_velocity,
     paths_to_common_ancestor,
+    snapshot,
 )
 from ..values.joint import Joint
 from ..values.joint_trajectory import JointTrajectory, joint_trajectories_from_samples
@@ -667,6 +669,16 @@ class FrameTree:
         relative_to = self._default_reference(frame, relative_to)
         self._require(relative_to, "relative_to")
         return default_times(self._frozen(), frame, relative_to)
+
+    def snapshot(self, time: Any = None, time_ref: Any = None) -> Snapshot:
+        """The instant ``time`` for the whole tree, and every joint's value then.
+
+        One instant for every frame (a relative ``time`` counts from the tree's reference
+        time, else the lowest reference time of its moving frames and joints, as in
+        :meth:`to_pinocchio`); pass ``snapshot.time`` to :meth:`pose` to take any pose then.
+        ``time=None`` is for trees in which nothing moves.
+        """
+        return snapshot(self._frozen(), time, time_ref)
 
     def to_pinocchio(self) -> PinocchioTree:
         """The whole tree as one Pinocchio model, with name mappings and configurations.

@@ -13,6 +13,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ArgumentTypeError, InvalidTimeError, ReferenceTimeError
+from ..values._timeline import TimedSource, plan_query_timeline
 from ..values.joint import mimic_chain
 from ..values.joint_trajectory import JointTrajectory
 from ..values.pose import Pose
@@ -34,21 +35,17 @@ def time_union(tree: FrameTree, frames: Iterable[str] | None = None) -> TimeAxis
         raise ArgumentTypeError(f"expected a list of frame names, got the string {frames!r}",
                                 field="frames")
     chosen = tree.frames[1:] if frames is None else list(frames)
-    samples: list[_Samples] = []
+    sources: list[TimedSource] = []
     for frame in chosen:
         tree.parent(frame)  # a FrameNotFoundError for unknown names
         if frame != tree.root:
-            samples.extend(_frame_samples(tree, frame))
-    if not samples:
-        return None
-    reference = tree.reference_time
-    if reference is None:
-        references = [own for _, own in samples if own is not None]
-        reference = min(references) if references else None
-    offsets = [times if reference is None else
-               shift_ns(times, timestamp_ns(own if own is not None else reference)
-                        - timestamp_ns(reference)) for times, own in samples]
-    return TimeAxis(np.unique(np.concatenate(offsets)), reference)
+            sources.extend(
+                TimedSource(frame, times, own if own is not None else tree.reference_time)
+                for times, own in _frame_samples(tree, frame))
+    # the default times of a query through all of them (SPEC 4, values._timeline)
+    timeline = plan_query_timeline(sources, None, None, tree.reference_time, False)
+    offsets = timeline.result_offsets
+    return None if offsets is None else TimeAxis(offsets, timeline.reference)
 
 
 def resampled(tree: FrameTree, times: Any, time_ref: Any = None) -> FrameTree:

@@ -62,6 +62,7 @@ class QueryTimeline:
         """Times of the result relative to :attr:`reference`."""
         if self.evaluation_times is None or not self.absolute:
             return self.evaluation_times
+        assert self.reference is not None  # absolute times always carry their reference
         try:
             return shift_ns(self.evaluation_times, -timestamp_ns(self.reference))
         except InvalidTimeError:
@@ -119,6 +120,7 @@ def plan_query_timeline(
     )
     if times.is_absolute or reference is not None:
         base = times.reference if times.is_absolute else reference
+        assert base is not None
         requested = shift_ns(times.offsets, timestamp_ns(base))
     else:
         return QueryTimeline(times.offsets, False, None)
@@ -138,10 +140,13 @@ def _within_reach_of_sources(timeline: QueryTimeline, sources: list[TimedSource]
     times more than 292 years from the reference, and the frame would be sampled at a
     wrong time.
     """
-    if not timeline.absolute:
+    times = timeline.evaluation_times
+    if not timeline.absolute or times is None:
         return timeline
-    ends = np.array([timeline.evaluation_times.min(), timeline.evaluation_times.max()])
-    for source in (s for s in sources if s.reference is not None):
+    ends = np.array([times.min(), times.max()])
+    for source in sources:
+        if source.reference is None:
+            continue
         try:
             shift_ns(ends, -timestamp_ns(source.reference))
         except InvalidTimeError:

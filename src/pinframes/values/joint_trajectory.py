@@ -82,8 +82,9 @@ def joint_trajectories_from_samples(
         if name not in joints:
             raise JointError("no joint of this name in the tree", frame=name,
                              field="joint_names")
-        if not joints[name].is_actuated:
-            raise JointError(f"is a mimic joint of {joints[name].mimic.joint!r}; drive that "
+        mimic = joints[name].mimic
+        if mimic is not None:
+            raise JointError(f"is a mimic joint of {mimic.joint!r}; drive that "
                              "joint instead", frame=name, field="joint_names")
     if len(set(joint_names)) != len(joint_names):
         raise JointError("joint names repeat", field="joint_names")

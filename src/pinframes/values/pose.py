@@ -38,7 +38,7 @@ from .timeconv import (
     timestamp_ns,
 )
 
-__all__ = ["Pose"]
+__all__ = ["Pose", "trusted_pose"]
 
 FloatArray = NDArray[np.float64]
 _QUATERNION_NORM_TOLERANCE = 1e-3
@@ -265,8 +265,10 @@ class Pose:
         left, right = self, other
         if left.is_time_dependent and right.is_time_dependent and not _same_timeline(left, right):
             timeline = _union_timeline(left, right)
-            left = left._sampled(timeline.result_offsets, timeline.reference)
-            right = right._sampled(timeline.result_offsets, timeline.reference)
+            union = timeline.result_offsets
+            assert union is not None  # two moving poses: a union of their times
+            left = left._sampled(union, timeline.reference)
+            right = right._sampled(union, timeline.reference)
         rotation, translation = samples_first(compose(
             samples_last((left._rotation, left._translation)),
             samples_last((right._rotation, right._translation))))
@@ -305,7 +307,9 @@ class Pose:
         # time_ref is never ambiguous here, as for a tree whose frames have references
         timeline = plan_query_timeline(self._sources(), parse_time_axis(times), time_ref,
                                        None, True)
-        return self._sampled(timeline.result_offsets, timeline.reference)
+        offsets = timeline.result_offsets
+        assert offsets is not None  # times were given
+        return self._sampled(offsets, timeline.reference)
 
     def _sampled(self, times: NDArray[np.int64], reference: np.datetime64 | None) -> Pose:
         """Samples at ``times`` ns after ``reference`` (both on this pose's own basis)."""
@@ -341,14 +345,24 @@ class Pose:
             qx, qy, qz, qw = self.quaternion
             return (f"Pose(translation=({x:.6g}, {y:.6g}, {z:.6g}), "
                     f"quaternion=({qx:.6g}, {qy:.6g}, {qz:.6g}, {qw:.6g}))")
-        span = self.times
+        span = self.keyframes.times.astype("timedelta64[ns]")
         reference = "" if self._reference is None else f", reference_time={self._reference}"
         return f"Pose({len(self)} samples from {span[0]} to {span[-1]}{reference})"
 
 
+def trusted_pose(
+    rotation: FloatArray, translation: FloatArray, times: NDArray[np.int64] | None = None,
+    reference: np.datetime64 | None = None,
+) -> Pose:
+    """A :class:`Pose` of arrays known to be valid (the evaluator's results): no checks or
+    copies. ``times`` are int64 ns after ``reference``."""
+    return Pose._trusted(rotation, translation, times, reference)
+
+
 def _same_timeline(a: Pose, b: Pose) -> bool:
-    return (a._reference == b._reference and a._times.shape == b._times.shape
-            and bool(np.array_equal(a._times, b._times)))
+    times_a, times_b = a.keyframes.times, b.keyframes.times
+    return (a._reference == b._reference and times_a.shape == times_b.shape
+            and bool(np.array_equal(times_a, times_b)))
 
 
 def _union_timeline(a: Pose, b: Pose) -> QueryTimeline:

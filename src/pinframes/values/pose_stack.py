@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ._readonly import readonly
-from .pose import Pose
+from .pose import Pose, trusted_pose
 
 __all__ = ["PoseStack"]
 
@@ -49,12 +49,12 @@ class PoseStack:
     @property
     def matrix(self) -> NDArray[np.float64]:
         """Homogeneous matrices, shape (F, 4, 4) or (F, T, 4, 4)."""
-        return Pose._trusted(self.rotation, self.translation).matrix
+        return trusted_pose(self.rotation, self.translation).matrix
 
     @property
     def quaternion(self) -> NDArray[np.float64]:
         """Unit quaternions ``(x, y, z, w)``, ``w >= 0``: shape (F, 4) or (F, T, 4)."""
-        return Pose._trusted(self.rotation, self.translation).quaternion
+        return trusted_pose(self.rotation, self.translation).quaternion
 
     @property
     def times(self) -> NDArray[np.timedelta64] | None:
@@ -67,5 +67,5 @@ class PoseStack:
 
     def __getitem__(self, index: int) -> Pose:
         """The pose of pair ``index``, as :meth:`FrameTree.pose` returns it."""
-        return Pose._trusted(self.rotation[index], self.translation[index], self.offsets,
+        return trusted_pose(self.rotation[index], self.translation[index], self.offsets,
                              self.reference_time)

@@ -18,7 +18,7 @@ from __future__ import annotations
 import datetime as _dt
 import re
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from numpy.typing import NDArray
@@ -105,7 +105,7 @@ def anchor_time_axis(axis: TimeAxis, reference: np.datetime64, *,
     nanoseconds (numpy would wrap it around without a word).
     """
     base = timestamp_ns(reference)
-    shift = timestamp_ns(axis.reference) - base if axis.is_absolute else 0
+    shift = timestamp_ns(axis.reference) - base if axis.reference is not None else 0
     offsets = shift_ns(axis.offsets, shift, field=field)
     shift_ns(offsets, base, field=field)  # the instants must fit as well
     return TimeAxis(offsets, reference)
@@ -274,9 +274,9 @@ def _parse_timestamp_string(text: str, field: str) -> np.datetime64:
             stamp = _dt.datetime.fromisoformat(text.replace("z", "+00:00").replace("Z", "+00:00"))
         except ValueError:
             raise InvalidTimeError(f"cannot read a time from {text!r}", field=field) from None
-        return _parse_one(stamp, field)
+        return cast(np.datetime64, _parse_one(stamp, field))
     try:
-        return np.datetime64(text)
+        return cast(np.datetime64, np.datetime64(text))
     except ValueError:
         raise InvalidTimeError(
             f"cannot read a time from {text!r} (expected seconds, a duration such as '2s' "

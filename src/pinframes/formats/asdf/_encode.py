@@ -16,12 +16,12 @@ from asdf.tagged import tag_object
 
 from ...values.pose import Pose
 from ...values.timeconv import format_timedelta_iso, format_timestamp_iso
-from ._units import DEFAULT_LENGTH_UNIT, metres_per_unit
+from ._units import DEFAULT_LENGTH_UNIT, METRES_PER_UNIT
 
 __all__ = ["CURRENT", "LEGACY", "SCHEMAS", "Generation", "encode_pose", "encode_timestamp",
            "tagged"]
 
-_MILLIMETRES_PER_METRE = 1.0 / metres_per_unit(DEFAULT_LENGTH_UNIT)
+_MILLIMETRES_PER_METRE = 1.0 / METRES_PER_UNIT[DEFAULT_LENGTH_UNIT]
 
 
 @dataclass(frozen=True)
@@ -123,7 +123,7 @@ def encode_pose(generation: Generation, pose: Pose) -> Any:
     if timed:
         if pose.reference_time is not None:
             node["reference_time"] = encode_timestamp(generation, pose.reference_time)
-        node["time"] = _time_index(generation, pose.times.astype(np.int64))
+        node["time"] = _time_index(generation, pose.keyframes.times)
         rotation_constant = _is_constant(rotation)
         if rotation_constant:
             rotation = rotation[0]

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+from collections.abc import Iterator
 from typing import Any
 
 from ...errors import FileFormatError, PinframesError
@@ -76,7 +77,8 @@ def read_asdf(path: str | os.PathLike[str], key: str | None = None, *,
             node = _find_hierarchy(tree, key)
             hierarchy = _read_hierarchy(node)
             depth = 0
-            if not weldx_tag(node)[1].startswith("1."):  # only 0.1.0 nests frames (_depth)
+            tag = weldx_tag(node)  # found by its hierarchy tag
+            if tag is not None and not tag[1].startswith("1."):  # only 0.1.0 nests (_depth)
                 deepest, depth = deepest_frame(
                     (name, parent) for name, parent, _ in hierarchy.frames)
                 if depth > MAX_GRAPH_DEPTH:
@@ -104,12 +106,13 @@ def _find_hierarchy(tree: dict[str, Any], key: str | None) -> Any:
     return next(iter(found.values()))
 
 
-def _hierarchies(node: Any, where: str):
+def _hierarchies(node: Any, where: str) -> Iterator[tuple[str, Any]]:
     """``(key path, node)`` of every hierarchy below ``node``, in file order."""
     tag = weldx_tag(node)
     if tag is not None and tag[0] == _HIERARCHY_TAG:
         yield where, node
         return
+    items: Iterator[tuple[str, Any]]
     if isinstance(node, dict):
         items = ((str(key), value) for key, value in node.items())
     elif isinstance(node, list):
@@ -121,7 +124,9 @@ def _hierarchies(node: Any, where: str):
 
 
 def _read_hierarchy(node: Any) -> Hierarchy:
-    _, version = weldx_tag(node)
+    tag = weldx_tag(node)
+    assert tag is not None  # found by its hierarchy tag
+    version = tag[1]
     if version.startswith("1."):
         return read_legacy_hierarchy(node)
     return read_digraph_hierarchy(node)

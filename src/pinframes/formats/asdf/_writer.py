@@ -85,7 +85,7 @@ def write_asdf(tree: FrameTree, path: str | os.PathLike[str], schema: str = "1.0
                 "data in schema '0.1.0' only", file=str(path), field="schema")
         hierarchy = _legacy_hierarchy(tree)
     else:
-        deepest, depth = deepest_frame((name, tree.parent(name)) for name in tree.frames[1:])
+        deepest, depth = deepest_frame((name, tree.parent(name) or "") for name in tree.frames[1:])
         if depth > MAX_GRAPH_DEPTH:
             raise too_deep(deepest, depth, path)
         hierarchy = _graph_hierarchy(tree)

@@ -15,6 +15,7 @@ import sys
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
+from types import FrameType
 from typing import Any
 
 from ...errors import FileFormatError, FramesYamlWarning
@@ -90,7 +91,8 @@ def key_ancestors(key: str) -> list[str]:
 
 
 def locate_in(section: str):
-    """A locator for :func:`~pinframes._yaml_loader.load_yaml`: ``section.<key>.<field>``."""
+    """A locator for :func:`~pinframes.formats._yaml_loader.load_yaml`:
+    ``section.<key>.<field>``."""
 
     def locate(path: KeyPath) -> tuple[str | None, str | None]:
         if len(path) >= 2 and path[0] == section:
@@ -235,7 +237,8 @@ def warn_layer(file: str, frame: str | None, message: str) -> None:
 
 def _caller_level() -> int:
     """The ``stacklevel`` that points a warning at the first caller outside pinframes."""
-    frame, level = sys._getframe(2), 2
+    frame: FrameType | None = sys._getframe(2)
+    level = 2
     while frame is not None and frame.f_globals.get("__name__", "").startswith("pinframes."):
         frame, level = frame.f_back, level + 1
     return level

@@ -20,6 +20,7 @@ from ...errors import PinframesError, UnsupportedFeatureError
 from ...tree import FrameTree
 from ...values.pose import Pose
 from .._atomic import atomic_write
+from .._snapshot import one_instant
 from .._writable import check_writable_tree
 from ..limits import current_limits
 from ._reader import METADATA_KEY
@@ -74,7 +75,7 @@ def frame_keys(tree: FrameTree) -> dict[str, str]:
     keys: dict[str, str] = {}
     owners: dict[str, str] = {}
     for name in tree.frames[1:]:
-        parent_key = keys.get(tree.parent(name), "")
+        parent_key = keys.get(tree.parent(name) or "", "")
         head, _, last = name.rpartition("/")
         if last and (_kept(tree, name).get("key") == name or (head and head == parent_key)):
             segment = last
@@ -107,7 +108,7 @@ class _Writer:
     def __init__(self, tree: FrameTree, path: Path, time: Any) -> None:
         self.tree = tree
         self.path = path
-        self.time = time
+        self.instant = one_instant(tree, time, path, "frames.yaml")
         self.keys = frame_keys(tree)
         self.by_original_key = {
             kept["key"]: name for name in tree.frames[1:] if "key" in (kept := _kept(tree, name))}
@@ -176,15 +177,9 @@ class _Writer:
     def pose(self, name: str, relative_to: str | None) -> Pose:
         """The static pose of ``name`` in ``relative_to`` (None: its parent)."""
         relative_to = self.tree.parent(name) if relative_to is None else relative_to
-        if self.time is None:
-            pose = self.tree.pose(name, relative_to)
-            if pose.is_time_dependent:
-                raise UnsupportedFeatureError(
-                    f"its pose in {relative_to!r} moves in time, and frames.yaml holds one "
-                    "static pose per frame: pass time= to write the poses at one time",
-                    frame=name, field="pose")
-            return pose
-        sampled = self.tree.pose(name, relative_to, times=[self.time])
+        if self.instant.time is None:  # nothing in the tree moves
+            return self.tree.pose(name, relative_to)
+        sampled = self.tree.pose(name, relative_to, times=[self.instant.time])
         return Pose(sampled.translation.reshape(-1, 3)[0], sampled.rotation.reshape(-1, 3, 3)[0])
 
     def tile_size(self, name: str) -> TileSize | None:

@@ -21,6 +21,7 @@ from ...values.pose import Pose
 from ...values.timeconv import format_timedelta_iso
 from .._atomic import atomic_write
 from .._joint_steps import check_joint_steps
+from .._snapshot import one_instant
 from .._writable import check_writable_tree
 from ._reader import SCENE_FORMAT_KEY, SCENE_FORMAT_VERSION
 
@@ -55,14 +56,16 @@ def write_scene(tree: FrameTree, path: str | os.PathLike[str], time: Any = None)
     document["root"] = tree.root
     if tree.reference_time is not None and time is None:
         document["reference_time"] = str(tree.reference_time)
+    instant = None if time is None else one_instant(tree, time, path, "a scene at one time")
     frames = []
     for name in tree.frames[1:]:
         parent = tree.parent(name)
-        if time is None:
+        assert parent is not None  # every frame but the root has one
+        if instant is None:
             check_joint_steps(tree, name)
             pose = tree.pose(name, relative_to=parent)
         else:
-            pose = _at(tree.pose(name, relative_to=parent, times=[time]), 0)
+            pose = _at(tree.pose(name, relative_to=parent, times=[instant.time]), 0)
         frames.append(_frame_entry(name, parent, pose, tree.reference_time))
     if frames:
         document["frames"] = frames
@@ -105,7 +108,7 @@ def _frame_entry(name: str, parent: str, pose: Pose, tree_reference: np.datetime
     entry["keyframes"] = [
         _Keyframe(time=_time_value(int(offset)), **_pose_fields(translation, quaternion))
         for offset, translation, quaternion in zip(
-            pose.times.astype(np.int64), pose.translation, quaternions, strict=True)
+            pose.keyframes.times, pose.translation, quaternions, strict=True)
     ]
     return entry
 

@@ -2,12 +2,13 @@
 
 from ._mount import URDF_METADATA_KEY, mount_robot, mount_urdf
 from ._parse import JointDescription, RobotDescription, parse_urdf
-from ._read_write import read_urdf, write_urdf
+from ._read_write import joint_state_path, read_urdf, write_urdf
 
 __all__ = [
     "URDF_METADATA_KEY",
     "JointDescription",
     "RobotDescription",
+    "joint_state_path",
     "mount_robot",
     "mount_urdf",
     "parse_urdf",

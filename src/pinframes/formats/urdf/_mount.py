@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import os
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from ...errors import ArgumentTypeError, FrameExistsError, FrameNotFoundError
 from ...values.joint import Joint, Mimic
@@ -94,7 +94,8 @@ def _absolute(source: str) -> str:
 def _keep_link(tree: FrameTree, frame: str, robot: RobotDescription, link: str, joint,
                prefix: str) -> None:
     """Remember what export needs and pinframes does not interpret."""
-    kept = {"robot": prefix + robot.root_link, "link": link, "link_xml": robot.links[link]}
+    kept: dict[str, Any] = {"robot": prefix + robot.root_link, "link": link,
+                            "link_xml": robot.links[link]}
     if joint is not None:
         kept["joint"] = {"name": prefix + joint.name, "type": joint.type,
                          "extra_xml": joint.extra_xml, "axis": joint.axis}

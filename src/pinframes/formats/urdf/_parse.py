@@ -141,7 +141,7 @@ def _parse_joint(element: ET.Element, source: str) -> JointDescription:
     extra = tuple(_xml(child) for child in element if child.tag not in _JOINT_FIELDS_READ)
     return JointDescription(
         name=name, type=joint_type, parent=parent, child=child,
-        origin=Pose.from_xyz_rpy(*xyz, *rpy), axis=tuple(axis), mimic=mimic,
+        origin=Pose.from_xyz_rpy(*xyz, *rpy), axis=(axis[0], axis[1], axis[2]), mimic=mimic,
         extra_xml=extra, **bounds)
 
 
@@ -177,12 +177,12 @@ def _check_tree(
     ordered: list[JointDescription] = []
     stack = [iter(children.get(roots[0], []))]
     while stack:
-        joint = next(stack[-1], None)
-        if joint is None:
+        following = next(stack[-1], None)
+        if following is None:
             stack.pop()
             continue
-        ordered.append(joint)
-        stack.append(iter(children.get(joint.child, [])))
+        ordered.append(following)
+        stack.append(iter(children.get(following.child, [])))
     if len(ordered) != len(joints):
         cut_off = sorted({j.child for j in joints} - {j.child for j in ordered})
         raise FileFormatError(f"links {', '.join(cut_off)} form a cycle", file=source,
@@ -256,7 +256,9 @@ def _vector(element: ET.Element | None, attribute: str, source: str, joint: str,
 
 def _number(element: ET.Element | None, attribute: str, source: str, joint: str
             ) -> float | None:
-    text = None if element is None else element.get(attribute)
+    if element is None:
+        return None
+    text = element.get(attribute)
     if text is None:
         return None
     try:

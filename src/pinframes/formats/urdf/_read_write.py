@@ -4,19 +4,23 @@ from __future__ import annotations
 
 import os
 import xml.etree.ElementTree as ET
+from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from ...kinematics import Snapshot
 from ...tree import FrameTree
 from ...values.joint import Joint, mimic_chain
 from ...values.rotations import rpy_from_matrix
+from ...values.timeconv import format_timestamp_iso
 from .._atomic import atomic_write
+from .._snapshot import moving_parts, one_instant
 from .._writable import check_writable_tree
 from ._mount import URDF_METADATA_KEY, mount_robot
 from ._parse import parse_urdf
 
-__all__ = ["read_urdf", "write_urdf"]
+__all__ = ["joint_state_path", "read_urdf", "write_urdf"]
 
 
 def read_urdf(path: str | os.PathLike[str]) -> FrameTree:
@@ -27,29 +31,65 @@ def read_urdf(path: str | os.PathLike[str]) -> FrameTree:
     return tree
 
 
-def write_urdf(tree: FrameTree, path: str | os.PathLike[str], time: Any = None) -> None:
-    """Write the whole tree as one URDF, atomically.
+def write_urdf(tree: FrameTree, path: str | os.PathLike[str], time: Any = None, *,
+               freeze_joints: bool = False) -> None:
+    """Write the whole tree as one URDF, atomically: the tree at one time.
 
-    Every frame is a link. Robot joints keep their type, axis, limits and mimic; static
-    frames are fixed joints; moving frames are fixed joints frozen at ``time`` (default:
-    their first keyframe; ``time`` follows the rules of :meth:`FrameTree.pose`). Link
-    contents (visuals, inertials, ``package://`` URIs) and unread joint elements are
-    written back as they were read.
+    Every frame is a link; static frames are fixed joints. A URDF holds one pose per frame:
+    with ``time`` (the instant of :meth:`FrameTree.snapshot`), moving frames become fixed
+    joints at their pose then; without it, a tree in which something moves is an
+    :class:`~pinframes.errors.UnsupportedFeatureError` naming what moves.
+
+    Robot joints keep their type, axis, limits and mimic, and their values at ``time`` go
+    beside the file, to :func:`joint_state_path` (one row of a joint trajectory CSV:
+    ``read_joint_trajectory`` reads it back), whenever a joint is driven. With
+    ``freeze_joints`` every robot joint becomes a fixed joint at its value then instead,
+    and no joint-state file is written. Link contents (visuals, inertials, ``package://``
+    URIs) and unread joint elements are written back as they were read.
     """
     check_writable_tree(tree, path)
+    instant = one_instant(tree, time, path, "URDF")
     robot = ET.Element("robot", name=tree.name or tree.root)
+    written: set[str] = set()
     for kept in tree.metadata.get(URDF_METADATA_KEY, {}).values():
         for text in kept.get("extra_xml", ()):
-            robot.append(ET.fromstring(text))
+            if text not in written:  # robots sharing a material define it once
+                written.add(text)
+                robot.append(ET.fromstring(text))
     used_joint_names = {name for name in tree.joints}
     for frame in tree.frames:
         robot.append(_link(tree, frame))
         if frame != tree.root:
-            robot.append(_joint(tree, frame, time, used_joint_names))
+            robot.append(_joint(tree, frame, instant, freeze_joints, used_joint_names))
     ET.indent(robot, "  ")
     text = ET.tostring(robot, encoding="unicode", xml_declaration=False)
+    if not freeze_joints and moving_parts(tree)[1]:
+        _write_joint_state(tree, instant, path)
     with atomic_write(path, "w") as handle:
         handle.write('<?xml version="1.0" encoding="utf-8"?>\n' + text + "\n")
+
+
+def joint_state_path(urdf_path: str | os.PathLike[str]) -> Path:
+    """Where :func:`write_urdf` puts the joint values: ``cell.urdf`` -> ``cell.joints.csv``."""
+    path = Path(urdf_path)
+    return path.with_name(path.stem + ".joints.csv")
+
+
+def _write_joint_state(tree: FrameTree, instant: Snapshot, urdf_path: str | os.PathLike[str]
+                       ) -> None:
+    """The actuated joints' values at the URDF's instant (mimic joints follow the URDF)."""
+    names = [name for name, joint in tree.joints.items() if joint.is_actuated]
+    when = instant.time
+    if isinstance(when, np.datetime64):
+        stamp = format_timestamp_iso(when)
+    else:
+        stamp = repr(float(when / np.timedelta64(1, "s"))) if when is not None else "0.0"
+    lines = [f"# robot joint values (radians, metres) of {Path(urdf_path).name} at the time it "
+             "was written; pinframes.read_joint_trajectory reads this file",
+             ",".join(["time", *names]),
+             ",".join([stamp, *(repr(instant.joint_values[name]) for name in names)])]
+    with atomic_write(joint_state_path(urdf_path), "w") as handle:
+        handle.write("\n".join(lines) + "\n")
 
 
 def _link(tree: FrameTree, frame: str) -> ET.Element:
@@ -60,22 +100,24 @@ def _link(tree: FrameTree, frame: str) -> ET.Element:
     return link
 
 
-def _joint(tree: FrameTree, frame: str, time: Any, used: set[str]) -> ET.Element:
+def _joint(tree: FrameTree, frame: str, instant: Snapshot, freeze: bool, used: set[str]
+           ) -> ET.Element:
     parent = tree.parent(frame)
+    assert parent is not None
     driven = tree.joint_of(frame)
     kept = tree.frame_metadata(frame).get(URDF_METADATA_KEY, {}).get("joint", {})
     if driven is not None:
-        name, joint_type = driven.name, driven.kind
+        name, joint_type = driven.name, "fixed" if freeze else driven.kind
     else:
         joint_type = kept.get("type", "fixed")
         name = kept.get("name") or _free_name(f"{parent}_to_{frame}", used)
     joint = ET.Element("joint", name=name, type=joint_type)
     ET.SubElement(joint, "parent", link=parent)
     ET.SubElement(joint, "child", link=frame)
-    translation, rotation = _origin(tree, frame, parent, time)
+    translation, rotation = _origin(tree, frame, parent, instant, freeze)
     ET.SubElement(joint, "origin", xyz=_numbers(translation),
                   rpy=_numbers(rpy_from_matrix(rotation)))
-    if driven is not None:
+    if driven is not None and not freeze:
         _driven_elements(joint, driven, tree.joints)
     elif joint_type == "planar":
         ET.SubElement(joint, "axis", xyz=_numbers(kept.get("axis", (0.0, 0.0, 1.0))))
@@ -84,14 +126,18 @@ def _joint(tree: FrameTree, frame: str, time: Any, used: set[str]) -> ET.Element
     return joint
 
 
-def _origin(tree: FrameTree, frame: str, parent: str, time: Any
+def _origin(tree: FrameTree, frame: str, parent: str, instant: Snapshot, freeze: bool
             ) -> tuple[np.ndarray, np.ndarray]:
+    """The joint origin: the stored pose, or for a moving frame (and a frozen robot joint)
+    its pose in the parent at the snapshot's instant."""
     local = tree.local_pose(frame)
-    if not local.is_time_dependent:
+    sampled = local.is_time_dependent or (freeze and tree.joint_of(frame) is not None)
+    if not sampled:
         return local.translation, local.rotation
-    if time is None:
-        return local.translation[0], local.rotation[0]
-    frozen = tree.pose(frame, parent, times=[time])
+    if instant.time is None:  # nothing moves: a robot joint at its value (0 or its mimic's)
+        frozen = tree.pose(frame, parent)
+        return frozen.translation, frozen.rotation
+    frozen = tree.pose(frame, parent, times=[instant.time])
     return frozen.translation[0], frozen.rotation[0]
 
 
@@ -105,7 +151,7 @@ def _driven_elements(element: ET.Element, joint: Joint, joints: dict[str, Joint]
         limits["velocity"] = limits["velocity"] or 0.0
     written = {key: repr(float(value)) for key, value in limits.items() if value is not None}
     if written:
-        ET.SubElement(element, "limit", **written)
+        ET.SubElement(element, "limit", written)
     if joint.mimic is not None:
         primary, multiplier, offset = _mimic_of_driven_joint(joint, joints)
         ET.SubElement(element, "mimic", joint=primary, multiplier=repr(multiplier),
@@ -122,8 +168,10 @@ def _mimic_of_driven_joint(joint: Joint, joints: dict[str, Joint]) -> tuple[str,
     chain = mimic_chain(joint, joints)
     multiplier, offset = 1.0, 0.0
     for link in reversed(chain[:-1]):
-        multiplier, offset = (link.mimic.multiplier * multiplier,
-                              link.mimic.multiplier * offset + link.mimic.offset)
+        mimic = link.mimic
+        assert mimic is not None  # every joint but the chain's last mimics the next
+        multiplier, offset = (mimic.multiplier * multiplier,
+                              mimic.multiplier * offset + mimic.offset)
     return chain[-1].name, float(multiplier), float(offset)
 
 

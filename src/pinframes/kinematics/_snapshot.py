@@ -1,0 +1,66 @@
+"""A whole tree at one instant: the time every frame is taken at, and every joint's value.
+
+Writers that store one pose per frame sample every path at the same instant; a relative
+time is resolved once for the whole tree (the rules of ``to_pinocchio().configurations``),
+not once per path, whose references could differ.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..errors import InvalidTimeError
+from ..values._timeline import TimedSource
+from ..values.joint import mimic_chain
+from ._description import TreeDescription
+from ._evaluate import basis_shifts, plan_timeline, sample_joint_values
+
+__all__ = ["Snapshot", "snapshot"]
+
+
+@dataclass(frozen=True)
+class Snapshot:
+    """One instant of a tree.
+
+    Attributes
+    ----------
+    time : numpy.datetime64, numpy.timedelta64 or None
+        The instant, as ``FrameTree.pose(..., times=[time])`` takes it: a timestamp when
+        the tree has reference times, else a duration; None when nothing moves.
+    joint_values : dict of str to float
+        Every robot joint's value then (radians or metres), mimic joints included.
+    """
+
+    time: np.datetime64 | np.timedelta64 | None
+    joint_values: dict[str, float]
+
+
+def snapshot(tree: TreeDescription, time: Any, time_ref: Any = None) -> Snapshot:
+    """The tree at ``time`` (None only for a tree in which nothing moves)."""
+    sources = [TimedSource(frame, pose.keyframes.times, _reference(tree, pose.reference_time))
+               for frame, pose in tree.local_poses.items() if pose.is_time_dependent]
+    sources += [TimedSource(name, trajectory.times, _reference(tree, trajectory.reference))
+                for name, trajectory in tree.joint_trajectories.items()]
+    if time is None and sources:
+        raise InvalidTimeError("parts of the tree move (" + ", ".join(
+            s.name for s in sources) + "); give the time to take them at", field="time")
+    timeline = plan_timeline(tree, sources, None if time is None else [time], time_ref)
+    times = timeline.evaluation_times
+    shifts = basis_shifts(sources, timeline)
+    for joint in tree.joints_by_name.values():
+        mimic_chain(joint, tree.joints_by_name)  # a JointError for a mimic of a missing joint
+    cache: dict[str, Any] = {}
+    values = {name: float(np.ravel(sample_joint_values(tree, joint, times, shifts, cache))[0])
+              for name, joint in tree.joints_by_name.items()}
+    if times is None:
+        return Snapshot(None, values)
+    if timeline.absolute:
+        return Snapshot(np.datetime64(int(times[0]), "ns"), values)
+    return Snapshot(np.timedelta64(int(times[0]), "ns"), values)
+
+
+def _reference(tree: TreeDescription, own: np.datetime64 | None) -> np.datetime64 | None:
+    return own if own is not None else tree.reference_time
