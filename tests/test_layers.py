@@ -14,6 +14,9 @@ import pytest
 import pinframes
 
 PACKAGE = Path(pinframes.__file__).parent
+BUNDLED_DATA = PACKAGE / "models"
+"""The bundled models (their generator scripts too): data, not modules of the package. In a
+checkout it is a symbolic link that rglob does not enter; an installed copy is a folder."""
 
 LAYERS = [
     ("errors",),
@@ -59,8 +62,13 @@ def _imports(path: Path) -> set[str]:
     return found
 
 
+def _sources() -> list[Path]:
+    return sorted(path for path in PACKAGE.rglob("*.py")
+                  if not path.is_relative_to(BUNDLED_DATA))
+
+
 def _all_modules() -> set[str]:
-    return {_module_name(path) for path in PACKAGE.rglob("*.py")}
+    return {_module_name(path) for path in _sources()}
 
 
 def _layer(module: str) -> int:
@@ -72,7 +80,7 @@ def _layer(module: str) -> int:
 
 
 def _graph() -> dict[str, set[str]]:
-    return {_module_name(path): _imports(path) for path in sorted(PACKAGE.rglob("*.py"))}
+    return {_module_name(path): _imports(path) for path in _sources()}
 
 
 def test_the_reader_resolves_relative_imports_and_imports_inside_functions(tmp_path):

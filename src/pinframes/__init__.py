@@ -2,6 +2,7 @@
 
 from .errors import (
     ArgumentTypeError,
+    BrokenMimicWarning,
     ExtrapolationError,
     FileFormatError,
     FrameExistsError,
@@ -12,6 +13,7 @@ from .errors import (
     InvalidTimeError,
     JointError,
     JointLimitWarning,
+    JointWithoutSamplesWarning,
     PinframesError,
     ReadError,
     ReferenceTimeError,
@@ -22,6 +24,7 @@ from .errors import (
 from .formats import read, read_joint_trajectory, write
 from .formats.frames_yaml import read_frames_yaml, write_frames_yaml
 from .formats.limits import Limits
+from .formats.pose_files import write_poses
 from .formats.scene import read_scene, write_scene
 from .formats.urdf import read_urdf, write_urdf
 from .kinematics import FrameJacobian, PinocchioTree, Snapshot, Velocity
@@ -38,6 +41,7 @@ __version__ = "0.1.0"
 
 __all__ = [
     "ArgumentTypeError",
+    "BrokenMimicWarning",
     "ExtrapolationError",
     "FileFormatError",
     "FrameExistsError",
@@ -53,6 +57,7 @@ __all__ = [
     "JointLimitWarning",
     "JointTrack",
     "JointTrajectory",
+    "JointWithoutSamplesWarning",
     "Limits",
     "Mimic",
     "PinframesError",
@@ -77,6 +82,7 @@ __all__ = [
     "read_urdf",
     "write",
     "write_frames_yaml",
+    "write_poses",
     "write_scene",
     "write_urdf",
 ]

@@ -11,10 +11,13 @@ Each class also subclasses the built-in exception a caller would naturally catch
 
 from __future__ import annotations
 
+import difflib
 import os
+from collections.abc import Iterable
 
 __all__ = [
     "ArgumentTypeError",
+    "BrokenMimicWarning",
     "ExtrapolationError",
     "FileFormatError",
     "FrameExistsError",
@@ -25,12 +28,14 @@ __all__ = [
     "InvalidTimeError",
     "JointError",
     "JointLimitWarning",
+    "JointWithoutSamplesWarning",
     "PinframesError",
     "ReadError",
     "ReferenceTimeError",
     "TreeStructureError",
     "UnsupportedFeatureError",
     "WriteError",
+    "near_misses",
 ]
 
 
@@ -148,9 +153,36 @@ class ArgumentTypeError(PinframesError, TypeError):
     """An argument of the wrong type passed to a pinframes function or method."""
 
 
+def near_misses(name: object, known: Iterable[str], kind: str = "frame") -> str:
+    """``"; did you mean 'a/x' or 'x2'?"`` for names in ``known`` close to ``name``, or "".
+
+    Names that end in ``/name`` (the name under a prefix) come first, then up to three
+    names that :func:`difflib.get_close_matches` finds similar.
+    """
+    if not isinstance(name, str) or not name:
+        return ""
+    known = list(known)
+    prefixed = [candidate for candidate in known if candidate.endswith("/" + name)]
+    close = difflib.get_close_matches(name, known, n=3, cutoff=0.6)
+    matches = list(dict.fromkeys([*prefixed, *close]))[:3]
+    if not matches:
+        return ""
+    return f"; did you mean {kind} " + " or ".join(repr(match) for match in matches) + "?"
+
+
 class JointLimitWarning(UserWarning):
     """Joint values outside the limits written in the URDF."""
 
 
 class FramesYamlWarning(UserWarning):
     """A ``frames.yaml`` oddity that pinframes reads anyway (unknown fields, undeclared frames)."""
+
+
+class BrokenMimicWarning(UserWarning):
+    """A URDF mimic joint that names a joint the file does not have: it is loaded as an
+    independent joint (``strict=True`` refuses the file instead)."""
+
+
+class JointWithoutSamplesWarning(UserWarning):
+    """Robot joints evaluated without samples: they hold their rest value
+    (:attr:`pinframes.Joint.rest_value`). Issued once until the tree changes."""

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Collection, Sequence
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -22,10 +23,19 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
     from mpl_toolkits.mplot3d import Axes3D as Axes
 
-__all__ = ["new_figure", "plot_frames", "robot_frames", "save_figure"]
+__all__ = ["plot_frames"]  # new_figure, figure_format, save_figure, robot_frames: for the CLI
 
 _AXIS_COLOURS = ("tab:red", "tab:green", "tab:blue")
 _PATH_SAMPLES = 400
+
+
+def plotting_available() -> bool:
+    """True when matplotlib can be imported (``pip install "pinframes[plot]"``)."""
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        return False
+    return True
 
 
 def new_figure(width: float = 8.0, height: float = 7.0) -> Figure:
@@ -39,10 +49,24 @@ def new_figure(width: float = 8.0, height: float = 7.0) -> Figure:
     return Figure(figsize=(width, height), layout="constrained")
 
 
+def figure_format(figure: Figure, path: str | os.PathLike[str]) -> str:
+    """The image format the suffix of ``path`` names (``png``, ``jpg``, ``svg``, ``pdf``...);
+    an :class:`UnsupportedFeatureError` listing the formats matplotlib writes otherwise."""
+    formats = figure.canvas.get_supported_filetypes()
+    suffix = Path(path).suffix.lower().lstrip(".")
+    if suffix not in formats:
+        raise UnsupportedFeatureError(
+            f"cannot tell an image format from the suffix {Path(path).suffix or '(none)'!r}; "
+            f"name the file with one of: {', '.join('.' + name for name in sorted(formats))}",
+            file=os.fspath(path))
+    return suffix
+
+
 def save_figure(figure: Figure, path: str | os.PathLike[str], dpi: int = 120) -> None:
-    """Write ``figure`` as PNG to ``path``, atomically."""
+    """Write ``figure`` to ``path`` in the format its suffix names, atomically."""
+    image_format = figure_format(figure, path)
     with atomic_write(path, "wb") as handle:
-        figure.savefig(handle, format="png", dpi=dpi)
+        figure.savefig(handle, format=image_format, dpi=dpi)
 
 
 def plot_frames(

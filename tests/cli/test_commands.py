@@ -164,7 +164,7 @@ def test_convert_scene_to_frames_yaml_and_back(run_cli, turntable, tmp_path):
     result = run_cli("pose", out, "table/tip", "-r", "world")
     assert result.returncode == 0, result.stderr
     row = result.stdout.splitlines()[1].split(",")
-    assert row[0] == ""  # nothing moves: a static pose, no time
+    assert row[0] == "nan"  # nothing moves: a static pose, no time
     np.testing.assert_allclose([float(v) for v in row[1:4]], [1.0, 0.2, 0.5], atol=1e-12)
     result = run_cli("convert", turntable, out)
     assert result.returncode == 1  # a moving tree needs --time for frames.yaml

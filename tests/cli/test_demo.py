@@ -27,12 +27,12 @@ def test_bundled_scene_ships_the_files_of_models():
     """Editable or installed, the package holds models/ as it is in the repository."""
     shipped = bundled_scene().parents[1]
     for name in ("welding_cell/scene.yaml", "welding_cell/robot_motion.csv",
-                 "welding_cell/cell.yaml", "welding_robot/welding_robot.urdf"):
+                 "welding_cell/cell_design.yaml", "welding_robot/welding_robot.urdf"):
         assert (shipped / name).read_bytes() == (MODELS / name).read_bytes(), name
 
 
 def test_bundled_scene_matches_cell_description():
-    cell = yaml.safe_load((MODELS / "welding_cell" / "cell.yaml").read_text())
+    cell = yaml.safe_load((MODELS / "welding_cell" / "cell_design.yaml").read_text())
     tree = read_scene(MODELS / "welding_cell" / "scene.yaml")
     for frame in cell["frames"]:
         name = frame["name"]
@@ -77,7 +77,7 @@ def test_demo_prints_summary_and_writes_csv_and_png(run_cli, tmp_path):
     assert 1000 * seam_length / DURATION <= fastest <= 1.001 * 1000 * seam_length / DURATION
 
     text = (tmp_path / "results" / "torch_poses.csv").read_text()
-    assert text.startswith("time_s,x,y,z,qx,qy,qz,qw\n")
+    assert text.startswith("time_s,x_m,y_m,z_m,qx,qy,qz,qw\n")
     rows = np.loadtxt(io.StringIO(text), delimiter=",", skiprows=1)
     np.testing.assert_allclose(rows[:, 0], np.linspace(0.0, DURATION, 2001), atol=1e-12)
     angle = np.pi * rows[:, 0] / DURATION

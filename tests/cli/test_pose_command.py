@@ -4,6 +4,7 @@ import io
 import json
 
 import numpy as np
+import pandas
 import pytest
 
 
@@ -15,10 +16,15 @@ def tip_in_world(seconds):
         np.zeros_like(angle), np.zeros_like(angle), np.sin(angle / 2), np.cos(angle / 2)])
 
 
-def read_csv(text):
+def read_csv(text, reference_time=None):
     lines = text.splitlines()
-    assert lines[0] == "time_s,x,y,z,qx,qy,qz,qw"
-    return np.loadtxt(io.StringIO(text), delimiter=",", skiprows=1, ndmin=2)
+    time_column = "time_s" if reference_time is None else f"time_s_after_{reference_time}"
+    assert lines[0] == f"{time_column},x_m,y_m,z_m,qx,qy,qz,qw"
+    rows = np.loadtxt(io.StringIO(text), delimiter=",", skiprows=1, ndmin=2)
+    frame = pandas.read_csv(io.StringIO(text))
+    assert list(frame.columns) == lines[0].split(",")
+    np.testing.assert_array_equal(frame.to_numpy(), rows)
+    return rows
 
 
 def test_grid_csv_to_stdout(run_cli, turntable):
@@ -55,7 +61,9 @@ def test_default_times_are_the_keyframes_and_inverse_direction(run_cli, turntabl
 def test_static_path_gives_one_row_without_time(run_cli, turntable):
     result = run_cli("pose", turntable, "tip", "-r", "table")
     assert result.returncode == 0, result.stderr
-    assert result.stdout.splitlines()[1] == ",0.2,0.0,0.0,0.0,0.0,0.0,1.0"
+    assert result.stdout.splitlines()[1] == "nan,0.2,0.0,0.0,0.0,0.0,0.0,1.0"
+    row = read_csv(result.stdout)[0]  # numpy and pandas read the NaN time
+    assert np.isnan(row[0])
 
 
 def test_json_and_npz_files(run_cli, turntable, tmp_path):
@@ -66,8 +74,8 @@ def test_json_and_npz_files(run_cli, turntable, tmp_path):
     document = json.loads(out.read_text())
     assert document["frame"] == "tip" and document["relative_to"] == "world"
     record = document["poses"][0]
-    np.testing.assert_allclose([record[key] for key in ("time_s", "x", "y", "z", "qx", "qy",
-                                                        "qz", "qw")],
+    np.testing.assert_allclose([record[key] for key in ("time_s", "x_m", "y_m", "z_m", "qx",
+                                                        "qy", "qz", "qw")],
                                tip_in_world(np.array([5.0]))[0], atol=1e-12)
     npz = tmp_path / "poses.npz"
     assert run_cli("pose", turntable, "tip", "-r", "world", "--step", "1", "-o",
@@ -87,11 +95,16 @@ def test_reference_time_and_time_ref(run_cli, tmp_path):
                      "  - {time: 0, xyz: [0, 0, 0]}\n  - {time: 10, xyz: [1, 0, 0]}\n")
     result = run_cli("pose", scene, "cart", "--times", "2024-03-01T08:00:05")
     assert result.returncode == 0, result.stderr
-    np.testing.assert_allclose(read_csv(result.stdout)[0, :4], [5.0, 0.5, 0.0, 0.0])
+    np.testing.assert_allclose(read_csv(result.stdout, "2024-03-01T08:00:00")[0, :4],
+                               [5.0, 0.5, 0.0, 0.0])
     assert "time_s counts from 2024-03-01T08:00:00" in result.stderr
     result = run_cli("pose", scene, "cart", "--times", "1", "--time-ref",
                      "2024-03-01T08:00:02")
-    np.testing.assert_allclose(read_csv(result.stdout)[0, :4], [1.0, 0.3, 0.0, 0.0])
+    np.testing.assert_allclose(read_csv(result.stdout, "2024-03-01T08:00:02")[0, :4],
+                               [1.0, 0.3, 0.0, 0.0])
+    out = tmp_path / "cart.json"
+    assert run_cli("pose", scene, "cart", "--times", "1", "-o", out).returncode == 0
+    assert json.loads(out.read_text())["reference_time"] == "2024-03-01T08:00:00"
 
 
 @pytest.mark.parametrize(
@@ -148,7 +161,7 @@ def test_velocity_columns_carry_units(run_cli, turntable):
                      "--velocity")
     assert result.returncode == 0, result.stderr
     lines = result.stdout.splitlines()
-    assert lines[0] == ("time_s,x,y,z,qx,qy,qz,qw,vx_m_s,vy_m_s,vz_m_s,wx_rad_s,wy_rad_s,"
+    assert lines[0] == ("time_s,x_m,y_m,z_m,qx,qy,qz,qw,vx_m_s,vy_m_s,vz_m_s,wx_rad_s,wy_rad_s,"
                         "wz_rad_s")
     rows = np.loadtxt(io.StringIO(result.stdout), delimiter=",", skiprows=1, ndmin=2)
     np.testing.assert_allclose(rows[:, :8], tip_in_world(np.array([2.5, 12.0])), atol=1e-12)

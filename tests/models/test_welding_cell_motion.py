@@ -1,7 +1,7 @@
 """The bundled welding cell and its recorded robot motion, checked independently.
 
 The torch TCP is computed with Pinocchio directly from the CSV samples and compared with the
-seam, which is rebuilt here in plain numpy from ``cell.yaml`` (own quaternion, SLERP and
+seam, which is rebuilt here in plain numpy from ``cell_design.yaml`` (own quaternion, SLERP and
 axis-angle code), so the check does not reuse the generator's code. Nothing here uses
 pinframes.
 """
@@ -79,7 +79,7 @@ def _rotation_angle(rotation: np.ndarray) -> float:
 
 @pytest.fixture(scope="module")
 def cell() -> dict:
-    return yaml.safe_load((CELL_DIR / "cell.yaml").read_text(encoding="utf-8"))
+    return yaml.safe_load((CELL_DIR / "cell_design.yaml").read_text(encoding="utf-8"))
 
 
 @pytest.fixture(scope="module")
@@ -251,6 +251,6 @@ def test_generator_reproduces_the_files(tmp_path, cell, motion):
         capture_output=True,
         timeout=120,
     )
-    assert yaml.safe_load((tmp_path / "cell.yaml").read_text(encoding="utf-8")) == cell
+    assert yaml.safe_load((tmp_path / "cell_design.yaml").read_text(encoding="utf-8")) == cell
     regenerated = np.loadtxt(tmp_path / "robot_motion.csv", delimiter=",", skiprows=1)
     np.testing.assert_allclose(regenerated, motion, rtol=0, atol=1e-8)

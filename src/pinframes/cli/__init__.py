@@ -2,7 +2,8 @@
 
 Data goes to standard output, messages to standard error. A user error (a pinframes error
 or a file that cannot be read or written) prints one line ``pinframes: error: ...`` and
-exits with status 1 (``--verbose`` adds the traceback); bad arguments exit with status 2.
+exits with status 1 (``--verbose`` adds the traceback); bad arguments (a usage error) exit
+with status 2. A warning prints one line ``pinframes: warning: ...``.
 """
 
 from __future__ import annotations
@@ -11,6 +12,7 @@ import argparse
 import os
 import sys
 import traceback
+import warnings
 from collections.abc import Sequence
 from dataclasses import fields
 
@@ -29,7 +31,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = _parser()
     args = parser.parse_args(argv)
     try:
-        with using_limits(_limits(args)):
+        with using_limits(_limits(args)), warnings.catch_warnings():
+            warnings.showwarning = _show_warning
             return args.run(args)
     except BrokenPipeError:
         # the reader of our output went away (``pinframes pose ... | head``): stop quietly
@@ -51,12 +54,12 @@ def _parser() -> argparse.ArgumentParser:
         description="Coordinate-frame trees that move in time: inspect, query, convert, plot.",
         epilog="Run 'pinframes SUBCOMMAND --help' for the options of each subcommand.")
     parser.add_argument("-v", "--verbose", action="store_true",
-                        help="print the traceback of an error")
+                        help="print the traceback of an error (default: off)")
     parser.add_argument("--version", action="version", version=f"pinframes {__version__}")
     # accepted after the subcommand too; SUPPRESS keeps a --verbose given before it
     verbose = argparse.ArgumentParser(add_help=False)
     verbose.add_argument("-v", "--verbose", action="store_true", default=argparse.SUPPRESS,
-                         help="print the traceback of an error")
+                         help="print the traceback of an error (default: off)")
     for options, default in ((parser, None), (verbose, argparse.SUPPRESS)):
         _add_limit_options(options, default)
     subparsers = parser.add_subparsers(title="subcommands", metavar="SUBCOMMAND", required=True)
@@ -78,6 +81,12 @@ def _limits(args: argparse.Namespace) -> Limits | None:
     given = {item.name: getattr(args, item.name) for item in fields(Limits)
              if getattr(args, item.name, None) is not None}
     return Limits(**given) if given else None
+
+
+def _show_warning(message: Warning | str, category: type[Warning], filename: str,
+                  lineno: int, file: object = None, line: str | None = None) -> None:
+    """A warning as one line on standard error, without the source location."""
+    print(f"pinframes: warning: {' '.join(str(message).split())}", file=sys.stderr)
 
 
 def _one_line(exc: BaseException) -> str:

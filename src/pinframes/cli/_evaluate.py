@@ -38,14 +38,17 @@ def add_time_arguments(parser: argparse.ArgumentParser) -> None:
         "times", "Times are seconds (1.5), durations (500ms, 2s, P0DT0H0M2S) or timestamps "
         "(2024-03-01T08:00:00). Relative times count from --time-ref, else from the "
         "tree's reference time. Default: every keyframe and joint sample on the path.")
-    group.add_argument("--times", nargs="+", metavar="T", help="these times")
+    group.add_argument("--times", nargs="+", metavar="T",
+                       help="these times (default: every sample on the path)")
     group.add_argument("--start", metavar="T", help="first time of a grid (default: the first "
                        "sample on the path)")
     group.add_argument("--stop", metavar="T", help="last time of a grid, included when it "
                        "falls on the grid (default: the last sample on the path)")
-    group.add_argument("--step", metavar="DT", help="grid step, a positive duration")
+    group.add_argument("--step", metavar="DT", help="grid step, a positive duration (default: "
+                       "none, no grid)")
     group.add_argument("--time-ref", metavar="TIMESTAMP",
-                       help="reference time that relative times count from")
+                       help="reference time that relative times count from (default: the "
+                       "tree's, else the earliest of the moving frames' on the path)")
 
 
 def requested_times(args: argparse.Namespace, tree: FrameTree, frame: str,

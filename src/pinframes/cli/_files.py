@@ -6,7 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from ..errors import FileFormatError, FrameNotFoundError
+from ..errors import FileFormatError, FrameNotFoundError, near_misses
 from ..formats import detect_format, file_format, formats_taking, read, write
 from ..tree import FrameTree
 
@@ -23,7 +23,8 @@ def require_frames(tree: FrameTree, path: str | Path, *names: str | None) -> Non
     """Raise a :class:`FrameNotFoundError` naming ``path`` for a name not in ``tree``."""
     for name in names:
         if name is not None and name not in tree:
-            raise FrameNotFoundError("no frame of this name in the file", file=path, frame=name)
+            raise FrameNotFoundError("no frame of this name in the file"
+                                     + near_misses(name, tree.frames), file=path, frame=name)
 
 
 def write_tree(tree: FrameTree, path: str | Path, fmt: str | None = None, **flags: Any
@@ -39,5 +40,6 @@ def write_tree(tree: FrameTree, path: str | Path, fmt: str | None = None, **flag
     for name in options:
         if name not in taken:
             takers = ", ".join(entry.title for entry in formats_taking(name))
-            raise FileFormatError(f"--{name} is for {takers} files, not {fmt}", file=path)
+            flag = "--" + name.replace("_", "-")
+            raise FileFormatError(f"{flag} is for {takers} files, not {fmt}", file=path)
     write(tree, path, fmt, **options)

@@ -36,11 +36,14 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     group = parser.add_argument_group(
         "times", "Default: every keyframe and joint sample on the path, per run.")
     group.add_argument("--times", nargs="+", metavar="T",
-                       help="these times in every run (seconds, durations, timestamps)")
+                       help="these times in every run (seconds, durations, timestamps; "
+                       "default: every sample on the path)")
     group.add_argument("--step", metavar="DT",
-                       help="resample each run from its first to its last sample every DT")
+                       help="resample each run from its first to its last sample every DT "
+                       "(default: none, no resampling)")
     group.add_argument("--time-ref", metavar="TIMESTAMP",
-                       help="reference time that relative --times count from")
+                       help="reference time that relative --times count from (default: "
+                       "each run's own)")
     parser.add_argument("--out", "-o", required=True, metavar="DIR", help="output folder")
     parser.add_argument("--scheduler", metavar="ADDRESS",
                         help="address of a running Dask scheduler (default: a local "

@@ -26,15 +26,19 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         help="format of OUT (default: from its name)")
     parser.add_argument("--schema", choices=("1.0.0", "0.1.0"),
                         help="ASDF schema version: 0.1.0 (weldx 0.6 and later) or 1.0.0 "
-                        "(legacy, weldx up to 0.4)")
+                        "(legacy, weldx up to 0.4) (default: 1.0.0)")
     parser.add_argument("--time", metavar="T",
                         help="write every frame at its pose at time T (seconds, duration or "
                         "timestamp); needed where OUT holds one pose per frame (URDF, "
-                        "frames.yaml) and anything moves")
+                        "frames.yaml) and anything moves (default: none, motion kept)")
     parser.add_argument("--freeze-joints", action="store_true", default=None,
                         help="URDF: write robot joints as fixed joints at their values at "
                         "--time (default: keep them as joints and write their values to "
                         "OUT's name with .joints.csv)")
+    parser.add_argument("--slash-replacement", metavar="TEXT",
+                        help="frames.yaml only: write TEXT for each '/' of a frame name that "
+                        "would put the frame under another one, e.g. _ (default: none, such "
+                        "names are refused)")
     parser.set_defaults(run=run)
 
 
@@ -42,6 +46,6 @@ def run(args: argparse.Namespace) -> int:
     """Read, then write."""
     tree = read_tree(args.input)
     write_tree(tree, args.output, args.to, schema=args.schema, time=args.time,
-               freeze_joints=args.freeze_joints)
+               freeze_joints=args.freeze_joints, slash_replacement=args.slash_replacement)
     print(f"pinframes: wrote {args.output} ({len(tree)} frames)", file=sys.stderr)
     return 0

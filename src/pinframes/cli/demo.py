@@ -11,14 +11,13 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import FileFormatError, UnsupportedFeatureError, WriteError
-from ..formats.scene import read_scene
 from ..kinematics import Velocity
-from ..plotting import new_figure, plot_frames, robot_frames, save_figure
+from ..plotting import new_figure, plot_frames, plotting_available, robot_frames, save_figure
 from ..tree import FrameTree
 from ..values.pose import Pose
 from ..view import write_view
 from ._evaluate import evaluate_poses, pose_velocity, terminal_stderr
-from ._files import require_frames
+from ._files import read_tree, require_frames
 from ._output import write_poses
 
 __all__ = ["PathSummary", "add_parser", "bundled_scene", "run", "summarize"]
@@ -39,13 +38,15 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "demo", parents=parents, help="torch path of the bundled welding cell",
         description="Load the bundled welding cell (robot, positioner, workpiece), compute "
         "the pose of the torch tip relative to the workpiece at every sample of the motion, "
-        f"print a summary and write the poses ({POSES_FILE}), a plot ({PLOT_FILE}) and an "
-        f"animated 3-D page of the whole run ({VIEW_FILE}; needs pinframes[view]).")
+        f"print a summary and write the poses ({POSES_FILE}), a plot ({PLOT_FILE}; needs "
+        f"pinframes[plot]) and an animated 3-D page of the whole run ({VIEW_FILE}; needs "
+        "pinframes[view]).")
     parser.add_argument("--out", metavar="DIR", default=".",
                         help="folder for the CSV and PNG files (default: the current folder; "
                         "created if missing, but not its parent folders)")
     parser.add_argument("--scene", metavar="FILE",
-                        help="another scene file (default: the bundled welding cell)")
+                        help="another tree file: scene, frames.yaml, ASDF or URDF (default: "
+                        "the bundled welding cell)")
     parser.add_argument("--tool", default="torch_tcp", metavar="FRAME",
                         help="the tool frame (default: torch_tcp)")
     parser.add_argument("--workpiece", default="workpiece", metavar="FRAME",
@@ -107,7 +108,7 @@ def summarize(pose: Pose, velocity: Velocity) -> PathSummary:
 def run(args: argparse.Namespace) -> int:
     """Compute, print the summary, write the files."""
     scene = Path(args.scene) if args.scene else bundled_scene()
-    tree = read_scene(scene)
+    tree = read_tree(scene)
     require_frames(tree, scene, args.tool, args.workpiece)
     pose = evaluate_poses(tree, args.tool, args.workpiece, None, progress=terminal_stderr())
     if not pose.is_time_dependent or len(pose) < 2:
@@ -122,16 +123,24 @@ def run(args: argparse.Namespace) -> int:
         raise WriteError(f"cannot create the output folder: {exc.strerror}", file=out) from None
     write_poses(pose, "csv", str(out / POSES_FILE), frame=args.tool,
                 relative_to=args.workpiece)
-    _plot(tree, pose, velocity, summary, args.tool, args.workpiece, out / PLOT_FILE)
-    written = [out / POSES_FILE, out / PLOT_FILE]
+    written = [out / POSES_FILE]
+    missing = []
+    if plotting_available():
+        _plot(tree, pose, velocity, summary, args.tool, args.workpiece, out / PLOT_FILE)
+        written.append(out / PLOT_FILE)
+    else:
+        missing.append(f'no plot: pip install "pinframes[plot]" adds matplotlib, and the demo '
+                       f"then also draws the cell and the path ({PLOT_FILE})")
     try:
         write_view(tree, out / VIEW_FILE, paths={args.tool: args.workpiece})
         written.append(out / VIEW_FILE)
     except UnsupportedFeatureError as exc:  # meshcat is not installed: the page is optional
-        print(f"pinframes: no 3-D page: {exc}", file=sys.stderr)
+        missing.append(f"no 3-D page: {exc}")
     print(f"{args.tool} relative to {args.workpiece} ({scene.name})")
     sys.stdout.write(summary.table())
     print(f"pinframes: wrote {', '.join(map(str, written))}", file=sys.stderr)
+    for line in missing:
+        print(f"pinframes: {line}", file=sys.stderr)
     return 0
 
 

@@ -3,14 +3,17 @@
 from __future__ import annotations
 
 import argparse
+import json
 import sys
+from typing import Any
 
 import numpy as np
 
 from ..tree import FrameTree
+from ..values.timeconv import format_timestamp_iso
 from ._files import read_tree
 
-__all__ = ["add_parser", "describe", "run"]
+__all__ = ["add_parser", "describe", "describe_json", "run"]
 
 
 def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
@@ -22,13 +25,62 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "after its reference time) and that reference time, then the subsystems (weldx) "
         "merged into the tree.")
     parser.add_argument("file", metavar="FILE", help="scene, frames.yaml, ASDF or URDF file")
+    parser.add_argument("--format", "-f", choices=("text", "json"), default="text",
+                        help="a table to read, or JSON for programs (default: text)")
     parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
     """Print the description of the tree."""
-    sys.stdout.write(describe(read_tree(args.file)))
+    tree = read_tree(args.file)
+    if args.format == "json":
+        sys.stdout.write(json.dumps(describe_json(tree), indent=1) + "\n")
+    else:
+        sys.stdout.write(describe(tree))
     return 0
+
+
+def describe_json(tree: FrameTree) -> dict[str, Any]:
+    """The tree as JSON data: each frame (root first, parents before children) with its
+    parent, kind, joint, keyframe or joint-sample times (seconds after ``reference_time``)
+    and reference time; then the subsystems."""
+    frames = []
+    for _, name in _walk(tree, tree.root, "", ""):
+        entry: dict[str, Any] = {"name": name, "parent": tree.parent(name), "kind": "static",
+                                 "joint": None, "samples": 0, "time_span_s": None,
+                                 "reference_time": None}
+        joint = tree.joint_of(name)
+        times, reference = None, None
+        if name == tree.root:
+            entry["kind"] = "root"
+        elif joint is not None:
+            entry["kind"] = "robot joint"
+            entry["joint"] = {"name": joint.name, "type": joint.kind, "axis": list(joint.axis),
+                              "lower": joint.lower, "upper": joint.upper,
+                              "mimics": None if joint.mimic is None else joint.mimic.joint}
+            track = tree.joint_track(joint.name)
+            if track is not None:
+                times, reference = track.times, track.reference
+        elif tree.local_pose(name).is_time_dependent:
+            pose = tree.local_pose(name)
+            entry["kind"] = "moving"
+            times, reference = pose.keyframes.times, pose.reference_time
+        if times is not None:
+            entry["samples"] = int(times.shape[0])
+            entry["time_span_s"] = [times[0] / 1e9, times[-1] / 1e9]
+            reference = reference if reference is not None else tree.reference_time
+            entry["reference_time"] = _timestamp(reference)
+        frames.append(entry)
+    return {
+        "name": tree.name, "root": tree.root, "reference_time": _timestamp(tree.reference_time),
+        "frames": frames,
+        "subsystems": [{"name": s.name, "root": s.root, "members": list(s.members),
+                        "parent": s.parent} for s in tree.subsystems],
+    }
+
+
+def _timestamp(stamp: np.datetime64 | None) -> str | None:
+    return None if stamp is None else format_timestamp_iso(stamp)
 
 
 def describe(tree: FrameTree) -> str:

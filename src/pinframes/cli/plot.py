@@ -6,7 +6,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from ..plotting import new_figure, plot_frames, save_figure
+from ..plotting import figure_format, new_figure, plot_frames, save_figure
 from ._files import read_tree, require_frames
 
 __all__ = ["add_parser", "run"]
@@ -15,7 +15,7 @@ __all__ = ["add_parser", "run"]
 def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     """Register the ``plot`` subcommand."""
     parser = subparsers.add_parser(
-        "plot", parents=parents, help="3-D plot of the frames (PNG)",
+        "plot", parents=parents, help="3-D plot of the frames (PNG, JPEG, SVG, PDF...)",
         description="Draw the frames of FILE in 3-D: each frame's x, y, z axes (red, green, "
         "blue) at the first time, and the path of every frame that moves relative to "
         "--relative-to. Needs matplotlib: pip install \"pinframes[plot]\".")
@@ -25,15 +25,18 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     parser.add_argument("--relative-to", "-r", metavar="FRAME",
                         help="frame the plot is drawn in (default: the root)")
     parser.add_argument("--at", choices=("start", "end"), default="start",
-                        help="draw the axes at the start or the end of the motion")
-    parser.add_argument("-o", "--output", metavar="OUT.png", required=True,
-                        help="PNG file to write")
+                        help="draw the axes at the start or the end of the motion (default: "
+                        "start)")
+    parser.add_argument("-o", "--output", metavar="OUT", required=True,
+                        help="image file to write, in the format its suffix names (.png, .jpg, "
+                        ".svg, .pdf, ...)")
     parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
     """Draw and save."""
     figure = new_figure()
+    figure_format(figure, args.output)  # a bad suffix fails before the work
     tree = read_tree(args.file)
     require_frames(tree, args.file, args.relative_to, *(args.frames or []))
     ax = figure.add_subplot(projection="3d")

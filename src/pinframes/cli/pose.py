@@ -34,7 +34,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     parser.add_argument("--velocity", action="store_true",
                         help="add the exact velocity of FRAME relative to the other frame: "
                         "columns vx_m_s, vy_m_s, vz_m_s (its origin, m/s) and wx_rad_s, "
-                        "wy_rad_s, wz_rad_s (angular, rad/s)")
+                        "wy_rad_s, wz_rad_s (angular, rad/s) (default: off)")
     parser.add_argument("--expressed-in", metavar="AXES",
                         help="the frame whose axes the velocities are written in (default: "
                         "the --relative-to frame; implies --velocity)")

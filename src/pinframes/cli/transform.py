@@ -44,7 +44,8 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     parser.add_argument("--relative-to", "-r", metavar="OTHER", required=True,
                         help="the frame to write the data in")
     parser.add_argument("--vectors", action="store_true",
-                        help="the data are directions (velocities, normals): rotate only")
+                        help="the data are directions (velocities, normals): rotate only "
+                        "(default: off, the data are points)")
     add_time_arguments(parser)
     parser.add_argument("-o", "--output", metavar="OUT",
                         help="write to this CSV file (default: standard output)")

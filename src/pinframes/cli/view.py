@@ -30,11 +30,12 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         help="draw the path of FRAME in frame IN (repeatable; default: the "
                         "path of each moving frame without children)")
     parser.add_argument("--collision", action="store_true",
-                        help="draw the URDF collision geometry instead of the visual one")
+                        help="draw the URDF collision geometry instead of the visual one "
+                        "(default: off, the visual geometry)")
     parser.add_argument("--package-dir", action="append", default=[], metavar="DIR",
                         help="folder to look for package:// and relative mesh files in "
                         f"(repeatable; searched before {PACKAGE_PATH_VARIABLE} and the URDF's "
-                        "folder)")
+                        "folder; default: none)")
     add_time_arguments(parser)
     parser.add_argument("-o", "--output", metavar="OUT.html", required=True,
                         help="HTML file to write")

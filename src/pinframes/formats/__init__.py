@@ -85,7 +85,8 @@ register_format(FileFormat("urdf", "URDF", (".urdf",), read_urdf, write_urdf,
 register_format(FileFormat("scene", "scene", (".yaml", ".yml"), read_scene, write_scene,
                            ("time",), _is_scene, f"no '{SCENE_FORMAT_KEY}' key"))
 register_format(FileFormat("frames.yaml", "frames.yaml", (".yaml", ".yml"), read_frames_yaml,
-                           write_frames_yaml, ("time",), _is_frames_yaml, "no 'frames' key"))
+                           write_frames_yaml, ("time", "slash_replacement"), _is_frames_yaml,
+                           "no 'frames' key"))
 register_format(FileFormat("csv", "CSV", (".csv",), read_csv_trajectory,
                            kind=JOINT_TRAJECTORY))
 register_format(FileFormat("npz", "NPZ", (".npz",), read_npz_trajectory,

@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import FileFormatError
+from ._content import format_by_content
 from ._paths import check_regular_file, path_argument
 from ._yaml_loader import load_yaml
 from .limits import using_limits
@@ -113,7 +114,9 @@ def detect_format(
     path: str | os.PathLike[str], *, writing: bool = False, kind: str = TREE,
     among: Sequence[str] | None = None,
 ) -> str:
-    """The format of ``path`` (a file to be written if ``writing``), told by its suffix.
+    """The format of ``path``: a tree file that exists is told by its content, whatever its
+    name (:func:`~pinframes.formats._content.format_by_content`); a file to be written (if
+    ``writing``) and other kinds of files by the suffix.
 
     Formats that share a suffix (``.yaml``: scene or frames.yaml) are told apart by their
     ``recognise`` test. ``among`` restricts the candidates to those format names.
@@ -122,6 +125,11 @@ def detect_format(
     suffix = path.suffix.lower()
     allowed = [entry for entry in _FORMATS.values() if entry.kind == kind
                and (among is None or entry.name in among)]
+    if kind == TREE and not writing and path.is_file():
+        peek = Peek(path)
+        return format_by_content(path, allowed, lambda yaml_formats: next(
+            (entry.name for entry in yaml_formats
+             if entry.recognise is None or entry.recognise(peek, False)), None))
     candidates = [entry for entry in allowed if suffix in entry.suffixes]
     if not candidates:
         suffixes = list(dict.fromkeys(s for entry in allowed for s in entry.suffixes))

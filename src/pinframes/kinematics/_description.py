@@ -65,6 +65,9 @@ class TreeDescription:
         default_factory=dict, init=False, repr=False, compare=False)
     _evaluations: dict[tuple[str, str], Any] = field(
         default_factory=dict, init=False, repr=False, compare=False)
+    # not empty once this version has warned about joints without samples
+    _warned_joints_without_samples: list[bool] = field(
+        default_factory=list, init=False, repr=False, compare=False)
 
     @classmethod
     def freeze(

@@ -8,6 +8,7 @@ rooted at that ancestor, so the cost of a query depends on its path, not on the 
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -15,7 +16,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ExtrapolationError, InvalidTimeError
+from ..errors import ExtrapolationError, InvalidTimeError, JointWithoutSamplesWarning
 from ..values._interpolation import Keyframes, segment_positions
 from ..values._se3 import IDENTITY, Transform, compose, inverse, to_stacks
 from ..values._timeline import QueryTimeline, TimedSource, plan_query_timeline
@@ -196,9 +197,12 @@ def _check_within_keyframes(sources: list[TimedSource], timeline: QueryTimeline)
     first, last = requested.min(), requested.max()
     for source in sources:
         keyframes = source.on_basis(timeline.absolute)
-        if first < keyframes[0] or last > keyframes[-1]:
+        early, late = keyframes[0] - first, last - keyframes[-1]
+        if early > 0 or late > 0:
+            sides = ([f"{early / 1e9:.9g} s before its first keyframe"] if early > 0 else []) + (
+                [f"{late / 1e9:.9g} s after its last keyframe"] if late > 0 else [])
             raise ExtrapolationError(
-                "requested times reach outside its keyframes (extrapolation='error')",
+                f"requested times reach {' and '.join(sides)} (extrapolation='error')",
                 frame=source.name, field="times")
 
 
@@ -297,7 +301,8 @@ def sample_joint_values(
     shifts: dict[str, int], cache: dict[str, NDArray[np.float64] | float],
     segments: dict[str, tuple[NDArray[np.intp], NDArray[np.float64]]] | None = None,
 ) -> NDArray[np.float64] | float:
-    """Values of ``joint`` at ``times``: its trajectory, its mimic primary's, or 0.
+    """Values of ``joint`` at ``times``: its trajectory, its mimic primary's, or its rest
+    value.
 
     ``cache`` keeps the values per joint name, ``segments`` the segment positions per
     trajectory times array, for the other joints sampled at the same ``times``.
@@ -321,6 +326,27 @@ def sample_joint_values(
                 segments[key] = positions
         value = trajectory.sample(shifted, positions)
     else:
-        value = 0.0
+        value = joint.rest_value
+        _warn_joints_without_samples(tree)
     cache[joint.name] = value
     return value
+
+
+def _warn_joints_without_samples(tree: TreeDescription) -> None:
+    """One :class:`JointWithoutSamplesWarning` per version of a tree, naming its joints
+    without samples."""
+    if tree._warned_joints_without_samples:
+        return
+    tree._warned_joints_without_samples.append(True)
+    idle = [name for name, joint in tree.joints_by_name.items()
+            if joint.is_actuated and name not in tree.joint_trajectories]
+    named = ", ".join(repr(name) for name in idle[:4]) + (
+        f" and {len(idle) - 4} more" if len(idle) > 4 else "")
+    many = len(idle) > 1
+    subject = f"joints {named} have" if many else f"joint {named} has"
+    warnings.warn(
+        f"{subject} no samples and {'hold' if many else 'holds'} the rest value (0, or the "
+        "limit nearest to 0); give values with FrameTree.set_joint_trajectory(times, "
+        "positions, joint_names) or a scene robot's 'trajectory' file",
+        JointWithoutSamplesWarning,
+        stacklevel=2)

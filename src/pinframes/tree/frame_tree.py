@@ -19,6 +19,7 @@ from ..errors import (
     PinframesError,
     ReferenceTimeError,
     TreeStructureError,
+    near_misses,
 )
 from ..kinematics import (
     FrameJacobian,
@@ -204,7 +205,7 @@ class FrameTree:
 
     def attach_urdf(
         self, urdf: str | os.PathLike[str], parent: str, pose: Pose | None = None,
-        prefix: str = "",
+        prefix: str = "", *, strict: bool = False,
     ) -> list[str]:
         """Mount a robot: its root link at ``parent`` (at ``pose``), every link a frame.
 
@@ -218,16 +219,20 @@ class FrameTree:
             The root link's pose in ``parent`` (identity if None; may move in time).
         prefix : str
             Put before every link and joint name, to mount several copies of a robot.
+        strict : bool
+            Refuse a mimic joint whose primary joint is not in the file; by default it
+            stays an independent joint, with one ``BrokenMimicWarning`` per such joint.
 
         Returns
         -------
         list of str
             The new frame names, root link first. Revolute, continuous and prismatic
-            joints stay joints (value 0 until :meth:`set_joint_trajectory`); fixed,
+            joints stay joints, at their rest value (0, or the limit nearest to 0) until
+            :meth:`set_joint_trajectory` gives them samples; fixed,
             floating and planar joints become frames at their origin. A failed import
             leaves the tree unchanged.
         """
-        return robot_mounter("urdf")(self, urdf, parent, pose, prefix)
+        return robot_mounter("urdf")(self, urdf, parent, pose, prefix, strict=strict)
 
     def graft(self, other: FrameTree, at: str | None = None, prefix: str = "",
               name: str | None = None, record: bool = True) -> Subsystem | None:
@@ -300,7 +305,9 @@ class FrameTree:
                                  ) -> None:
         """Set (or with None, clear) the trajectory of a robot joint."""
         if not isinstance(joint_name, str) or joint_name not in self._joint_frames:
-            raise FrameNotFoundError(f"no joint named {joint_name!r}", field="joint_names")
+            raise FrameNotFoundError(
+                f"no joint named {joint_name!r} in the tree"
+                + near_misses(joint_name, self._joint_frames, "joint"), field="joint_names")
         previous = self._joint_trajectories.pop(joint_name, None)
         if previous is not None:
             self._uncount_reference(previous.reference)
@@ -713,7 +720,8 @@ class FrameTree:
             raise ArgumentTypeError(f"frame names are strings, got {type(name).__name__}",
                                     field=field)
         if name not in self._children:
-            raise FrameNotFoundError("no frame of this name in the tree", frame=str(name))
+            raise FrameNotFoundError("no frame of this name in the tree"
+                                     + near_misses(name, self._children), frame=str(name))
 
     def _check_new(self, name: str, parent: str) -> None:
         _check_name(name)
@@ -723,7 +731,8 @@ class FrameTree:
             raise ArgumentTypeError(f"frame names are strings, got {type(parent).__name__}",
                                     frame=name, field="parent")
         if parent not in self._children:
-            raise FrameNotFoundError(f"parent frame {parent!r} is not in the tree",
+            raise FrameNotFoundError(f"parent frame {parent!r} is not in the tree"
+                                     + near_misses(parent, self._children),
                                      frame=name, field="parent")
 
     def _insert(self, name: str, parent: str, pose: Pose) -> None:

@@ -94,6 +94,13 @@ class Joint:
         object.__setattr__(self, "axis", tuple(float(v) for v in axis / norm))
 
     @property
+    def rest_value(self) -> float:
+        """The value the joint holds while it has no samples, radians or metres: 0, or the
+        limit nearest to 0 when its limits exclude 0."""
+        value = 0.0 if self.lower is None else max(0.0, self.lower)
+        return value if self.upper is None else min(value, self.upper)
+
+    @property
     def is_actuated(self) -> bool:
         """True for joints driven by their own value (not mimic joints)."""
         return self.mimic is None

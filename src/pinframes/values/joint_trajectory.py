@@ -10,7 +10,13 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ArgumentTypeError, InvalidTimeError, JointError, JointLimitWarning
+from ..errors import (
+    ArgumentTypeError,
+    InvalidTimeError,
+    JointError,
+    JointLimitWarning,
+    near_misses,
+)
 from ._interpolation import segment_positions
 from ._readonly import readonly_copy
 from .joint import Joint
@@ -80,12 +86,12 @@ def joint_trajectories_from_samples(
     joint_names = list(joint_names)
     for name in joint_names:
         if name not in joints:
-            raise JointError("no joint of this name in the tree", frame=name,
-                             field="joint_names")
+            raise JointError(f"no joint named {name!r} in the tree"
+                             + near_misses(name, joints, "joint"), field="joint_names")
         mimic = joints[name].mimic
         if mimic is not None:
-            raise JointError(f"is a mimic joint of {mimic.joint!r}; drive that "
-                             "joint instead", frame=name, field="joint_names")
+            raise JointError(f"joint {name!r} is a mimic joint of {mimic.joint!r}; drive that "
+                             "joint instead", field="joint_names")
     if len(set(joint_names)) != len(joint_names):
         raise JointError("joint names repeat", field="joint_names")
     axis = parse_time_axis(times, field="times")

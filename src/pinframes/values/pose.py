@@ -28,10 +28,12 @@ from .rotations import (
     quaternion_from_matrix,
     rotation_matrix_defects,
     rpy_from_matrix,
+    sign_continuous_quaternions,
 )
 from .timeconv import (
     TimeAxis,
     anchor_time_axis,
+    format_timestamp_iso,
     parse_time_axis,
     parse_timestamp,
     shift_ns,
@@ -208,8 +210,13 @@ class Pose:
 
     @property
     def quaternion(self) -> FloatArray:
-        """Unit quaternions ``(x, y, z, w)`` with ``w >= 0``: shape (4,) or (T, 4)."""
-        return quaternion_from_matrix(self._rotation)
+        """Unit quaternions ``(x, y, z, w)``: shape (4,) or (T, 4).
+
+        ``q`` and ``-q`` are the same rotation; the sign is chosen so that a series is
+        continuous: the first (or only) quaternion has ``w >= 0`` and each later one the
+        sign that makes its dot product with the one before it ``>= 0``.
+        """
+        return sign_continuous_quaternions(quaternion_from_matrix(self._rotation))
 
     @property
     def matrix(self) -> FloatArray:
@@ -243,9 +250,37 @@ class Pose:
         """True when the pose is sampled in time."""
         return self._times is not None
 
+    @property
+    def seconds(self) -> FloatArray | None:
+        """Keyframe times as float seconds after :attr:`reference_time`; None if static."""
+        return None if self._times is None else self._times / 1e9
+
     def __len__(self) -> int:
         """Number of samples (1 for a static pose)."""
         return 1 if self._times is None else int(self._times.shape[0])
+
+    def __getitem__(self, key: Any) -> Pose:
+        """The samples that ``key`` selects, with their times and the reference time.
+
+        ``key`` is an index, a slice, a boolean mask of length ``len(pose)`` or an array of
+        increasing indices, as for a numpy array; ``pose[i]`` is a one-sample pose at the
+        i-th time. A static pose is its own only sample (``pose[0]``, ``pose[-1]``).
+        """
+        if self._times is None:
+            if isinstance(key, (int, np.integer)) and key in (0, -1):
+                return self
+            raise InvalidTimeError("a static pose has one sample: select it with 0 or -1",
+                                   field="index")
+        if isinstance(key, (int, np.integer)):
+            key = [key]
+        times = self._times[key]
+        if times.ndim != 1 or times.shape[0] == 0:
+            raise InvalidTimeError("the selection holds no samples", field="index")
+        if np.any(np.diff(times) <= 0):
+            raise InvalidTimeError("selected samples must keep their times increasing",
+                                   field="index")
+        return Pose._trusted(self._rotation[key].copy(), self._translation[key].copy(),
+                             times.copy(), self._reference)
 
     def to_xyz_rpy(self) -> FloatArray:
         """``x, y, z`` in metres and ``roll, pitch, yaw`` in radians: shape (6,) or (T, 6)."""
@@ -345,9 +380,16 @@ class Pose:
             qx, qy, qz, qw = self.quaternion
             return (f"Pose(translation=({x:.6g}, {y:.6g}, {z:.6g}), "
                     f"quaternion=({qx:.6g}, {qy:.6g}, {qz:.6g}, {qw:.6g}))")
-        span = self.keyframes.times.astype("timedelta64[ns]")
-        reference = "" if self._reference is None else f", reference_time={self._reference}"
-        return f"Pose({len(self)} samples from {span[0]} to {span[-1]}{reference})"
+        offsets = self.keyframes.times
+        first, last = offsets[[0, -1]] / 1e9
+        text = (f"Pose(1 sample at {first:.9g} s" if len(self) == 1 else
+                f"Pose({len(self)} samples from {first:.9g} s to {last:.9g} s")
+        if self._reference is None:
+            return text + ")"
+        stamps = [format_timestamp_iso(stamp) for stamp in
+                  self._reference + offsets[[0, -1]].astype("timedelta64[ns]")]
+        return (f"{text} after {format_timestamp_iso(self._reference)}, "
+                f"{' to '.join(stamps[:len(self)])})")
 
 
 def trusted_pose(

@@ -20,6 +20,7 @@ __all__ = [
     "quaternion_from_matrix",
     "rotation_matrix_defects",
     "rpy_from_matrix",
+    "sign_continuous_quaternions",
 ]
 
 ROTATION_TOLERANCE = 1e-6
@@ -88,6 +89,16 @@ def quaternion_from_matrix(matrix: ArrayLike) -> FloatArray:
     q = np.take_along_axis(candidates, choice[..., None, None], axis=-2)[..., 0, :]
     q /= np.linalg.norm(q, axis=-1, keepdims=True)
     return np.where(q[..., 3:4] < 0.0, -q, q)
+
+
+def sign_continuous_quaternions(quaternions: FloatArray) -> FloatArray:
+    """``quaternions`` (4,) or (T, 4) with ``w >= 0`` first, then each one's sign flipped
+    where its dot product with the (already flipped) one before it is negative."""
+    if quaternions.ndim == 1 or quaternions.shape[0] < 2:
+        return quaternions
+    dots = np.einsum("ij,ij->i", quaternions[1:], quaternions[:-1])
+    signs = np.cumprod(np.concatenate([[1.0], np.where(dots < 0.0, -1.0, 1.0)]))
+    return quaternions * signs[:, None]
 
 
 def matrix_from_rpy(rpy: ArrayLike) -> FloatArray:

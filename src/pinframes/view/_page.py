@@ -27,7 +27,7 @@ from ..tree import FrameTree
 from ..values.pose import Pose
 from ..values.timeconv import TimeAxis, format_timestamp_iso, timestamp_ns
 from ._geometry import LinkGeometry, load_geometry
-from ._scene import SceneCommands, node_path
+from ._scene import SceneCommands, msgpack, node_path
 
 __all__ = ["MAX_PAGE_SAMPLES", "view_html", "write_view"]
 
@@ -195,9 +195,7 @@ def _is_link(tree: FrameTree, frame: str) -> bool:
 
 def _html(title: str, commands: list[dict[str, Any]], settings: dict[str, Any]) -> str:
     """The page: meshcat's viewer, the commands, our controls."""
-    import umsgpack  # type: ignore[import-untyped]
-
-    encoded = [base64.b64encode(umsgpack.packb(command)).decode("ascii")
+    encoded = [base64.b64encode(msgpack().packb(command)).decode("ascii")
                for command in commands]
     data = json.dumps({"commands": encoded, **settings}).replace("</", "<\\/")
     page = resources.files(__package__)

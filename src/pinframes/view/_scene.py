@@ -13,10 +13,11 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import UnsupportedFeatureError
 from ..values.rotations import quaternion_from_matrix
 from ._geometry import LinkGeometry
 
-__all__ = ["SceneCommands", "node_path"]
+__all__ = ["SceneCommands", "msgpack", "node_path"]
 
 _ROOT = ("pinframes", "frames")
 _FLOAT32 = 0x17  # msgpack extension code that meshcat's viewer reads as a Float32Array
@@ -121,10 +122,20 @@ def _axes(length: float) -> dict[str, Any]:
             "material": {"type": "LineBasicMaterial", "vertexColors": True, "linewidth": 2}}
 
 
+def msgpack() -> Any:
+    """The ``umsgpack`` module (u-msgpack-python, in the ``view`` extra); without it an
+    :class:`UnsupportedFeatureError` saying how to get it."""
+    try:
+        import umsgpack  # type: ignore[import-untyped]
+    except ImportError:
+        raise UnsupportedFeatureError('the 3-D page needs u-msgpack-python: pip install '
+                                      '"pinframes[view]"') from None
+    return umsgpack
+
+
 def _attribute(values: np.ndarray) -> dict[str, Any]:
     """A three.js buffer attribute (rows are items) as meshcat packs it."""
-    import umsgpack  # type: ignore[import-untyped]
-
+    umsgpack = msgpack()
     codes = {np.dtype(np.float32): ("Float32Array", _FLOAT32),
              np.dtype(np.uint32): ("Uint32Array", 0x16)}
     name, code = codes[values.dtype]
@@ -134,9 +145,7 @@ def _attribute(values: np.ndarray) -> dict[str, Any]:
 
 
 def _float32(values: np.ndarray) -> Any:
-    import umsgpack  # type: ignore[import-untyped]
-
-    return umsgpack.Ext(_FLOAT32, np.ascontiguousarray(values, dtype=np.float32).tobytes())
+    return msgpack().Ext(_FLOAT32, np.ascontiguousarray(values, dtype=np.float32).tobytes())
 
 
 def _column_major(matrix: np.ndarray) -> list[float]:

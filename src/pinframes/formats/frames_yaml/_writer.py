@@ -39,7 +39,8 @@ _POSE_TOLERANCE = 1e-9
 """A kept pose still holds when no matrix entry moved by more (metres, or unitless)."""
 
 
-def write_frames_yaml(tree: FrameTree, path: str | os.PathLike[str], time: Any = None) -> None:
+def write_frames_yaml(tree: FrameTree, path: str | os.PathLike[str], time: Any = None, *,
+                      slash_replacement: str | None = None) -> None:
     """Write ``tree`` as a Duckietown ``frames.yaml`` map layer, atomically.
 
     Parameters
@@ -53,6 +54,10 @@ def write_frames_yaml(tree: FrameTree, path: str | os.PathLike[str], time: Any =
     time : None or time
         frames.yaml holds static poses: with None a tree whose poses move in time is
         refused; otherwise every pose is taken at this time (as for ``FrameTree.pose``).
+    slash_replacement : None or str
+        Written instead of each ``/`` of a name whose ``/`` would put the frame under
+        another one (``robot/base_link`` under ``robot_base`` becomes the key
+        ``robot_base/robot_base_link`` with ``"_"``); None refuses such names.
 
     Raises
     ------
@@ -63,14 +68,14 @@ def write_frames_yaml(tree: FrameTree, path: str | os.PathLike[str], time: Any =
         The file cannot be written.
     """
     check_writable_tree(tree, path)
-    document = _document(tree, Path(path), time)
+    document = _document(tree, Path(path), time, slash_replacement)
     text = yaml.dump(document, Dumper=_Dumper, sort_keys=False, default_flow_style=False,
                      allow_unicode=True)
     with atomic_write(path, "w") as handle:
         handle.write(text)
 
 
-def frame_keys(tree: FrameTree) -> dict[str, str]:
+def frame_keys(tree: FrameTree, slash_replacement: str | None = None) -> dict[str, str]:
     """The ``frames.yaml`` key of every frame but the root, by frame name."""
     keys: dict[str, str] = {}
     owners: dict[str, str] = {}
@@ -81,11 +86,14 @@ def frame_keys(tree: FrameTree) -> dict[str, str]:
             segment = last
         elif "/" not in name:
             segment = name
+        elif slash_replacement is not None and "/" not in slash_replacement:
+            segment = name.replace("/", slash_replacement)
         else:
             where = f"under {parent_key!r}" if parent_key else "at the top level"
             raise UnsupportedFeatureError(
                 f"the name holds '/', which frames.yaml keys use to mark the parent, but the "
-                f"frame sits {where}: rename it (for example to {name.replace('/', '_')!r})",
+                f"frame sits {where}: rename it, or pass slash_replacement='_' (pinframes "
+                f"convert --slash-replacement _) to write it as {name.replace('/', '_')!r}",
                 frame=name)
         key = f"{parent_key}/{segment}" if parent_key else segment
         if key.count("/") >= current_limits().max_depth:
@@ -105,11 +113,12 @@ def frame_keys(tree: FrameTree) -> dict[str, str]:
 class _Writer:
     """Builds the ``frames`` mapping of one output file."""
 
-    def __init__(self, tree: FrameTree, path: Path, time: Any) -> None:
+    def __init__(self, tree: FrameTree, path: Path, time: Any,
+                 slash_replacement: str | None) -> None:
         self.tree = tree
         self.path = path
         self.instant = one_instant(tree, time, path, "frames.yaml")
-        self.keys = frame_keys(tree)
+        self.keys = frame_keys(tree, slash_replacement)
         self.by_original_key = {
             kept["key"]: name for name in tree.frames[1:] if "key" in (kept := _kept(tree, name))}
         self.tiles_in_metres: list[str] = []
@@ -206,10 +215,11 @@ class _Writer:
                 f"{self._tile_maps_problem}"))
 
 
-def _document(tree: FrameTree, path: Path, time: Any) -> dict[str, Any]:
+def _document(tree: FrameTree, path: Path, time: Any, slash_replacement: str | None
+              ) -> dict[str, Any]:
     kept = tree.metadata.get(METADATA_KEY, {})
     document = dict(kept.get("top_level", {"version": 1.0, "frames": None}))
-    writer = _Writer(tree, path, time)
+    writer = _Writer(tree, path, time, slash_replacement)
     document["frames"] = writer.frames()
     writer.warn_about_tiles()
     return document

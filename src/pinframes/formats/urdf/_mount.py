@@ -5,7 +5,7 @@ from __future__ import annotations
 import os
 from typing import TYPE_CHECKING, Any
 
-from ...errors import ArgumentTypeError, FrameExistsError, FrameNotFoundError
+from ...errors import ArgumentTypeError, FrameExistsError, FrameNotFoundError, near_misses
 from ...values.joint import Joint, Mimic
 from ...values.pose import Pose
 from ._parse import RobotDescription, parse_urdf
@@ -22,10 +22,11 @@ _DRIVEN_KINDS = ("revolute", "continuous", "prismatic")
 
 
 def mount_urdf(
-    tree: FrameTree, urdf: str | os.PathLike[str], parent: str, pose: Pose | None, prefix: str
+    tree: FrameTree, urdf: str | os.PathLike[str], parent: str, pose: Pose | None, prefix: str,
+    *, strict: bool = False,
 ) -> list[str]:
     """Parse ``urdf`` (a path or the XML text) and mount it: ``FrameTree.attach_urdf``."""
-    return mount_robot(tree, parse_urdf(urdf), parent, pose, prefix)
+    return mount_robot(tree, parse_urdf(urdf, strict=strict), parent, pose, prefix)
 
 
 def mount_robot(
@@ -45,7 +46,8 @@ def mount_robot(
     names = [root_frame] + [prefix + joint.child for joint in robot.joints]
     if parent is not None:
         if parent not in tree:
-            raise FrameNotFoundError(f"parent frame {parent!r} is not in the tree",
+            raise FrameNotFoundError(f"parent frame {parent!r} is not in the tree"
+                                     + near_misses(parent, tree.frames),
                                      file=robot.source, field="parent")
         clash = [name for name in names if name in tree]
         if clash:

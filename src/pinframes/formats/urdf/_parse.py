@@ -5,12 +5,12 @@ from __future__ import annotations
 import os
 import warnings
 import xml.etree.ElementTree as ET
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 
-from ...errors import FileFormatError
+from ...errors import BrokenMimicWarning, FileFormatError
 from ...values.pose import Pose
 from .._reading import read_text
 
@@ -56,13 +56,15 @@ class RobotDescription:
     extra_xml: tuple[str, ...] = field(default=())
 
 
-def parse_urdf(urdf: str | os.PathLike[str]) -> RobotDescription:
+def parse_urdf(urdf: str | os.PathLike[str], *, strict: bool = False) -> RobotDescription:
     """Parse a URDF file path or XML string and check that it describes one tree of links.
 
     Raises :class:`~pinframes.errors.FileFormatError` naming the file (or ``<urdf string>``),
     the link or joint and the field for malformed XML, missing or duplicate names, unknown
-    joint types, a link with two parents, several root links, cycles and unknown mimic
-    targets. Meshes are never opened; ``package://`` URIs stay as written.
+    joint types, a link with two parents, several root links and mimic cycles. A mimic of a
+    joint the file does not have gives one :class:`BrokenMimicWarning` per such joint, which
+    then stays an independent joint (Pinocchio and urdfdom load such files too); with
+    ``strict`` it is an error. Meshes are never opened; ``package://`` URIs stay as written.
     """
     text, source = _read_source(urdf)
     try:
@@ -81,6 +83,7 @@ def parse_urdf(urdf: str | os.PathLike[str]) -> RobotDescription:
     except RecursionError:
         raise FileFormatError("XML elements nested too deeply to keep", file=source) from None
     ordered, root_link = _check_tree(links, joints, source)
+    ordered = _without_broken_mimics(ordered, source, strict)
     _check_mimics(ordered, source)
     return RobotDescription(name, source, root_link, links, tuple(ordered), tuple(extra))
 
@@ -188,6 +191,25 @@ def _check_tree(
         raise FileFormatError(f"links {', '.join(cut_off)} form a cycle", file=source,
                               field="link")
     return ordered, roots[0]
+
+
+def _without_broken_mimics(joints: list[JointDescription], source: str, strict: bool
+                           ) -> list[JointDescription]:
+    """``joints`` with the mimic dropped from those whose primary is not in the file."""
+    names = {joint.name for joint in joints}
+    kept = []
+    for joint in joints:
+        if joint.mimic is not None and joint.type in _DRIVEN_TYPES and joint.mimic[0] not in names:
+            if strict:
+                raise FileFormatError(f"mimics unknown joint {joint.mimic[0]!r}", file=source,
+                                      frame=joint.name, field="mimic.joint")
+            warnings.warn(
+                f"{source}: joint {joint.name!r} mimics joint {joint.mimic[0]!r}, which the "
+                "file does not have; it is loaded as an independent joint (strict=True "
+                "refuses the file)", BrokenMimicWarning, stacklevel=4)
+            joint = replace(joint, mimic=None)
+        kept.append(joint)
+    return kept
 
 
 def _check_mimics(joints: list[JointDescription], source: str) -> None:

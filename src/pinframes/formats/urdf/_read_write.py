@@ -23,9 +23,13 @@ from ._parse import parse_urdf
 __all__ = ["joint_state_path", "read_urdf", "write_urdf"]
 
 
-def read_urdf(path: str | os.PathLike[str]) -> FrameTree:
-    """A robot alone: the tree's root is the robot's root link, named after the robot."""
-    robot = parse_urdf(path)
+def read_urdf(path: str | os.PathLike[str], *, strict: bool = False) -> FrameTree:
+    """A robot alone: the tree's root is the robot's root link, named after the robot.
+
+    ``strict`` refuses a mimic of a joint the file does not have (by default such a joint
+    stays independent, with a :class:`~pinframes.urdf.BrokenMimicWarning`).
+    """
+    robot = parse_urdf(path, strict=strict)
     tree = FrameTree(root=robot.root_link, name=robot.name)
     mount_robot(tree, robot, None, None, "")
     return tree
