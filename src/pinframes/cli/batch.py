@@ -32,7 +32,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     parser.add_argument("--velocity", action="store_true",
                         help="add the exact velocity of FRAME relative to the other frame, "
                         "in its axes: columns vx_m_s, vy_m_s, vz_m_s (its origin, m/s) and "
-                        "wx_rad_s, wy_rad_s, wz_rad_s (angular, rad/s)")
+                        "wx_rad_s, wy_rad_s, wz_rad_s (angular, rad/s) (default: off)")
     group = parser.add_argument_group(
         "times", "Default: every keyframe and joint sample on the path, per run.")
     group.add_argument("--times", nargs="+", metavar="T",
