@@ -11,7 +11,7 @@ import pytest
 
 from pinframes import FrameTree, Pose
 from pinframes.batch import partition_path
-from pinframes.batch._compute import POSE_SCHEMA, pose_chunks
+from pinframes.batch._compute import POSE_SCHEMA, output_schema, pose_chunks
 from pinframes.batch._manifest import Manifest
 from pinframes.batch._options import BatchOptions
 from pinframes.batch._partition import PartitionWriter, clear_staging
@@ -54,6 +54,20 @@ def test_chunks_hold_every_sample_once_in_order():
     assert set(rows["run"].to_pylist()) == {"r1"}
 
 
+def test_velocity_columns_follow_the_pose_columns():
+    """The slide moves at 0.1 m/s along world x and nothing turns (hand-derived)."""
+    options = BatchOptions.create("tool", "world", chunk_size=30, velocity=True)
+    rows = _rows(pose_chunks(_slide_tree(), "r", options))
+    assert rows.schema == output_schema(options)
+    assert rows.column_names[:10] == POSE_SCHEMA.names
+    assert rows.column_names[10:] == ["vx_m_s", "vy_m_s", "vz_m_s",
+                                      "wx_rad_s", "wy_rad_s", "wz_rad_s"]
+    expected = {"vx_m_s": 0.1, "vy_m_s": 0.0, "vz_m_s": 0.0,
+                "wx_rad_s": 0.0, "wy_rad_s": 0.0, "wz_rad_s": 0.0}
+    for name, value in expected.items():
+        np.testing.assert_allclose(rows[name].to_numpy(), value, rtol=0, atol=1e-12)
+
+
 def test_a_step_resamples_each_run_from_its_first_to_its_last_sample():
     rows = _rows(pose_chunks(_slide_tree(), "r", BatchOptions.create("tool", "world",
                                                                      step="2.5s")))
@@ -93,20 +107,22 @@ def test_options_digest_follows_what_changes_the_rows():
                                                 chunk_size=3).digest()
     assert base.digest() != BatchOptions.create("tool", "world", times=[1.0, 2.5]).digest()
     assert base.digest() != BatchOptions.create("tool", "slide", times=[1.0, 2.0]).digest()
+    assert base.digest() != BatchOptions.create("tool", "world", times=[1.0, 2.0],
+                                                velocity=True).digest()
 
 
 def test_a_partition_is_renamed_into_place_only_when_complete(tmp_path):
     clear_staging(tmp_path)
     chunks = list(pose_chunks(_slide_tree(), "r/1", BatchOptions.create(
         "tool", "world", chunk_size=40)))
-    with PartitionWriter(tmp_path, "r/1") as writer:
+    with PartitionWriter(tmp_path, "r/1", POSE_SCHEMA) as writer:
         for table in chunks:
             writer.write(table)
     target = partition_path(tmp_path, "r/1")
     assert target.name == "r%2F1.parquet"
     assert pq.ParquetFile(target).num_row_groups == 3  # one row group per chunk
     before = target.read_bytes()
-    with pytest.raises(RuntimeError), PartitionWriter(tmp_path, "r/1") as writer:
+    with pytest.raises(RuntimeError), PartitionWriter(tmp_path, "r/1", POSE_SCHEMA) as writer:
         writer.write(chunks[0])
         raise RuntimeError("the run breaks after its first chunk")
     assert target.read_bytes() == before

@@ -157,6 +157,25 @@ def test_a_fixed_bad_run_is_computed_next_time(first, campaign, scheduler):
                campaign / MISSING_TRAJECTORY / "scene.yaml")
 
 
+def test_velocity_recomputes_the_runs_asked_with_the_velocity_of_frame_tree(
+        first, campaign, scheduler):
+    out, _ = first
+    runs = ["run_0003", "run_0007"]
+    summary = run_batch([campaign / run / "scene.yaml" for run in runs], out, FRAME,
+                        relative_to=RELATIVE_TO, velocity=True, scheduler=scheduler,
+                        chunk_size=CHUNK)
+    assert sorted(summary.computed) == runs  # other options: not skipped
+    for run in runs:
+        rows = pd.read_parquet(partition_path(out, run)).sort_values("time_s")
+        _check_run(rows, campaign / run / "scene.yaml")
+        velocity = read_scene(campaign / run / "scene.yaml").velocity(FRAME, RELATIVE_TO)
+        assert np.abs(velocity.linear).max() > 1e-3  # the torch does move
+        np.testing.assert_allclose(rows[["vx_m_s", "vy_m_s", "vz_m_s"]].to_numpy(),
+                                   velocity.linear, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(rows[["wx_rad_s", "wy_rad_s", "wz_rad_s"]].to_numpy(),
+                                   velocity.angular, rtol=0, atol=1e-12)
+
+
 def test_a_run_whose_worker_is_killed_is_not_lost(campaign, scheduler, kill_marker,
                                                   tmp_path):
     kill_marker.unlink()  # the next worker to write a chunk kills itself, once

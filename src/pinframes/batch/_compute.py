@@ -3,7 +3,10 @@
 Columns: ``run`` (the run id), ``time_s`` (seconds after the result's reference time, or
 the relative time when there is none), ``timestamp`` (the absolute time, ``timestamp[ns]``,
 null without a reference time), ``x_m y_m z_m`` (the translation of ``frame`` in
-``relative_to``, metres) and ``qx qy qz qw`` (its unit quaternion, ``w >= 0``).
+``relative_to``, metres) and ``qx qy qz qw`` (its unit quaternion, ``w >= 0``). With
+``options.velocity``, also ``vx_m_s vy_m_s vz_m_s`` (the velocity of ``frame``'s origin
+relative to ``relative_to``, m/s) and ``wx_rad_s wy_rad_s wz_rad_s`` (its angular velocity,
+rad/s), both in ``relative_to``'s axes: :meth:`FrameTree.velocity` at the same times.
 """
 
 from __future__ import annotations
@@ -13,11 +16,11 @@ from collections.abc import Iterator
 import numpy as np
 import pyarrow as pa  # type: ignore[import-untyped]
 
-from .. import FrameTree, Pose
+from .. import FrameTree, Pose, Velocity
 from ..errors import FrameNotFoundError, InvalidTimeError
 from ._options import BatchOptions
 
-__all__ = ["POSE_SCHEMA", "pose_chunks"]
+__all__ = ["POSE_SCHEMA", "VELOCITY_SCHEMA", "output_schema", "pose_chunks"]
 
 POSE_SCHEMA = pa.schema([
     ("run", pa.string()),
@@ -26,11 +29,23 @@ POSE_SCHEMA = pa.schema([
     ("x_m", pa.float64()), ("y_m", pa.float64()), ("z_m", pa.float64()),
     ("qx", pa.float64()), ("qy", pa.float64()), ("qz", pa.float64()), ("qw", pa.float64()),
 ])
+VELOCITY_SCHEMA = pa.schema([
+    ("vx_m_s", pa.float64()), ("vy_m_s", pa.float64()), ("vz_m_s", pa.float64()),
+    ("wx_rad_s", pa.float64()), ("wy_rad_s", pa.float64()), ("wz_rad_s", pa.float64()),
+])
+
+
+def output_schema(options: BatchOptions) -> pa.Schema:
+    """The columns of the rows ``options`` asks for: the pose's, then the velocity's."""
+    if not options.velocity:
+        return POSE_SCHEMA
+    return pa.schema([*POSE_SCHEMA, *VELOCITY_SCHEMA])
 
 
 def pose_chunks(tree: FrameTree, run_id: str, options: BatchOptions) -> Iterator[pa.Table]:
     """The poses of ``options.frame`` in ``options.relative_to`` for one run, at most
-    ``options.chunk_size`` rows per table, so memory stays bounded for long runs."""
+    ``options.chunk_size`` rows per table, so memory stays bounded for long runs; with
+    ``options.velocity``, the velocity columns too (see the module docstring)."""
     for name in (options.frame, options.relative_to):
         if name is not None and name not in tree:
             raise FrameNotFoundError("no frame of this name in this run", frame=name)
@@ -40,9 +55,12 @@ def pose_chunks(tree: FrameTree, run_id: str, options: BatchOptions) -> Iterator
         raise AssertionError("unreachable: the root has no pose in its parent")
     values, time_ref = _query_times(tree, options.frame, relative_to, options)
     for start in range(0, values.shape[0], options.chunk_size):
-        pose = tree.pose(options.frame, relative_to=relative_to,
-                         times=values[start:start + options.chunk_size], time_ref=time_ref)
-        yield _table(run_id, pose)
+        chunk = values[start:start + options.chunk_size]
+        pose = tree.pose(options.frame, relative_to=relative_to, times=chunk,
+                         time_ref=time_ref)
+        velocity = tree.velocity(options.frame, relative_to, chunk,
+                                 time_ref=time_ref) if options.velocity else None
+        yield _table(run_id, pose, velocity, output_schema(options))
 
 
 def _query_times(tree: FrameTree, frame: str, relative_to: str, options: BatchOptions
@@ -60,7 +78,8 @@ def _query_times(tree: FrameTree, frame: str, relative_to: str, options: BatchOp
     return (as_timedelta if axis.reference is None else axis.reference + as_timedelta), time_ref
 
 
-def _table(run_id: str, pose: Pose) -> pa.Table:
+def _table(run_id: str, pose: Pose, velocity: Velocity | None, schema: pa.Schema
+           ) -> pa.Table:
     times = pose.times
     assert times is not None  # a query at given times is sampled at those times
     count = times.shape[0]
@@ -73,4 +92,7 @@ def _table(run_id: str, pose: Pose) -> pa.Table:
         *(pa.array(pose.translation[:, axis]) for axis in range(3)),
         *(pa.array(quaternion[:, axis]) for axis in range(4)),
     ]
-    return pa.Table.from_arrays(columns, schema=POSE_SCHEMA)
+    if velocity is not None:
+        columns += [pa.array(rates[:, axis]) for rates in (velocity.linear, velocity.angular)
+                    for axis in range(3)]
+    return pa.Table.from_arrays(columns, schema=schema)

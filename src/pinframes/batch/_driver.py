@@ -58,8 +58,9 @@ class BatchSummary:
 
 def run_batch(runs: Iterable[str | os.PathLike[str]], out: str | os.PathLike[str],
               frame: str, *, relative_to: str | None = None, times: Any = None,
-              step: Any = None, time_ref: Any = None, scheduler: str | None = None,
-              workers: int | None = None, chunk_size: int = DEFAULT_CHUNK_SIZE,
+              step: Any = None, time_ref: Any = None, velocity: bool = False,
+              scheduler: str | None = None, workers: int | None = None,
+              chunk_size: int = DEFAULT_CHUNK_SIZE,
               progress_bar: bool = False, log: TextIO | None = None) -> BatchSummary:
     """The pose of ``frame`` in ``relative_to`` at every sample of every run, on Dask.
 
@@ -77,6 +78,10 @@ def run_batch(runs: Iterable[str | os.PathLike[str]], out: str | os.PathLike[str
         The same ``times`` for every run (relative ones count from ``time_ref``), or each
         run's own samples on the path, resampled every ``step`` (seconds or a duration)
         when given.
+    velocity : bool
+        Also the exact velocity of ``frame`` relative to ``relative_to``, in its axes
+        (:meth:`FrameTree.velocity`): columns ``vx_m_s vy_m_s vz_m_s wx_rad_s wy_rad_s
+        wz_rad_s``.
     scheduler : str, optional
         Address of a running Dask scheduler; default: a local cluster of ``workers``
         processes (default: one per core) on 127.0.0.1.
@@ -87,7 +92,8 @@ def run_batch(runs: Iterable[str | os.PathLike[str]], out: str | os.PathLike[str
 
     Bad runs do not raise: they are in ``summary.bad`` and the manifest with their error.
     """
-    options = BatchOptions.create(frame, relative_to, times, step, time_ref, chunk_size)
+    options = BatchOptions.create(frame, relative_to, times, step, time_ref, chunk_size,
+                                  velocity)
     all_runs = find_runs(runs)
     out_path = Path(out)
     with _exclusive(out_path):

@@ -18,8 +18,8 @@ __all__ = ["DEFAULT_CHUNK_SIZE", "OUTPUT_VERSION", "BatchOptions"]
 DEFAULT_CHUNK_SIZE = 100_000
 """Samples evaluated and written (as one Parquet row group) at a time: about 10 MB."""
 
-OUTPUT_VERSION = 1
-"""The layout of the output rows; a change recomputes every run."""
+OUTPUT_VERSION = 2
+"""The layout of the output rows; a change recomputes every run (2: velocity columns)."""
 
 
 @dataclass(frozen=True)
@@ -39,6 +39,8 @@ class BatchOptions:
         Reference time that relative ``times`` count from.
     chunk_size : int
         Samples per evaluation and per Parquet row group; does not change the results.
+    velocity : bool
+        Also the velocity of ``frame`` relative to ``relative_to``, in its axes.
     """
 
     frame: str
@@ -47,11 +49,13 @@ class BatchOptions:
     step_ns: int | None
     time_ref: np.datetime64 | None
     chunk_size: int
+    velocity: bool = False
 
     @classmethod
     def create(cls, frame: str, relative_to: str | None = None, times: Any = None,
                step: Any = None, time_ref: Any = None,
-               chunk_size: int = DEFAULT_CHUNK_SIZE) -> BatchOptions:
+               chunk_size: int = DEFAULT_CHUNK_SIZE, velocity: bool = False
+               ) -> BatchOptions:
         """Options from user input (times as pinframes reads them: seconds, durations,
         timestamps); a :class:`~pinframes.errors.PinframesError` names the bad field."""
         if not isinstance(frame, str) or (relative_to is not None
@@ -71,10 +75,13 @@ class BatchOptions:
         if isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1:
             raise ArgumentTypeError(f"must be a positive integer, got {chunk_size!r}",
                                     field="chunk_size")
+        if not isinstance(velocity, bool):
+            raise ArgumentTypeError(f"must be True or False, got {velocity!r}",
+                                    field="velocity")
         return cls(frame, relative_to,
                    None if times is None else parse_time_axis(times, field="times"), step_ns,
                    None if time_ref is None else parse_timestamp(time_ref, field="time_ref"),
-                   chunk_size)
+                   chunk_size, velocity)
 
     def digest(self) -> str:
         """SHA-256 (hex) of everything that changes the output rows, pinframes' version too."""
@@ -83,6 +90,6 @@ class BatchOptions:
             "reference": None if self.times.reference is None else str(self.times.reference)}
         described = {"output_version": OUTPUT_VERSION, "pinframes": __version__,
                      "frame": self.frame, "relative_to": self.relative_to, "times": times,
-                     "step_ns": self.step_ns,
+                     "step_ns": self.step_ns, "velocity": self.velocity,
                      "time_ref": None if self.time_ref is None else str(self.time_ref)}
         return hashlib.sha256(json.dumps(described, sort_keys=True).encode()).hexdigest()

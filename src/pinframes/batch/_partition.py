@@ -24,8 +24,6 @@ from urllib.parse import quote
 import pyarrow as pa  # type: ignore[import-untyped]
 import pyarrow.parquet as pq  # type: ignore[import-untyped]
 
-from ._compute import POSE_SCHEMA
-
 __all__ = ["POSES_FOLDER", "PartitionWriter", "clear_staging", "partition_path"]
 
 POSES_FOLDER = "poses"
@@ -48,17 +46,18 @@ def clear_staging(out: Path) -> None:
 
 
 class PartitionWriter:
-    """Writes one run's tables into staging; on a clean exit renames the file into place.
+    """Writes one run's tables (columns ``schema``) into staging; on a clean exit renames
+    the file into place.
 
     Use as a context manager; an exception inside removes the staged file and leaves any
     earlier version of the run's file as it was.
     """
 
-    def __init__(self, out: Path, run_id: str) -> None:
+    def __init__(self, out: Path, run_id: str, schema: pa.Schema) -> None:
         self.target = partition_path(out, run_id)
         self._staged = out / _STAGING_FOLDER / f"{uuid.uuid4().hex}.parquet"
         self._file = open(self._staged, "wb")  # closed in __exit__
-        self._writer = pq.ParquetWriter(self._file, POSE_SCHEMA)
+        self._writer = pq.ParquetWriter(self._file, schema)
         self.rows = 0
 
     def write(self, table: pa.Table) -> None:

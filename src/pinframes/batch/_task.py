@@ -17,7 +17,7 @@ from typing import Any
 
 from .. import FrameTree, read
 from ..errors import PinframesError
-from ._compute import pose_chunks
+from ._compute import output_schema, pose_chunks
 from ._inputs import checksums, run_inputs
 from ._options import BatchOptions
 from ._partition import PartitionWriter, partition_path
@@ -87,7 +87,7 @@ def _unchanged(task: RunTask, files: dict[str, str]) -> bool:
 
 
 def _write_poses(tree: FrameTree, task: RunTask) -> int:
-    with PartitionWriter(task.out, task.run.run_id) as writer:
+    with PartitionWriter(task.out, task.run.run_id, output_schema(task.options)) as writer:
         for table in pose_chunks(tree, task.run.run_id, task.options):
             writer.write(table)
             _kill_once_for_tests()

@@ -17,7 +17,8 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "batch", parents=parents, help="poses of a frame in many runs, on Dask, to Parquet",
         description="Compute the pose of --frame in --relative-to at every sample of every "
         "run and write OUT/poses/<run>.parquet (columns run, time_s, timestamp, x_m, y_m, "
-        "z_m, qx, qy, qz, qw: seconds, metres, unit quaternion x y z w) and "
+        "z_m, qx, qy, qz, qw: seconds, metres, unit quaternion x y z w; with --velocity "
+        "also vx_m_s, vy_m_s, vz_m_s, wx_rad_s, wy_rad_s, wz_rad_s) and "
         "OUT/manifest.jsonl (per run: status, samples, error, input checksums). Runs whose "
         "input files and options did not change since an earlier batch into OUT are "
         "skipped. Needs pinframes[batch].")
@@ -28,6 +29,10 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         help="the frame whose pose is wanted (the tool)")
     parser.add_argument("--relative-to", "-r", metavar="OTHER",
                         help="the frame the pose is expressed in (default: FRAME's parent)")
+    parser.add_argument("--velocity", action="store_true",
+                        help="add the exact velocity of FRAME relative to the other frame, "
+                        "in its axes: columns vx_m_s, vy_m_s, vz_m_s (its origin, m/s) and "
+                        "wx_rad_s, wy_rad_s, wz_rad_s (angular, rad/s) (default: off)")
     group = parser.add_argument_group(
         "times", "Default: every keyframe and joint sample on the path, per run.")
     group.add_argument("--times", nargs="+", metavar="T",
@@ -60,7 +65,7 @@ def run(args: argparse.Namespace) -> int:
     extra = {} if args.chunk_size is None else {"chunk_size": args.chunk_size}
     summary = run_batch(args.runs, args.out, args.frame, relative_to=args.relative_to,
                         times=args.times, step=args.step, time_ref=args.time_ref,
-                        scheduler=args.scheduler, workers=args.workers,
+                        velocity=args.velocity, scheduler=args.scheduler, workers=args.workers,
                         progress_bar=terminal_stderr() is not None, log=sys.stderr, **extra)
     total = len(summary.records)
     print(f"pinframes: {total} runs: {len(summary.computed)} computed, "
