@@ -23,11 +23,9 @@ import tempfile
 import time
 from pathlib import Path
 
-from distributed import LocalCluster
-
 from _machine import describe_machine
 from pinframes.batch import run_batch
-from pinframes.batch._engine import SINGLE_THREAD_ENV
+from pinframes.batch._engine import local_cluster
 from pinframes.batch._options import BatchOptions
 from pinframes.batch._partition import clear_staging
 from pinframes.batch._runs import find_runs
@@ -66,9 +64,7 @@ def on_cluster(scenes: list[Path], out: Path, workers: int
     """(cluster start, batch, unchanged re-run, in-worker compute) seconds with ``workers``
     processes."""
     start = time.perf_counter()
-    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                      host="127.0.0.1", dashboard_address="127.0.0.1:0",
-                      env=SINGLE_THREAD_ENV) as cluster:
+    with local_cluster(workers) as cluster:
         started = time.perf_counter() - start
         address = cluster.scheduler_address
         run_batch(scenes[:workers], out / "warm-up", FRAME, relative_to=RELATIVE_TO,

@@ -15,10 +15,11 @@ import numpy as np
 import pandas as pd
 import pyarrow.parquet as pq
 import pytest
-from distributed import LocalCluster
+from distributed import Client, LocalCluster
 
 from pinframes import read_scene
 from pinframes.batch import partition_path, run_batch
+from pinframes.batch._engine import local_cluster
 from pinframes.batch._task import KILL_ONCE_VARIABLE
 
 FRAME, RELATIVE_TO = "torch_tcp", "workpiece"
@@ -188,3 +189,12 @@ def test_a_run_whose_worker_is_killed_is_not_lost(campaign, scheduler, kill_mark
     for scene in scenes:
         _check_run(pd.read_parquet(partition_path(tmp_path, scene.parent.name)), scene)
     assert os.listdir(tmp_path / ".staging") == []
+
+
+def test_local_workers_run_one_blas_thread_and_glibc_malloc_untuned():
+    """Dask's MALLOC_TRIM_THRESHOLD_ in workers made each run 1.4x slower (bench_batch.py)."""
+    with local_cluster(1) as cluster, Client(cluster) as client:
+        (environment,) = client.run(lambda: {name: os.environ.get(name) for name in
+                                             ("MALLOC_TRIM_THRESHOLD_", "OMP_NUM_THREADS")}
+                                    ).values()
+    assert environment == {"MALLOC_TRIM_THRESHOLD_": None, "OMP_NUM_THREADS": "1"}
