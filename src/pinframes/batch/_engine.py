@@ -58,11 +58,27 @@ def local_cluster(workers: int | None = None) -> Iterator[LocalCluster]:
     core) on 127.0.0.1, BLAS limited to one thread and glibc's malloc left as it is in them;
     the dashboard on a free port."""
     spawn = {"distributed.nanny.pre-spawn-environ": worker_spawn_environment()}
-    with dask.config.set(spawn), LocalCluster(
+    with dask.config.set(spawn), _unset_in_this_process(_GLIBC_MALLOC_TUNING), LocalCluster(
             n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
             host="127.0.0.1", dashboard_address="127.0.0.1:0",
             env=SINGLE_THREAD_ENV) as cluster:
         yield cluster
+
+
+@contextlib.contextmanager
+def _unset_in_this_process(name: str) -> Iterator[None]:
+    """``name`` out of this process's environment while the cluster lives, then back.
+
+    Dask's nanny copies its spawn environment into ``os.environ`` of the process that starts
+    it and never takes it back, so after any earlier cluster in this process the variable is
+    here, and new worker processes would inherit it.
+    """
+    saved = os.environ.pop(name, None)
+    try:
+        yield
+    finally:
+        if saved is not None:
+            os.environ[name] = saved
 
 
 def _remote_dashboard(client: Client) -> str | None:
