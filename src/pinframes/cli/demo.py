@@ -42,7 +42,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         f"pinframes[plot]) and an animated 3-D page of the whole run ({VIEW_FILE}; needs "
         "pinframes[view]).")
     parser.add_argument("--out", metavar="DIR", default=".",
-                        help="folder for the CSV and PNG files (default: the current folder; "
+                        help="folder for the CSV, PNG and HTML files (default: the current folder; "
                         "created if missing, but not its parent folders)")
     parser.add_argument("--scene", metavar="FILE",
                         help="another tree file: scene, frames.yaml, ASDF or URDF (default: "
