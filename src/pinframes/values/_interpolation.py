@@ -12,6 +12,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ._se3 import Transform, to_stacks
+from ._trigonometry import cos_sin
 from .rotations import matrix_rows_from_quaternion, quaternion_from_matrix
 
 __all__ = ["Keyframes", "segment_positions"]
@@ -74,29 +75,27 @@ class Keyframes:
         if self._rows is None:
             self._rows = (np.ascontiguousarray(self.translations.T),
                           *_prepare_slerp(quaternion_from_matrix(self.rotations)))
-        translations, start, end, angle, inverse_sine = self._rows
+        translations, start, end, angle, inverse_sine, cotangent = self._rows
         index, fraction = segment_positions(self.times, times)
         before = 1.0 - fraction
         translation = translations[:, index]
         translation *= before
         translation += fraction * translations[:, index + 1]
-        # SLERP weights sin((1 - f) a) / sin(a) and sin(f a) / sin(a) per sample
-        angle = angle[index]
-        inverse_sine = inverse_sine[index]
-        swept = fraction * angle
-        weight_end = np.sin(swept)
-        weight_end *= inverse_sine
-        weight_start = np.sin(angle - swept)
-        weight_start *= inverse_sine
+        # SLERP weights sin((1 - f) a) / sin(a) = cos(f a) - sin(f a) / tan(a) and
+        # sin(f a) / sin(a) per sample
+        cosine, sine = cos_sin(fraction * angle[index])
+        weight_start = sine * cotangent[index]
+        np.subtract(cosine, weight_start, out=weight_start)
+        sine *= inverse_sine[index]
         quaternion = start[:, index]
         quaternion *= weight_start
-        quaternion += weight_end * end[:, index]
+        quaternion += sine * end[:, index]
         return matrix_rows_from_quaternion(*quaternion), translation
 
 
 def _prepare_slerp(quaternions: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
     """Per segment: start and end quaternion on one hemisphere as rows ``(4, K - 1)``, arc
-    angle, 1 / sin(angle).
+    angle, 1 / sin(angle), 1 / tan(angle).
 
     Arcs below ``_SMALL_ANGLE`` are widened to it: there ``sin(f a) / sin(a)`` equals ``f``
     to machine precision, so SLERP becomes the (exact enough) linear blend of two nearly
@@ -109,4 +108,4 @@ def _prepare_slerp(quaternions: NDArray[np.float64]) -> tuple[NDArray[np.float64
     angle = np.arccos(np.clip(np.abs(dot), 0.0, 1.0))
     angle = np.maximum(angle, _SMALL_ANGLE)
     return (np.ascontiguousarray(start.T), np.ascontiguousarray(end.T), angle,
-            1.0 / np.sin(angle))
+            1.0 / np.sin(angle), 1.0 / np.tan(angle))

@@ -27,9 +27,12 @@ __all__ = [
     "canonical",
     "compose",
     "inverse",
+    "rotated_vector",
+    "rotation_product",
     "samples_first",
     "samples_last",
     "to_stacks",
+    "turned",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -56,8 +59,8 @@ def compose(first: Transform, second: Transform) -> Transform:
         return first
     rotation_1, translation_1 = first
     rotation_2, translation_2 = second
-    return _rotate(rotation_1, rotation_2), _add(_apply(rotation_1, translation_2),
-                                                 translation_1)
+    return (rotation_product(rotation_1, rotation_2),
+            _add(rotated_vector(rotation_1, translation_2), translation_1))
 
 
 def inverse(transform: Transform) -> Transform:
@@ -66,7 +69,7 @@ def inverse(transform: Transform) -> Transform:
         return IDENTITY
     rotation, translation = transform
     rotation_t = np.swapaxes(rotation, 0, 1)
-    return rotation_t, -_apply(rotation_t, translation)
+    return rotation_t, -rotated_vector(rotation_t, translation)
 
 
 def samples_last(transform: Transform) -> Transform:
@@ -96,21 +99,21 @@ def to_stacks(transform: Transform, count: int) -> Transform:
     return rotations, translations
 
 
-def _add(left: FloatArray, right: FloatArray) -> FloatArray:
-    """``left + right`` for static ``(3,)`` or batched ``(3, N)`` vectors."""
-    if left.ndim == right.ndim:
-        return left + right
-    return left[:, None] + right if left.ndim == 1 else left + right[:, None]
-
-
-def _rotate(left: FloatArray, right: FloatArray) -> FloatArray:
-    """Products of rotation matrices, static ``(3, 3)`` or batched ``(3, 3, N)``."""
+def rotation_product(left: FloatArray, right: FloatArray) -> FloatArray:
+    """``left @ right`` for static ``(3, 3)`` or batched ``(3, 3, N)`` rotations (or any
+    3 x 3 matrices, such as a cross-product matrix)."""
     if left.ndim == 2 and right.ndim == 2:
         return left @ right
-    if left.ndim == 2:
-        left = left[:, :, None]
-    if right.ndim == 2:
-        right = right[:, :, None]
+    if right.ndim == 2:  # column k of the product: the columns of left, weighted
+        out = np.empty(left.shape)
+        for k, terms in enumerate(_significant_terms(right.T.tolist())):
+            _weighted_sum([left[:, j] for j, _ in terms], [c for _, c in terms], out[:, k])
+        return out
+    if left.ndim == 2:  # row i of the product: the rows of right, weighted
+        out = np.empty(right.shape)
+        for i, terms in enumerate(_significant_terms(left.tolist())):
+            _weighted_sum([right[j] for j, _ in terms], [c for _, c in terms], out[i])
+        return out
     # out[i, k] = sum_j left[i, j] * right[j, k], each term a (3, 3, N) broadcast product
     out = left[:, 0, None] * right[None, 0]
     out += left[:, 1, None] * right[None, 1]
@@ -118,16 +121,94 @@ def _rotate(left: FloatArray, right: FloatArray) -> FloatArray:
     return out
 
 
-def _apply(rotation: FloatArray, vector: FloatArray) -> FloatArray:
-    """Rotated vectors ``R @ v`` for static or batched ``R`` ``(3, 3[, N])`` and ``v``
-    ``(3[, N])``."""
+def rotated_vector(rotation: FloatArray, vector: FloatArray) -> FloatArray:
+    """``R @ v`` for static or batched ``R`` ``(3, 3[, N])`` and ``v`` ``(3[, N])``."""
     if rotation.ndim == 2 and vector.ndim == 1:
         return rotation @ vector
+    if vector.ndim == 1:  # the columns of R, weighted by the entries of v
+        out = np.empty(rotation.shape[::2])
+        (terms,) = _significant_terms([vector.tolist()])
+        _weighted_sum([rotation[:, j] for j, _ in terms], [c for _, c in terms], out)
+        return out
     if rotation.ndim == 2:
-        rotation = rotation[:, :, None]
-    elif vector.ndim == 1:
-        vector = vector[:, None]
+        out = np.empty(vector.shape)
+        for i, terms in enumerate(_significant_terms(rotation.tolist())):
+            _weighted_sum([vector[j] for j, _ in terms], [c for _, c in terms], out[i])
+        return out
     out = rotation[:, 0] * vector[0]
     out += rotation[:, 1] * vector[1]
     out += rotation[:, 2] * vector[2]
     return out
+
+
+def turned(rotation: FloatArray, axis: int, cosine: FloatArray | float,
+           sine: FloatArray | float) -> FloatArray:
+    """``rotation @ R(theta)``, ``R`` the turn by theta about coordinate axis ``axis``
+    (0, 1, 2 for x, y, z), from ``cos(theta)`` and ``sin(theta)`` (floats or ``(N,)``).
+
+    The turn mixes two columns of ``rotation`` and keeps the third: four products per
+    entry row instead of a full matrix product.
+    """
+    first, second = (axis + 1) % 3, (axis + 2) % 3  # R e_first = c e_first + s e_second
+    if rotation.ndim == 2 and np.ndim(cosine) == 0:
+        turn = np.eye(3)
+        turn[[first, second, first, second], [first, second, second, first]] = (
+            cosine, cosine, -sine, sine)
+        return rotation @ turn
+    column_1, column_2 = rotation[:, first], rotation[:, second]
+    kept = rotation[:, axis]
+    if rotation.ndim == 2:
+        column_1, column_2, kept = column_1[:, None], column_2[:, None], kept[:, None]
+    out = np.empty((3, 3, max(column_1.shape[1], np.size(cosine))))
+    np.multiply(column_1, cosine, out=out[:, first])
+    out[:, first] += column_2 * sine
+    np.multiply(column_2, cosine, out=out[:, second])
+    out[:, second] -= column_1 * sine
+    out[:, axis] = kept
+    return out
+
+
+def _add(left: FloatArray, right: FloatArray) -> FloatArray:
+    """``left + right`` for static ``(3,)`` or batched ``(3, N)`` vectors."""
+    if left.ndim == right.ndim:
+        return left + right
+    return left[:, None] + right if left.ndim == 1 else left + right[:, None]
+
+
+_NEGLIGIBLE = float(np.finfo(float).eps)
+
+
+def _significant_terms(rows: list[list[float]]) -> list[list[tuple[int, float]]]:
+    """Per row of static coefficients, the ``(index, coefficient)`` pairs that count.
+
+    A coefficient at most machine epsilon times the largest of its row is dropped: its term
+    lies within one rounding of the sum. Exact zeros go too, and so does the rounding residue
+    that right angles leave in placements (cos(pi/2) read from a URDF is 2e-16, not 0), so a
+    product with an axis-aligned placement is a few copies instead of 27 products.
+    """
+    significant = []
+    for row in rows:
+        largest = max(abs(c) for c in row)
+        significant.append([(j, c) for j, c in enumerate(row) if abs(c) > _NEGLIGIBLE * largest])
+    return significant
+
+
+def _weighted_sum(arrays: list[FloatArray], weights: list[float], out: FloatArray) -> None:
+    """``out[...] = sum(w * a)``; a weight of +-1 costs a copy or a negation, no product."""
+    if not arrays:
+        out[...] = 0.0
+        return
+    for position, (array, weight) in enumerate(zip(arrays, weights, strict=True)):
+        if position == 0:
+            if weight == 1.0:
+                np.copyto(out, array)
+            elif weight == -1.0:
+                np.negative(array, out=out)
+            else:
+                np.multiply(array, weight, out=out)
+        elif weight == 1.0:
+            out += array
+        elif weight == -1.0:
+            out -= array
+        else:
+            out += array * weight
