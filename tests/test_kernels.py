@@ -34,8 +34,8 @@ def test_matrix_from_quaternion_of_a_batch_with_leading_axes(rng):
 
 @pytest.mark.parametrize("left_batched", [False, True])
 @pytest.mark.parametrize("right_batched", [False, True])
-def test_compose_and_inverse_match_pinocchio_se3(rng, left_batched, right_batched):
-    count = 200  # above any small-batch threshold, so every route runs
+@pytest.mark.parametrize("count", [20, 300])  # below and above the small-batch threshold
+def test_compose_and_inverse_match_pinocchio_se3(rng, left_batched, right_batched, count):
     def random_transform(batched):
         """Samples last: rotations (3, 3, N) and translations (3, N), or one static pose."""
         rotations = np.array([pin_rotation(q) for q in random_quaternions(rng, count)])
@@ -196,11 +196,11 @@ def test_joint_motion_of_one_value_on_a_static_frame_stays_static(rng, kind):
 
 
 @pytest.mark.parametrize("static_side", ["left", "right"])
-def test_products_with_axis_aligned_static_factors_match_dense_ones(rng, static_side):
+@pytest.mark.parametrize("count", [20, 300])
+def test_products_with_axis_aligned_static_factors_match_dense_ones(rng, static_side, count):
     """Static factors with exact zeros, +-1 and the 2e-16 residue of cos(pi/2) (as read
     from a URDF's right angles): the terms dropped lie within rounding of the dense
     products, computed here with einsum."""
-    count = 300
     batched = np.moveaxis(np.array([pin_rotation(q) for q in random_quaternions(rng, count)]),
                           0, -1)
     residue = 2.220446049250313e-16

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import pinocchio as pin
@@ -123,7 +124,7 @@ class Joint:
             slide = rotated_vector(rotation, np.asarray(self.axis))
             return rotation, _batched_sum(translation, slide, values)
         cosine, sine = cos_sin(values)
-        aligned = self._signed_axis()
+        aligned = self._signed_axis
         if aligned is not None:
             index, sign = aligned
             return turned(rotation, index, cosine, sign * sine), translation
@@ -162,6 +163,7 @@ class Joint:
             return np.stack([np.cos(values), np.sin(values)], axis=1)
         return values[:, None]
 
+    @cached_property
     def _signed_axis(self) -> tuple[int, float] | None:
         """``(index, sign)`` when the axis is exactly +-x, +-y or +-z (index 0, 1, 2), else
         None. Exactly: URDF axes such as ``0 -1 -4.37114e-08`` (romeo) turn 4e-8 off y."""
@@ -172,7 +174,7 @@ class Joint:
 
     def _aligned_axis(self) -> str | None:
         """``"X"``, ``"Y"`` or ``"Z"`` when the axis is that unit axis, else None."""
-        signed = self._signed_axis()
+        signed = self._signed_axis
         return "XYZ"[signed[0]] if signed is not None and signed[1] > 0 else None
 
 
