@@ -83,13 +83,13 @@ class Keyframes:
         translation += fraction * translations[:, index + 1]
         # SLERP weights sin((1 - f) a) / sin(a) = cos(f a) - sin(f a) / tan(a) and
         # sin(f a) / sin(a) per sample
-        cosine, sine = cos_sin(fraction * angle[index])
-        weight_start = sine * cotangent[index]
+        cosine, weight_end = cos_sin(fraction * angle[index])
+        weight_start = weight_end * cotangent[index]
         np.subtract(cosine, weight_start, out=weight_start)
-        sine *= inverse_sine[index]
+        weight_end *= inverse_sine[index]
         quaternion = start[:, index]
         quaternion *= weight_start
-        quaternion += sine * end[:, index]
+        quaternion += weight_end * end[:, index]
         return matrix_rows_from_quaternion(*quaternion), translation
 
 
