@@ -72,6 +72,21 @@ def forged_npz(declared_bytes: int) -> bytes:
     return bytes(data)
 
 
+def entity_bomb(element: bool) -> str:
+    """A URDF whose DTD nests entity definitions tenfold (text) or eightfold (elements): the
+    link's name expands to 30 GB of text, or its body to 8**7 (two million) elements."""
+    if element:
+        base, count, levels = "<a/>" * 8, 8, 7
+    else:
+        base, count, levels = "lol" * 10, 10, 10
+    entities = [f'<!ENTITY e0 "{base}">'] + [
+        f'<!ENTITY e{level} "{f"&e{level - 1};" * count}">' for level in range(1, levels)]
+    body = f"<link name='l'>&e{levels - 1};</link>" if element else (
+        f"<link name='&e{levels - 1};'/>")
+    return (f"<?xml version='1.0'?><!DOCTYPE robot [{''.join(entities)}]>"
+            f"<robot name='r'>{body}</robot>")
+
+
 RESOURCE_CASES = [
     ResourceCase("alias-bomb", "frames.yaml", (
         "version: 1.0\n" + alias_bomb()
@@ -102,4 +117,7 @@ RESOURCE_CASES = [
         "FileFormatError", "contains itself"),
     ResourceCase("decompression-bomb", "npz", forged_npz(3 * 1024**3), "FileFormatError",
                  "max_decompressed_bytes"),
+    *(ResourceCase(f"{kind}-entity-bomb", reader, entity_bomb(kind == "element").encode(),
+                   "FileFormatError", "DOCTYPE")
+      for kind in ("text", "element") for reader in ("urdf", "attach_urdf")),
 ]

@@ -1,7 +1,8 @@
 """Bounds on the work a file may ask of a reader, so that a tiny hostile file fails fast.
 
 A 600-byte YAML alias bomb expands to billions of nodes, an 848-byte ASDF time grid with a
-1 ns step asks for 500 million samples, a 6 MB NPZ inflates to 6 GB. Readers check these
+1 ns step asks for 500 million samples, a 6 MB NPZ inflates to 6 GB, a 400-byte URDF of
+nested XML entities describes millions of elements. Readers check these
 bounds *before* they expand, allocate or decompress, and refuse with a
 :class:`~pinframes.errors.FileFormatError` naming the file, the limit and how to raise it.
 No real file comes near the defaults (the largest shipped or sample file uses well under
@@ -24,7 +25,8 @@ from typing import Any, TypeVar, cast
 
 from ..errors import ArgumentTypeError, FileFormatError
 
-__all__ = ["Limits", "current_limits", "exceeded", "reader_with_limits", "using_limits"]
+__all__ = ["Limits", "checked_limits", "current_limits", "exceeded", "reader_with_limits",
+           "using_limits"]
 
 _Reader = TypeVar("_Reader", bound=Callable[..., Any])
 
@@ -45,14 +47,19 @@ class Limits:
         Bytes of all arrays of one NPZ file, or of one array of an ASDF file, once
         decompressed.
     max_depth : int
-        Nesting depth of a YAML document (lists and mappings inside each other) and path
-        segments of a frames.yaml key (``a/b/c`` has 3).
+        Nesting depth of a YAML document (lists and mappings inside each other), path
+        segments of a frames.yaml key (``a/b/c`` has 3), and nesting depth of the XML
+        elements of a URDF (``<robot><link><visual>`` has 3).
+    max_xml_elements : int
+        XML elements of a URDF file (every start tag counts one; the largest robot of
+        example-robot-data has 3,851).
     """
 
     max_samples: int = 2_000_000
     max_yaml_nodes: int = 200_000
     max_decompressed_bytes: int = 1024**3
     max_depth: int = 1_000
+    max_xml_elements: int = 1_000_000
 
     def __post_init__(self) -> None:
         for item in fields(self):
@@ -75,17 +82,23 @@ def current_limits() -> Limits:
 @contextlib.contextmanager
 def using_limits(limits: Limits | None) -> Iterator[Limits]:
     """Within this block :func:`current_limits` is ``limits`` (None: keep the current ones)."""
-    if limits is None:
-        yield current_limits()
-        return
-    if not isinstance(limits, Limits):
-        raise ArgumentTypeError(f"expected a pinframes.Limits, got {type(limits).__name__}",
-                                field="limits")
+    limits = checked_limits(limits)
     token = _CURRENT.set(limits)
     try:
         yield limits
     finally:
         _CURRENT.reset(token)
+
+
+def checked_limits(limits: Limits | None) -> Limits:
+    """``limits``, or :func:`current_limits` for None; anything else is an
+    :class:`~pinframes.errors.ArgumentTypeError`."""
+    if limits is None:
+        return current_limits()
+    if not isinstance(limits, Limits):
+        raise ArgumentTypeError(f"expected a pinframes.Limits, got {type(limits).__name__}",
+                                field="limits")
+    return limits
 
 
 def reader_with_limits(reader: _Reader) -> _Reader:

@@ -205,7 +205,7 @@ class FrameTree:
 
     def attach_urdf(
         self, urdf: str | os.PathLike[str], parent: str, pose: Pose | None = None,
-        prefix: str = "", *, strict: bool = False,
+        prefix: str = "", *, strict: bool = False, limits: Any = None,
     ) -> list[str]:
         """Mount a robot: its root link at ``parent`` (at ``pose``), every link a frame.
 
@@ -222,6 +222,9 @@ class FrameTree:
         strict : bool
             Refuse a mimic joint whose primary joint is not in the file; by default it
             stays an independent joint, with one ``BrokenMimicWarning`` per such joint.
+        limits : pinframes.Limits or None
+            Bounds on the XML elements and their nesting (None: those of the read in
+            progress, e.g. a scene's, else the defaults).
 
         Returns
         -------
@@ -232,7 +235,8 @@ class FrameTree:
             floating and planar joints become frames at their origin. A failed import
             leaves the tree unchanged.
         """
-        return robot_mounter("urdf")(self, urdf, parent, pose, prefix, strict=strict)
+        return robot_mounter("urdf")(self, urdf, parent, pose, prefix, strict=strict,
+                                     limits=limits)
 
     def graft(self, other: FrameTree, at: str | None = None, prefix: str = "",
               name: str | None = None, record: bool = True) -> Subsystem | None:

@@ -198,16 +198,18 @@ def mimic_chain(joint: Joint, joints: Mapping[str, Joint]) -> list[Joint]:
     not in ``joints`` (by name) or the chain closes on itself.
     """
     chain = [joint]
+    seen = {joint.name}  # constant-time cycle test: a long chain costs its length, not its square
     while chain[-1].mimic is not None:
         target = chain[-1].mimic.joint
         if target not in joints:
             raise JointError(f"mimics joint {target!r}, which is not in the tree",
                              frame=chain[-1].name, field="mimic")
-        if any(link.name == target for link in chain):
+        if target in seen:
             names = [link.name for link in chain]
             raise JointError(f"mimic joints form a cycle: {' -> '.join([*names, target])}",
                              frame=chain[-1].name, field="mimic")
         chain.append(joints[target])
+        seen.add(target)
     return chain
 
 

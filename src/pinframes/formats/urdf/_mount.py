@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Any
 from ...errors import ArgumentTypeError, FrameExistsError, FrameNotFoundError, near_misses
 from ...values.joint import Joint, Mimic
 from ...values.pose import Pose
+from ..limits import Limits
 from ._parse import RobotDescription, parse_urdf
 
 if TYPE_CHECKING:
@@ -23,10 +24,11 @@ _DRIVEN_KINDS = ("revolute", "continuous", "prismatic")
 
 def mount_urdf(
     tree: FrameTree, urdf: str | os.PathLike[str], parent: str, pose: Pose | None, prefix: str,
-    *, strict: bool = False,
+    *, strict: bool = False, limits: Limits | None = None,
 ) -> list[str]:
     """Parse ``urdf`` (a path or the XML text) and mount it: ``FrameTree.attach_urdf``."""
-    return mount_robot(tree, parse_urdf(urdf, strict=strict), parent, pose, prefix)
+    return mount_robot(tree, parse_urdf(urdf, strict=strict, limits=limits), parent, pose,
+                       prefix)
 
 
 def mount_robot(

@@ -13,6 +13,8 @@ import numpy as np
 from ...errors import BrokenMimicWarning, FileFormatError
 from ...values.pose import Pose
 from .._reading import read_text
+from ..limits import Limits, current_limits, exceeded, reader_with_limits
+from ._bounded_xml import parse_bounded_xml
 
 __all__ = ["URDF_JOINT_TYPES", "JointDescription", "RobotDescription", "parse_urdf"]
 
@@ -56,7 +58,9 @@ class RobotDescription:
     extra_xml: tuple[str, ...] = field(default=())
 
 
-def parse_urdf(urdf: str | os.PathLike[str], *, strict: bool = False) -> RobotDescription:
+@reader_with_limits
+def parse_urdf(urdf: str | os.PathLike[str], *, strict: bool = False,
+               limits: Limits | None = None) -> RobotDescription:
     """Parse a URDF file path or XML string and check that it describes one tree of links.
 
     Raises :class:`~pinframes.errors.FileFormatError` naming the file (or ``<urdf string>``),
@@ -65,12 +69,11 @@ def parse_urdf(urdf: str | os.PathLike[str], *, strict: bool = False) -> RobotDe
     joint the file does not have gives one :class:`BrokenMimicWarning` per such joint, which
     then stays an independent joint (Pinocchio and urdfdom load such files too); with
     ``strict`` it is an error. Meshes are never opened; ``package://`` URIs stay as written.
+    ``limits`` (:class:`pinframes.Limits`) bounds the XML elements and their nesting; a
+    ``<!DOCTYPE>`` (and with it any entity definition) is refused.
     """
     text, source = _read_source(urdf)
-    try:
-        root = ET.fromstring(text)
-    except ET.ParseError as exc:
-        raise FileFormatError(f"malformed XML: {exc}", file=source) from None
+    root = parse_bounded_xml(text, source)
     if root.tag != "robot":
         raise FileFormatError(f"the root element is <{root.tag}>, expected <robot>",
                               file=source, field="robot")
@@ -215,7 +218,10 @@ def _without_broken_mimics(joints: list[JointDescription], source: str, strict: 
 def _check_mimics(joints: list[JointDescription], source: str) -> None:
     """Mimic targets exist, are driven joints, and no chain of mimics closes on itself.
 
-    A mimic of a mimic is allowed (its value follows the chain to a driven joint).
+    A mimic of a mimic is allowed (its value follows the chain to a driven joint), up to
+    ``max_depth`` joints in a chain (each query follows the whole chain of every joint).
+    Each joint is walked once: a walk stops at a joint whose chain is known, so a file of n
+    joints each mimicking the one before costs n steps, not n**2.
     """
     by_name = {joint.name: joint for joint in joints}
     for joint in joints:
@@ -230,16 +236,26 @@ def _check_mimics(joints: list[JointDescription], source: str) -> None:
                 f"mimics {target.name!r}, a {target.type} joint; only "
                 f"{', '.join(_DRIVEN_TYPES)} joints have a value to follow", file=source,
                 frame=joint.name, field="mimic.joint")
-        chain = [joint.name]
-        while target.mimic is not None and target.type in _DRIVEN_TYPES:
-            if target.name in chain:
-                cycle = [*chain[chain.index(target.name):], target.name]
+    length: dict[str, int] = {}  # joints in the chain from a joint to one that mimics none
+    for joint in joints:
+        chain: dict[str, None] = {}  # in order, with constant-time membership
+        current = joint
+        while (current.name not in length and current.mimic is not None
+               and current.type in _DRIVEN_TYPES):
+            if current.name in chain:
+                names = list(chain)
+                cycle = [*names[names.index(current.name):], current.name]
                 raise FileFormatError(f"mimic cycle: {' -> '.join(cycle)}", file=source,
-                                      frame=target.name, field="mimic.joint")
-            chain.append(target.name)
-            target = by_name.get(target.mimic[0])
-            if target is None:
-                break  # reported when the loop reaches that joint
+                                      frame=current.name, field="mimic.joint")
+            chain[current.name] = None
+            current = by_name[current.mimic[0]]  # checked above
+        rest = length.get(current.name, 1)
+        for step, name in enumerate(reversed(chain), start=1):
+            length[name] = rest + step
+        if length.get(joint.name, 1) > current_limits().max_depth:
+            raise exceeded("max_depth", f"a chain of {length[joint.name]:,} joints, each "
+                           "mimicking the next", frame=joint.name,
+                           field="mimic.joint").located(file=source)
 
 
 def _required(element: ET.Element, attribute: str, source: str, what: str) -> str:

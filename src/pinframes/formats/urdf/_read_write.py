@@ -17,19 +17,23 @@ from ...values.timeconv import format_timestamp_iso
 from .._atomic import atomic_write
 from .._snapshot import moving_parts, one_instant
 from .._writable import check_writable_tree
+from ..limits import Limits
 from ._mount import URDF_METADATA_KEY, mount_robot
 from ._parse import parse_urdf
 
 __all__ = ["joint_state_path", "read_urdf", "write_urdf"]
 
 
-def read_urdf(path: str | os.PathLike[str], *, strict: bool = False) -> FrameTree:
+def read_urdf(path: str | os.PathLike[str], *, strict: bool = False,
+              limits: Limits | None = None) -> FrameTree:
     """A robot alone: the tree's root is the robot's root link, named after the robot.
 
     ``strict`` refuses a mimic of a joint the file does not have (by default such a joint
-    stays independent, with a :class:`~pinframes.urdf.BrokenMimicWarning`).
+    stays independent, with a :class:`~pinframes.urdf.BrokenMimicWarning`). ``limits``
+    (:class:`pinframes.Limits`; None: the defaults) bounds the XML elements
+    (``max_xml_elements``) and their nesting (``max_depth``); a ``<!DOCTYPE>`` is refused.
     """
-    robot = parse_urdf(path, strict=strict)
+    robot = parse_urdf(path, strict=strict, limits=limits)
     tree = FrameTree(root=robot.root_link, name=robot.name)
     mount_robot(tree, robot, None, None, "")
     return tree
