@@ -8,7 +8,7 @@ import os
 import sys
 import threading
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any, TextIO
 
@@ -16,6 +16,7 @@ from distributed import as_completed, progress
 from distributed.client import Future
 
 from ..errors import WriteError
+from ..formats.limits import Limits, checked_limits
 from ._engine import dask_client
 from ._manifest import Manifest
 from ._options import DEFAULT_CHUNK_SIZE, BatchOptions
@@ -60,7 +61,7 @@ def run_batch(runs: Iterable[str | os.PathLike[str]], out: str | os.PathLike[str
               frame: str, *, relative_to: str | None = None, times: Any = None,
               step: Any = None, time_ref: Any = None, velocity: bool = False,
               scheduler: str | None = None, workers: int | None = None,
-              chunk_size: int = DEFAULT_CHUNK_SIZE,
+              chunk_size: int = DEFAULT_CHUNK_SIZE, limits: Limits | None = None,
               progress_bar: bool = False, log: TextIO | None = None) -> BatchSummary:
     """The pose of ``frame`` in ``relative_to`` at every sample of every run, on Dask.
 
@@ -87,6 +88,12 @@ def run_batch(runs: Iterable[str | os.PathLike[str]], out: str | os.PathLike[str
         processes (default: one per core) on 127.0.0.1.
     chunk_size : int
         Samples per evaluation and Parquet row group (bounds a worker's memory).
+    limits : pinframes.Limits or None
+        Bounds on what each run's files may cost the worker that reads them (None: those
+        in effect here, e.g. the ``pinframes`` command's ``--max-...`` options, else the
+        defaults). A run refused under them is an ``error`` naming the limit; changed
+        limits recompute a run only when they could change its outcome (see
+        :mod:`pinframes.batch._task`).
     progress_bar, log
         Show Dask's progress bar (on standard error); where to say where the dashboard is.
 
@@ -94,14 +101,15 @@ def run_batch(runs: Iterable[str | os.PathLike[str]], out: str | os.PathLike[str
     """
     options = BatchOptions.create(frame, relative_to, times, step, time_ref, chunk_size,
                                   velocity)
+    limits = checked_limits(limits)
     all_runs = find_runs(runs)
     out_path = Path(out)
     with _exclusive(out_path):
         clear_staging(out_path)
         manifest = Manifest(out_path)
         digest = options.digest()
-        tasks = [RunTask(run, out_path, options, digest, manifest.records.get(run.run_id))
-                 for run in all_runs]
+        tasks = [RunTask(run, out_path, options, digest, manifest.records.get(run.run_id),
+                         limits) for run in all_runs]
         summary = BatchSummary(out_path / POSES_FOLDER, manifest.path)
         try:
             with dask_client(scheduler, workers, log) as client:
@@ -127,7 +135,8 @@ def _result(future: Future, task: RunTask) -> RunResult:
     except Exception as exc:  # KilledWorker after Dask's retries, a lost connection
         record = {"run": task.run.run_id, "file": os.fspath(task.run.path),
                   "status": "failed", "samples": None, "checksums": None,
-                  "error": f"{type(exc).__name__}: {exc}", "options": task.options_digest}
+                  "error": f"{type(exc).__name__}: {exc}", "options": task.options_digest,
+                  "limits": asdict(task.limits)}
         return RunResult(record, computed=True)
     assert isinstance(result, RunResult)
     return result

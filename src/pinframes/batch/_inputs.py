@@ -12,8 +12,11 @@ import hashlib
 import os
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import yaml
+
+from ..formats.limits import current_limits
 
 __all__ = ["MISSING", "RunInputs", "checksums", "run_inputs"]
 
@@ -22,6 +25,8 @@ _SCENE_KEY = "pinframes_scene"
 _BLOCK_BYTES = 1 << 20
 # libyaml when PyYAML has it: a scene of a recorded run can hold thousands of keyframes
 _LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+_OPENING = (yaml.SequenceStartEvent, yaml.MappingStartEvent)
+_CLOSING = (yaml.SequenceEndEvent, yaml.MappingEndEvent)
 
 
 @dataclass(frozen=True)
@@ -34,28 +39,63 @@ class RunInputs:
 
 
 def run_inputs(path: Path) -> RunInputs:
-    """The inputs of the run whose file is ``path``."""
-    path = path.resolve()
-    if path.suffix.lower() not in (".yaml", ".yml"):
-        return RunInputs([path], is_scene=False)
-    try:
-        content = yaml.load(path.read_bytes(), Loader=_LOADER)  # a safe loader
-    except (OSError, yaml.YAMLError):
-        return RunInputs([path], is_scene=False)  # reading the run will fail and say why
+    """The inputs of the run whose file is ``path``, each once (layers that name each other
+    in a circle are left for the reader to refuse)."""
+    root = path.resolve()
+    files: dict[Path, None] = {}
+    is_scene = False
+    pending = [(root, True)]  # a file, and whether to look into it for the files it names
+    while pending:
+        file, look_inside = pending.pop()
+        if file in files:
+            continue
+        files[file] = None
+        if look_inside:
+            scene, named = _named_files(file)
+            is_scene = is_scene or (file == root and scene)
+            pending.extend(reversed(named))
+    return RunInputs(list(files), is_scene)
+
+
+def _named_files(file: Path) -> tuple[bool, list[tuple[Path, bool]]]:
+    """Whether ``file`` is a scene, and the files it names (with whether they are layers,
+    which may name more)."""
+    if file.suffix.lower() not in (".yaml", ".yml"):
+        return False, []
+    content = _load(file)
     if not isinstance(content, dict):
-        return RunInputs([path], is_scene=False)
+        return False, []  # reading the run will fail and say why
     if _SCENE_KEY not in content:
-        return RunInputs([path, path.parent / "tile_maps.yaml"], is_scene=False)
-    files = [path]
+        return False, [(file.parent / "tile_maps.yaml", False)]
+    named = []
     for section, keys in (("layers", ("file",)), ("robots", ("urdf", "trajectory"))):
         entries = content.get(section)
         for entry in entries if isinstance(entries, list) else []:
             for key in keys:
                 value = entry.get(key) if isinstance(entry, dict) else None
                 if isinstance(value, str):
-                    files.extend(run_inputs(path.parent / value).files if key == "file"
-                                 else [(path.parent / value).resolve()])
-    return RunInputs(list(dict.fromkeys(files)), is_scene=True)
+                    named.append(((file.parent / value).resolve(), key == "file"))
+    return True, named
+
+
+def _load(file: Path) -> Any:
+    """The YAML document in ``file``, or None if it cannot be read, is not YAML, or nests
+    deeper than the limit ``max_depth``: libyaml's composer recurses in C, and a few hundred
+    kilobytes of ``[`` would crash the worker. The depth is measured on the parser's events
+    first, which come one at a time; aliases cost nothing here (they share their node)."""
+    try:
+        raw = file.read_bytes()
+        depth, deepest = 0, current_limits().max_depth
+        for event in yaml.parse(raw, Loader=_LOADER):
+            if isinstance(event, _OPENING):
+                depth += 1
+                if depth > deepest:
+                    return None
+            elif isinstance(event, _CLOSING):
+                depth -= 1
+        return yaml.load(raw, Loader=_LOADER)  # a safe loader
+    except (OSError, yaml.YAMLError):
+        return None
 
 
 def checksums(files: list[Path]) -> dict[str, str]:

@@ -3,7 +3,8 @@
 Each record: ``run`` (id), ``file``, ``status`` (``ok``, ``error``: the input is bad,
 ``failed``: something else went wrong), ``samples`` (rows written), ``error`` (the message),
 ``checksums`` (SHA-256 of every input file, by path), ``options`` (digest of the query
-options), ``seconds`` (compute time on the worker), ``finished`` (UTC).
+options), ``limits`` (the reader limits the run was read under, by name), ``seconds``
+(compute time on the worker), ``finished`` (UTC).
 
 JSON Lines rather than Parquet, because the driver appends each record as soon as its run
 finishes: an interrupted batch keeps every finished run's record without rewriting the

@@ -2,8 +2,17 @@
 
 Runs in a Dask worker process; takes a :class:`RunTask` and returns a :class:`RunResult`
 whose record becomes the run's line in the manifest. Nothing here raises for a bad run:
-a pinframes error is the record's ``error`` (status ``"error"``, kept until the input or
-the options change), anything else status ``"failed"`` (tried again by the next batch).
+a pinframes error is the record's ``error`` (status ``"error"``, kept until the input,
+the options or the limits change), anything else status ``"failed"`` (tried again by the
+next batch).
+
+The task's :class:`~pinframes.Limits` bound every file the worker reads for the run, and
+go into the record (``limits``). They decide nothing about the rows a run has, only whether
+its files are read at all, and a file within some limits is within any higher ones; so a
+run that was read is read again only when a limit is now lower than it was then (the
+stricter limits are checked), and a refused run is tried again when any limit changed
+(say, raised for it). Records written before limits were recorded were read with the
+defaults.
 """
 
 from __future__ import annotations
@@ -11,12 +20,13 @@ from __future__ import annotations
 import datetime
 import os
 import time
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
-from .. import FrameTree, read
+from .. import FrameTree, Limits, read
 from ..errors import PinframesError
+from ..formats.limits import using_limits
 from ._compute import output_schema, pose_chunks
 from ._inputs import checksums, run_inputs
 from ._options import BatchOptions
@@ -42,6 +52,7 @@ class RunTask:
     options: BatchOptions
     options_digest: str
     previous: dict[str, Any] | None
+    limits: Limits
 
 
 @dataclass(frozen=True)
@@ -55,16 +66,19 @@ class RunResult:
 def process_run(task: RunTask) -> RunResult:
     """Bring one run's output up to date (see the module docstring)."""
     started = time.perf_counter()
-    inputs = run_inputs(task.run.path)
+    with using_limits(task.limits):
+        inputs = run_inputs(task.run.path)
     files = checksums(inputs.files)
     if _unchanged(task, files):
         assert task.previous is not None
         return RunResult(task.previous, computed=False)
     record: dict[str, Any] = {
         "run": task.run.run_id, "file": os.fspath(task.run.path), "status": "ok",
-        "samples": None, "error": None, "checksums": files, "options": task.options_digest}
+        "samples": None, "error": None, "checksums": files, "options": task.options_digest,
+        "limits": asdict(task.limits)}
     try:
-        tree = read(task.run.path, format="scene" if inputs.is_scene else None)
+        tree = read(task.run.path, format="scene" if inputs.is_scene else None,
+                    limits=task.limits)
         record["samples"] = _write_poses(tree, task)
     except PinframesError as exc:
         record.update(status="error", error=_located(exc, task.run.path))
@@ -82,8 +96,19 @@ def _unchanged(task: RunTask, files: dict[str, str]) -> bool:
     return (previous is not None and previous.get("status") in _KEPT_STATUSES
             and previous.get("options") == task.options_digest
             and previous.get("checksums") == files
+            and _limits_still_hold(previous, task.limits)
             and (previous["status"] != "ok"
                  or partition_path(task.out, task.run.run_id).is_file()))
+
+
+def _limits_still_hold(previous: dict[str, Any], limits: Limits) -> bool:
+    """Whether ``limits`` give the outcome ``previous`` had (see the module docstring)."""
+    before = asdict(Limits())
+    before.update(previous.get("limits") or {})
+    now = asdict(limits)
+    if previous["status"] == "ok":
+        return all(now[name] >= before.get(name, now[name]) for name in now)
+    return before == now
 
 
 def _write_poses(tree: FrameTree, task: RunTask) -> int:

@@ -6,6 +6,7 @@ import argparse
 import sys
 
 from ..errors import PinframesError, UnsupportedFeatureError
+from ..formats.limits import current_limits
 from ._evaluate import terminal_stderr
 
 __all__ = ["add_parser", "run"]
@@ -21,7 +22,9 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "also vx_m_s, vy_m_s, vz_m_s, wx_rad_s, wy_rad_s, wz_rad_s) and "
         "OUT/manifest.jsonl (per run: status, samples, error, input checksums). Runs whose "
         "input files and options did not change since an earlier batch into OUT are "
-        "skipped. Needs pinframes[batch].")
+        "skipped. The workers read every run under the --max-... limits given before or "
+        "after 'batch'; a run read under higher limits is skipped, one refused under other "
+        "limits is tried again. Needs pinframes[batch].")
     parser.add_argument("runs", nargs="+", metavar="RUNS",
                         help="run files (scene, ASDF, ...), glob patterns (quote them), or "
                         "runs lists (.csv with header 'run,file')")
@@ -66,6 +69,7 @@ def run(args: argparse.Namespace) -> int:
     summary = run_batch(args.runs, args.out, args.frame, relative_to=args.relative_to,
                         times=args.times, step=args.step, time_ref=args.time_ref,
                         velocity=args.velocity, scheduler=args.scheduler, workers=args.workers,
+                        limits=current_limits(),  # --max-... (main() sets them), to the workers
                         progress_bar=terminal_stderr() is not None, log=sys.stderr, **extra)
     total = len(summary.records)
     print(f"pinframes: {total} runs: {len(summary.computed)} computed, "
