@@ -42,18 +42,16 @@ def run_inputs(path: Path) -> RunInputs:
     """The inputs of the run whose file is ``path``, each once (layers that name each other
     in a circle are left for the reader to refuse)."""
     root = path.resolve()
-    files: dict[Path, None] = {}
-    is_scene = False
-    pending = [(root, True)]  # a file, and whether to look into it for the files it names
+    is_scene, pending = _named_files(root)
+    files = {root: None}
+    pending.reverse()  # (a file, whether to look into it for the files it names), last first
     while pending:
         file, look_inside = pending.pop()
         if file in files:
             continue
         files[file] = None
         if look_inside:
-            scene, named = _named_files(file)
-            is_scene = is_scene or (file == root and scene)
-            pending.extend(reversed(named))
+            pending.extend(reversed(_named_files(file)[1]))
     return RunInputs(list(files), is_scene)
 
 
