@@ -17,7 +17,7 @@ from ..errors import (
     JointLimitWarning,
     near_misses,
 )
-from ._interpolation import segment_positions
+from ._interpolation import segment_position, segment_positions
 from ._readonly import readonly_copy
 from .joint import Joint
 from .timeconv import parse_time_axis
@@ -63,6 +63,16 @@ class JointTrajectory:
         if self.values.shape[0] == 1:
             return np.full(times.shape, self.values[0])
         return (1.0 - fraction) * self.values[index] + fraction * self.values[index + 1]
+
+    def value_at(self, time: int, position: tuple[int, float] | None = None) -> float:
+        """The value at one ``time`` (ns on this trajectory's own basis), as :meth:`sample`
+        gives it, in Python floats; ``position`` may pass ``segment_position(self.times,
+        time)`` when it is known."""
+        index, fraction = position or segment_position(self.times, time)
+        if self.values.shape[0] == 1:
+            return float(self.values[0])
+        first, second = self.values[index:index + 2].tolist()
+        return (1.0 - fraction) * first + fraction * second
 
 
 JointTrack = JointTrajectory
