@@ -35,11 +35,12 @@ from ._model import CompiledModel
 __all__ = ["FEW_TIMES", "OneTimePlan", "one_time_plan", "takes_few_times"]
 
 FEW_TIMES = 8
-"""Queries with at most this many evaluation times take this path, the others the batched
-kernels. Measured (benchmarks/bench_queries.py's case, a free-flyer between two static
-frames, one thread, shared 2-core machine): the batched path costs about 60 us plus 0.1 us
-per time, this one about 10 us per time (the Panda: 25 us per time); they cross near 5-6
-times on the free-flyer and at 2-3 on the Panda."""
+"""Queries with at most this many evaluation times take this path, longer ones the batched
+kernels. Measured with benchmarks/bench_few_times.py (shared 2-core machine, both thread
+settings alike): this path costs about 7-10 us per time on a frame moving between two static
+frames and 20-25 us per time on the Panda on a moving mount, the batched kernels about 90 us
+and 320 us whatever the count up to 32; one-time / batched was 0.93 at 8 times and 1.2 at 12
+on the light path, 0.48 at 8 and 1.09 at 24 on the Panda."""
 
 
 def takes_few_times(timeline: QueryTimeline) -> bool:
