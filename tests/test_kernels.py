@@ -2,12 +2,15 @@
 exp3/log3 and closed forms written here, on random inputs and the hard cases (near-identical
 quaternions, antipodal keyframes, half turns)."""
 
+import math
+
 import numpy as np
 import pinocchio as pin
 import pytest
 
 from pinframes.values._interpolation import Keyframes
 from pinframes.values._se3 import IDENTITY, compose, inverse
+from pinframes.values._trigonometry import cos_sin
 from pinframes.values.joint import Joint
 from pinframes.values.rotations import matrix_from_quaternion
 
@@ -31,8 +34,8 @@ def test_matrix_from_quaternion_of_a_batch_with_leading_axes(rng):
 
 @pytest.mark.parametrize("left_batched", [False, True])
 @pytest.mark.parametrize("right_batched", [False, True])
-def test_compose_and_inverse_match_pinocchio_se3(rng, left_batched, right_batched):
-    count = 200  # above any small-batch threshold, so every route runs
+@pytest.mark.parametrize("count", [20, 300])  # below and above the small-batch threshold
+def test_compose_and_inverse_match_pinocchio_se3(rng, left_batched, right_batched, count):
     def random_transform(batched):
         """Samples last: rotations (3, 3, N) and translations (3, N), or one static pose."""
         rotations = np.array([pin_rotation(q) for q in random_quaternions(rng, count)])
@@ -147,13 +150,21 @@ def test_slerp_through_a_half_turn_turns_about_the_keyframes_axis(rng, axis):
 
 
 @pytest.mark.parametrize("kind", ["revolute", "continuous", "prismatic"])
-@pytest.mark.parametrize("axis", [(0.0, 0.0, 1.0), (0.3, -0.5, 0.8)])
-def test_placed_joint_motion_matches_pinocchio(rng, kind, axis):
-    joint = Joint("j", kind, axis)
-    placement = pin.SE3(pin_rotation(random_quaternions(rng, 1)[0]), rng.normal(size=3))
+@pytest.mark.parametrize("axis", [(0.0, 0.0, 1.0), (0.0, -1.0, 0.0), (1.0, 0.0, 0.0),
+                                  (0.3, -0.5, 0.8), (0.0, -1.0, -4.37114e-08)])
+@pytest.mark.parametrize("frame_batched", [False, True])
+def test_joint_motion_matches_pinocchio(rng, kind, axis, frame_batched):
+    """``Joint.moved(frame, q)`` = ``frame * motion(q)``, the motion built by Pinocchio
+    (``exp3`` of the angle about the axis, or a slide along it)."""
     values = np.concatenate([rng.uniform(-7, 7, size=50), [0.0, np.pi, -np.pi]])
-    rotations, translations = joint.placed_motion(
-        (placement.rotation, placement.translation), values)
+    frames = [pin.SE3(pin_rotation(q), rng.normal(size=3))
+              for q in random_quaternions(rng, values.size if frame_batched else 1)]
+    if frame_batched:  # samples last
+        frame = (np.stack([f.rotation for f in frames], axis=-1),
+                 np.stack([f.translation for f in frames], axis=-1))
+    else:
+        frame = (frames[0].rotation, frames[0].translation)
+    rotations, translations = Joint("j", kind, axis).moved(frame, values)
     # samples last, one side static: back to one pose per row
     rotations = np.broadcast_to(rotations[..., None] if rotations.ndim == 2 else rotations,
                                 (3, 3, values.size))
@@ -161,11 +172,63 @@ def test_placed_joint_motion_matches_pinocchio(rng, kind, axis):
         translations[:, None] if translations.ndim == 1 else translations, (3, values.size))
     rotations, translations = np.moveaxis(rotations, -1, 0), translations.T
     unit = np.asarray(axis) / np.linalg.norm(axis)
-    for value, rotation, translation in zip(values, rotations, translations, strict=True):
+    for n, (value, rotation, translation) in enumerate(
+            zip(values, rotations, translations, strict=True)):
         if kind == "prismatic":
             motion = pin.SE3(np.eye(3), value * unit)
         else:
             motion = pin.SE3(pin.exp3(value * unit), np.zeros(3))
-        expected = placement * motion
+        expected = frames[n if frame_batched else 0] * motion
         np.testing.assert_allclose(rotation, expected.rotation, atol=1e-14)
-        np.testing.assert_allclose(translation, expected.translation, atol=1e-14)
+        np.testing.assert_allclose(translation, expected.translation, atol=1e-13)
+
+
+@pytest.mark.parametrize("kind", ["revolute", "prismatic"])
+def test_joint_motion_of_one_value_on_a_static_frame_stays_static(rng, kind):
+    frame = (pin_rotation(random_quaternions(rng, 1)[0]), rng.normal(size=3))
+    rotation, translation = Joint("j", kind, (0.0, 0.0, -1.0)).moved(frame, 0.7)
+    motion = (pin.SE3(pin.exp3(np.array([0.0, 0.0, -0.7])), np.zeros(3)) if kind == "revolute"
+              else pin.SE3(np.eye(3), np.array([0.0, 0.0, -0.7])))
+    expected = pin.SE3(*frame) * motion
+    assert rotation.shape == (3, 3) and translation.shape == (3,)
+    np.testing.assert_allclose(rotation, expected.rotation, atol=1e-15)
+    np.testing.assert_allclose(translation, expected.translation, atol=1e-15)
+
+
+@pytest.mark.parametrize("static_side", ["left", "right"])
+@pytest.mark.parametrize("count", [20, 300])
+def test_products_with_axis_aligned_static_factors_match_dense_ones(rng, static_side, count):
+    """Static factors with exact zeros, +-1 and the 2e-16 residue of cos(pi/2) (as read
+    from a URDF's right angles): the terms dropped lie within rounding of the dense
+    products, computed here with einsum."""
+    batched = np.moveaxis(np.array([pin_rotation(q) for q in random_quaternions(rng, count)]),
+                          0, -1)
+    residue = 2.220446049250313e-16
+    for static in ([[1.0, 0.0, 0.0], [0.0, residue, 1.0], [0.0, -1.0, residue]],
+                   [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]],
+                   [[0.7071067811865476, 0.7071067811865476, 0.0],
+                    [-0.7071067811865476, 0.7071067811865476, 0.0], [0.0, 0.0, 1.0]],
+                   [[0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]]):
+        static = np.array(static)
+        vector = static[1] * 0.3
+        if static_side == "right":
+            product = compose((batched, np.zeros((3, count))), (static, vector))
+            expected = (np.einsum("ijn,jk->ikn", batched, static),
+                        np.einsum("ijn,j->in", batched, vector))
+        else:
+            product = compose((static, vector), (batched, np.zeros((3, count))))
+            expected = (np.einsum("ij,jkn->ikn", static, batched),
+                        np.broadcast_to(vector[:, None], (3, count)))
+        np.testing.assert_allclose(product[0], expected[0], rtol=0, atol=1e-15)
+        np.testing.assert_allclose(product[1], expected[1], rtol=0, atol=1e-15)
+
+
+def test_cosine_and_sine_from_the_half_angle_tangent_match_the_math_module(rng):
+    angles = np.concatenate([rng.uniform(-7, 7, 2000), rng.uniform(-1e6, 1e6, 2000),
+                             [0.0, np.pi, -np.pi, np.pi / 2, -np.pi / 2, 2 * np.pi, 1e-300]])
+    cosine, sine = cos_sin(angles)
+    expected_cosine = np.array([math.cos(a) for a in angles])
+    expected_sine = np.array([math.sin(a) for a in angles])
+    np.testing.assert_allclose(cosine, expected_cosine, rtol=0, atol=4.5e-16)
+    np.testing.assert_allclose(sine, expected_sine, rtol=0, atol=4.5e-16)
+    assert cos_sin(0.25) == pytest.approx((math.cos(0.25), math.sin(0.25)), abs=2e-16)

@@ -65,6 +65,8 @@ class TreeDescription:
         default_factory=dict, init=False, repr=False, compare=False)
     _evaluations: dict[tuple[str, ...], Any] = field(
         default_factory=dict, init=False, repr=False, compare=False)
+    _time_groups: dict[str, str] | None = field(
+        default=None, init=False, repr=False, compare=False)
     # not empty once this version has warned about joints without samples
     _warned_joints_without_samples: list[bool] = field(
         default_factory=list, init=False, repr=False, compare=False)
@@ -116,6 +118,27 @@ class TreeDescription:
             pose = self.local_poses[frame]
             anchors[frame] = (anchor, compose(placement, (pose.rotation, pose.translation)))
         return anchors[name]
+
+    def time_group(self, joint_name: str) -> str:
+        """The first driven joint whose trajectory has the same times as ``joint_name``'s.
+
+        Joints driven together (one ``set_joint_trajectory`` call, a robot's trajectory
+        file) hold equal times arrays; a query searches their segments once per group.
+        """
+        groups = self._time_groups
+        if groups is None:
+            groups = {}
+            leaders: list[tuple[str, np.ndarray]] = []
+            for name, trajectory in self.joint_trajectories.items():
+                times = trajectory.times
+                groups[name] = next(
+                    (leader for leader, known in leaders
+                     if known is times or (known.shape == times.shape
+                                           and np.array_equal(known, times))), name)
+                if groups[name] == name:
+                    leaders.append((name, times))
+            object.__setattr__(self, "_time_groups", groups)  # whole, for concurrent queries
+        return groups[joint_name]
 
     def cached(self, key: tuple[str, ...]) -> Any:
         """A prepared query path stored with :meth:`store`, or None."""

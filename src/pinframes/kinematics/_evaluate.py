@@ -34,7 +34,6 @@ __all__ = [
     "checked_timeline",
     "default_times",
     "evaluate_pose",
-    "local_transforms",
     "model_sources",
     "plan_timeline",
     "prepare_evaluation",
@@ -242,33 +241,11 @@ def _evaluate_model(
     samples last (see :mod:`pinframes.values._se3`)."""
     model = evaluation.model
     assert model is not None
-    local = local_transforms(tree, evaluation, basis_shifts(sources, timeline), times)
+    samples = sample_joints(tree, model, evaluation.placed_keyframes, times,
+                            basis_shifts(sources, timeline))
     frame_pose, reference_pose = model.forward_kinematics(
-        local, [evaluation.frame, evaluation.relative_to])
+        samples, [evaluation.frame, evaluation.relative_to])
     return compose(inverse(reference_pose), frame_pose)
-
-
-def local_transforms(
-    tree: TreeDescription, evaluation: Evaluation, shifts: dict[str, int],
-    times: NDArray[np.int64] | None,
-) -> list[Transform]:
-    """Per joint of the evaluation's (moving) model, its ``liMi`` at ``times`` (timeline
-    basis), samples last."""
-    model = evaluation.model
-    assert model is not None
-    samples = sample_joints(tree, model, evaluation.placed_keyframes, times, shifts)
-    local: list[Transform] = []
-    for joint, placement, sample in zip(model.joints, model.joint_placements, samples,
-                                        strict=True):
-        if joint.joint is None:
-            local.append(sample)  # the placement is folded into the keyframes
-            continue
-        rotation, translation = joint.joint.placed_motion(placement, np.atleast_1d(sample))
-        if not np.ndim(sample):  # a joint without trajectory: one static value
-            rotation = rotation[..., 0] if rotation.ndim == 3 else rotation
-            translation = translation[..., 0] if translation.ndim == 2 else translation
-        local.append((rotation, translation))
-    return local
 
 
 def sample_joints(
@@ -325,8 +302,8 @@ def sample_joint_values(
     elif trajectory is not None:
         assert times is not None  # a driven joint is a source: the query has times
         shifted = times - shifts[joint.name]
-        # trajectories set together share one times array: search its segments once
-        key = f"segments {id(trajectory.times)} {shifts[joint.name]}"
+        # joints driven together have equal times: search their segments once
+        key = f"segments {tree.time_group(joint.name)} {shifts[joint.name]}"
         positions = segments.get(key) if segments is not None else None
         if positions is None:
             positions = segment_positions(trajectory.times, shifted)

@@ -29,9 +29,7 @@ def evaluate_poses(
     extrapolation: str,
 ) -> PoseStack:
     """``tree.poses(frames, references, times, time_ref)``; names already checked."""
-    index: dict[str, int] = {}
-    for name in (*frames, *references):
-        index.setdefault(name, len(index))
+    index = {name: position for position, name in enumerate(dict.fromkeys(frames + references))}
     anchored = [tree.anchor(name) for name in index]
     anchor_index: dict[str, int] = {}
     anchors = np.array([anchor_index.setdefault(anchor, len(anchor_index))

@@ -10,15 +10,15 @@ equals ``pinocchio.framesForwardKinematics`` at every sample (tested to 1e-12).
 from __future__ import annotations
 
 import threading
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 import pinocchio as pin
 from numpy.typing import NDArray
 
-from ..values._se3 import Transform, canonical, compose, inverse
+from ..values._se3 import IDENTITY, Transform, canonical, compose, inverse
 from ..values.joint import Joint
 from ..values.rotations import quaternion_from_matrix
 from ._description import TreeDescription
@@ -85,6 +85,10 @@ class CompiledModel:
         # The kernel reads its numbers back from the Pinocchio model it evaluates.
         self._joint_placements = [_from_se3(self.model.jointPlacements[i + 1])
                                   for i in range(len(self.joints))]
+        self._last_child = [-1] * len(self.joints)  # joint index -> its last child joint
+        for index, joint in enumerate(self.joints):
+            if joint.parent >= 0:
+                self._last_child[joint.parent] = index
         self._frame_placements = {}
         for name, fid in self.frame_ids.items():
             frame = self.model.frames[fid]
@@ -120,33 +124,61 @@ class CompiledModel:
         """Per joint, its static placement in the parent joint frame, read from the model."""
         return tuple(self._joint_placements)
 
-    def joint_placements_in_root(self, local_transforms: Sequence[Transform]
-                                 ) -> list[Transform]:
-        """Per joint, its frame in the root (``oMi``) from each joint's ``liMi``."""
-        world: list[Transform] = []
-        for joint, local in zip(self.joints, local_transforms, strict=True):
-            world.append(local if joint.parent < 0 else compose(world[joint.parent], local))
+    def joint_placements_in_root(self, samples: Sequence[Any]) -> list[Transform]:
+        """Per joint, its frame in the root (``oMi``), static or samples last; see
+        :meth:`_joint_frames`."""
+        return cast(list[Transform], self._joint_frames(samples, None))  # none dropped
+
+    def _joint_frames(self, samples: Sequence[Any], keep: Collection[int] | None
+                      ) -> list[Transform | None]:
+        """Per joint, its frame in the root (``oMi``), static or samples last.
+
+        ``samples[i]`` is what :func:`~pinframes.kinematics._evaluate.sample_joints` gives:
+        a free-flyer's pose in its parent joint, placement included; a robot joint's
+        value(s). Pinocchio's recursion ``oMi[j] = oMi[parent(j)] @ placement[j] @
+        motion_j(q)``, evaluated left to right so that the static placement meets one
+        frame (its zeros and ones cost nothing) and the motion only turns two columns.
+
+        With ``keep`` (joint indices), every other joint's frame is dropped (None) once its
+        last child joint is placed, so that a chain holds a few frames at a time: less
+        memory to allocate per chunk, which glibc then keeps instead of returning it to the
+        system and taking page faults for it again (3 us each on our machines).
+        """
+        world: list[Transform | None] = []
+        for index, (joint, placement, sample) in enumerate(
+                zip(self.joints, self._joint_placements, samples, strict=True)):
+            parent = IDENTITY if joint.parent < 0 else world[joint.parent]
+            assert parent is not None
+            if joint.joint is None:
+                world.append(compose(parent, sample))
+            else:
+                world.append(joint.joint.moved(compose(parent, placement), sample))
+            if (keep is not None and joint.parent >= 0 and joint.parent not in keep
+                    and self._last_child[joint.parent] == index):
+                world[joint.parent] = None
         return world
 
-    def frame_placements_in_root(self, world: Sequence[Transform], frames: Sequence[str]
+    def frame_placements_in_root(self, world: Sequence[Transform | None], frames: Sequence[str]
                                  ) -> list[Transform]:
         """Placements in the root of ``frames`` (``oMf``) from the joints' ``oMi``."""
         result = []
         for name in frames:
             parent, placement = self._frame_placements[name]
-            result.append(placement if parent < 0 else compose(world[parent], placement))
+            if parent < 0:
+                result.append(placement)
+                continue
+            frame = world[parent]
+            assert frame is not None, f"the frame of joint {parent} was dropped"
+            result.append(compose(frame, placement))
         return result
 
-    def forward_kinematics(
-        self, local_transforms: Sequence[Transform], frames: Sequence[str]
-    ) -> list[Transform]:
-        """Placements in the root of ``frames``, from each joint's ``liMi`` (static or batched).
-
-        The same recursion as Pinocchio's ``framesForwardKinematics``:
-        ``oMi[j] = oMi[parent(j)] @ liMi[j]`` and ``oMf = oMi[parent joint] @ placement``.
-        """
-        return self.frame_placements_in_root(self.joint_placements_in_root(local_transforms),
-                                             frames)
+    def forward_kinematics(self, samples: Sequence[Any], frames: Sequence[str]
+                           ) -> list[Transform]:
+        """Placements in the root of ``frames`` from the joints' samples (see
+        :meth:`joint_placements_in_root`): Pinocchio's ``framesForwardKinematics``, with
+        ``oMf = oMi[parent joint] @ placement``."""
+        keep = {self._frame_placements[name][0] for name in frames}
+        return self.frame_placements_in_root(self._joint_frames(samples, keep), frames)
 
     def configuration(
         self, motions: Sequence[Transform | None], values: Sequence[NDArray[np.float64] | None]

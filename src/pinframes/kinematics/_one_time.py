@@ -61,13 +61,14 @@ class _MovingFrame:
 @dataclass(frozen=True)
 class _RobotJoint:
     """A robot joint: driven by the joint ``primary`` (itself unless it mimics one), from
-    its ``trajectory``, whose times are the plan's clock number ``clock``, or, without one,
-    at ``rest`` (radians or metres); ``mimics`` are the ``(multiplier, offset)`` of the mimic
-    links from the primary out to the joint."""
+    its ``trajectory``, whose times it shares with the joints of ``time_group`` (see
+    :meth:`TreeDescription.time_group`), or, without one, at ``rest`` (radians or metres);
+    ``mimics`` are the ``(multiplier, offset)`` of the mimic links from the primary out to
+    the joint."""
 
     primary: str
     trajectory: JointTrajectory | None
-    clock: int
+    time_group: str
     rest: float
     mimics: tuple[tuple[float, float], ...]
     cos_sin: bool
@@ -93,7 +94,6 @@ class OneTimePlan:
         self.frame_id = model.frame_ids[frame]
         self.reference_id = model.frame_ids[relative_to]
         steps: list[_MovingFrame | _RobotJoint] = []
-        clocks: list[tuple[JointTrajectory, str]] = []
         for position, joint in enumerate(model.joints):
             if joint.joint is None:
                 steps.append(_MovingFrame(joint.frame, tree.local_poses[joint.frame].keyframes))
@@ -103,12 +103,11 @@ class OneTimePlan:
             mimics = tuple((link.mimic.multiplier, link.mimic.offset)
                            for link in reversed(chain[:-1]) if link.mimic is not None)
             trajectory = tree.joint_trajectories.get(primary.name)
-            clock = -1 if trajectory is None else _clock(clocks, trajectory, primary.name)
+            group = "" if trajectory is None else tree.time_group(primary.name)
             # Pinocchio's joint ids count from 1 (0 is the universe)
             cos_sin = model.model.joints[position + 1].nq == 2
-            steps.append(_RobotJoint(primary.name, trajectory, clock, primary.rest_value,
+            steps.append(_RobotJoint(primary.name, trajectory, group, primary.rest_value,
                                      mimics, cos_sin))
-        self._clocks = tuple(clocks)
         self._steps = tuple(steps)
         self.holds_rest_values = any(isinstance(step, _RobotJoint) and step.trajectory is None
                                      for step in steps)
@@ -138,9 +137,8 @@ class OneTimePlan:
     def _configuration(self, time: int, shifts: dict[str, int]) -> list[float]:
         """Pinocchio's configuration ``q`` of the model at ``time`` (timeline basis, ns)."""
         q: list[float] = []
-        # trajectories set together share their times: one segment search per clock
-        positions = [segment_position(trajectory.times, time - shifts[joint])
-                     for trajectory, joint in self._clocks]
+        # joints driven together have equal times: search their segments once
+        positions: dict[tuple[str, int], tuple[int, float]] = {}
         for step in self._steps:
             if isinstance(step, _MovingFrame):
                 translation, quaternion = step.keyframes.pose_at(time - shifts[step.source])
@@ -148,8 +146,15 @@ class OneTimePlan:
                 q += quaternion
                 continue
             trajectory = step.trajectory
-            value = step.rest if trajectory is None else trajectory.value_at(
-                time - shifts[step.primary], positions[step.clock])
+            if trajectory is None:
+                value = step.rest
+            else:
+                shift = shifts[step.primary]
+                position = positions.get((step.time_group, shift))
+                if position is None:
+                    position = positions[step.time_group, shift] = segment_position(
+                        trajectory.times, time - shift)
+                value = trajectory.value_at(time - shift, position)
             for multiplier, offset in step.mimics:
                 value = multiplier * value + offset
             if step.cos_sin:
@@ -157,20 +162,6 @@ class OneTimePlan:
             else:
                 q.append(value)
         return q
-
-
-def _clock(
-    clocks: list[tuple[JointTrajectory, str]], trajectory: JointTrajectory, joint: str
-) -> int:
-    """The number in ``clocks`` (a trajectory and its joint per distinct sample times and
-    reference) of ``trajectory``'s times, added if new: trajectories set together have
-    equal times, each its own copy."""
-    for number, (other, _) in enumerate(clocks):
-        if other.reference == trajectory.reference and np.array_equal(other.times,
-                                                                      trajectory.times):
-            return number
-    clocks.append((trajectory, joint))
-    return len(clocks) - 1
 
 
 def one_time_plan(

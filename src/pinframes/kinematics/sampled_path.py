@@ -100,8 +100,8 @@ def sample_path(tree: TreeDescription, evaluation: _evaluate.Evaluation, signs: 
     """The path of ``evaluation`` (a moving one) at ``times`` (timeline basis)."""
     model = evaluation.model
     assert model is not None, "a static path has no model to sample"
-    local = _evaluate.local_transforms(tree, evaluation, shifts, times)
-    joints = model.joint_placements_in_root(local)
+    samples = _evaluate.sample_joints(tree, model, evaluation.placed_keyframes, times, shifts)
+    joints = model.joint_placements_in_root(samples)
     frame, relative_to = model.frame_placements_in_root(
         joints, [evaluation.frame, evaluation.relative_to])
     # the twist sums work on (N, 3, 3) / (N, 3) stacks; the evaluator's are samples last

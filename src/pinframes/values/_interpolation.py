@@ -13,6 +13,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ._se3 import Transform, to_stacks
+from ._trigonometry import cos_sin
 from .rotations import matrix_rows_from_quaternion, quaternion_from_matrix
 
 __all__ = ["Keyframes", "segment_position", "segment_positions"]
@@ -83,20 +84,18 @@ class Keyframes:
         ``(3, N)``; static ``(3, 3)`` and ``(3,)`` for a single keyframe."""
         if self.times.shape[0] == 1:
             return self.rotations[0], self.translations[0]
-        translations, start, end, angle, inverse_sine = self._prepared_rows()
+        translations, start, end, angle, inverse_sine, cotangent = self._prepared_rows()
         index, fraction = segment_positions(self.times, times)
         before = 1.0 - fraction
         translation = translations[:, index]
         translation *= before
         translation += fraction * translations[:, index + 1]
-        # SLERP weights sin((1 - f) a) / sin(a) and sin(f a) / sin(a) per sample
-        angle = angle[index]
-        inverse_sine = inverse_sine[index]
-        swept = fraction * angle
-        weight_end = np.sin(swept)
-        weight_end *= inverse_sine
-        weight_start = np.sin(angle - swept)
-        weight_start *= inverse_sine
+        # SLERP weights sin((1 - f) a) / sin(a) = cos(f a) - sin(f a) / tan(a) and
+        # sin(f a) / sin(a) per sample
+        cosine, weight_end = cos_sin(fraction * angle[index])
+        weight_start = weight_end * cotangent[index]
+        np.subtract(cosine, weight_start, out=weight_start)
+        weight_end *= inverse_sine[index]
         quaternion = start[:, index]
         quaternion *= weight_start
         quaternion += weight_end * end[:, index]
@@ -109,15 +108,15 @@ class Keyframes:
         if self.times.shape[0] == 1:
             return (self.translations[0].tolist(),
                     quaternion_from_matrix(self.rotations[0]).tolist())
-        translations, start, end, angle, inverse_sine = self._prepared_rows()
+        translations, start, end, angle, inverse_sine, cotangent = self._prepared_rows()
         index, fraction = segment_position(self.times, time)
         before = 1.0 - fraction
         (x0, x1), (y0, y1), (z0, z1) = translations[:, index:index + 2].tolist()
-        arc = float(angle[index])
-        scale = float(inverse_sine[index])
-        swept = fraction * arc
-        weight_start = math.sin(arc - swept) * scale
-        weight_end = math.sin(swept) * scale
+        # the weights of transform_at: cos(f a) - sin(f a) / tan(a) and sin(f a) / sin(a)
+        swept = fraction * float(angle[index])
+        sine = math.sin(swept)
+        weight_start = math.cos(swept) - sine * float(cotangent[index])
+        weight_end = sine * float(inverse_sine[index])
         return ([x0 * before + fraction * x1, y0 * before + fraction * y1,
                  z0 * before + fraction * z1],
                 [a * weight_start + weight_end * b
@@ -134,7 +133,7 @@ class Keyframes:
 
 def _prepare_slerp(quaternions: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
     """Per segment: start and end quaternion on one hemisphere as rows ``(4, K - 1)``, arc
-    angle, 1 / sin(angle).
+    angle, 1 / sin(angle), 1 / tan(angle).
 
     Arcs below ``_SMALL_ANGLE`` are widened to it: there ``sin(f a) / sin(a)`` equals ``f``
     to machine precision, so SLERP becomes the (exact enough) linear blend of two nearly
@@ -147,4 +146,4 @@ def _prepare_slerp(quaternions: NDArray[np.float64]) -> tuple[NDArray[np.float64
     angle = np.arccos(np.clip(np.abs(dot), 0.0, 1.0))
     angle = np.maximum(angle, _SMALL_ANGLE)
     return (np.ascontiguousarray(start.T), np.ascontiguousarray(end.T), angle,
-            1.0 / np.sin(angle))
+            1.0 / np.sin(angle), 1.0 / np.tan(angle))

@@ -10,19 +10,21 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import pinocchio as pin
 from numpy.typing import NDArray
 
 from ..errors import JointError
+from ._se3 import rotated_vector, rotation_product, turned
+from ._trigonometry import cos_sin
 
 __all__ = ["JOINT_KINDS", "Joint", "Mimic", "mimic_chain", "mimic_primary"]
 
 JOINT_KINDS = ("revolute", "continuous", "prismatic")
 """Joint kinds driven by one value each."""
 
-_AXIS_TOLERANCE = 1e-12
 MIMIC_BOUND = 1e6
 """Largest mimic multiplier and offset: a coupling beyond it is no mechanism, and its
 products overflow to infinite or NaN poses long before floats run out."""
@@ -105,29 +107,39 @@ class Joint:
         """True for joints driven by their own value (not mimic joints)."""
         return self.mimic is None
 
-    def placed_motion(
-        self, placement: tuple[NDArray[np.float64], NDArray[np.float64]],
-        values: NDArray[np.float64],
+    def moved(
+        self, frame: tuple[NDArray[np.float64], NDArray[np.float64]],
+        values: NDArray[np.float64] | float,
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """``placement @ motion(values)`` for ``values`` of shape (N,), samples last.
+        """``frame @ motion(values)``: the child link's frame from the joint frame ``frame``.
 
-        Returns a rotation ``(3, 3, N)`` (static ``(3, 3)`` for a prismatic joint) and a
-        translation ``(3, N)`` (static ``(3,)`` for a rotating joint). For a rotation,
-        Rodrigues' formula ``R(q) = I + sin q K + (1 - cos q) K^2`` (``K`` the cross-product
-        matrix of the axis) turns ``P @ R(q)`` into ``P + sin q (P K) + (1 - cos q) (P K^2)``:
-        three element-wise passes over rows of samples.
+        ``frame`` is static (``(3, 3)``, ``(3,)``) or batched, samples last (``(3, 3, N)``,
+        ``(3, N)``); ``values`` one float or ``(N,)``, radians or metres. A turn about an
+        axis along x, y or z mixes two columns of the rotation (the joints of most robots);
+        any other axis takes Rodrigues' formula ``R(q) = I + sin q K + (1 - cos q) K^2``
+        (``K`` the cross-product matrix of the axis), two static products and three passes.
         """
-        rotation, translation = placement
-        axis = np.asarray(self.axis)
+        rotation, translation = frame
         if self.kind == "prismatic":
-            return rotation, translation[:, None] + (rotation @ axis)[:, None] * values
+            slide = rotated_vector(rotation, np.asarray(self.axis))
+            return rotation, _batched_sum(translation, slide, values)
+        cosine, sine = cos_sin(values)
+        aligned = self._signed_axis
+        if aligned is not None:
+            index, sign = aligned
+            return turned(rotation, index, cosine, sign * sine), translation
+        axis = self.axis
         cross = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]],
                           [-axis[1], axis[0], 0.0]])
-        rotation_cross = rotation @ cross
-        rotated = rotation_cross[:, :, None] * np.sin(values)
-        rotated += (rotation_cross @ cross)[:, :, None] * (1.0 - np.cos(values))
-        rotated += rotation[:, :, None]
-        return rotated, translation
+        along_sine = rotation_product(rotation, cross)
+        along_versine = rotation_product(rotation, cross @ cross)
+        if rotation.ndim == 2 and np.ndim(values):
+            rotation, along_sine, along_versine = (
+                part[:, :, None] for part in (rotation, along_sine, along_versine))
+        turned_rotation = along_sine * sine
+        turned_rotation += along_versine * (1.0 - cosine)
+        turned_rotation += rotation
+        return turned_rotation, translation
 
     def pinocchio_joint_model(self) -> pin.JointModel:
         """The Pinocchio joint model of this joint (aligned axes get the specialised ones).
@@ -151,10 +163,32 @@ class Joint:
             return np.stack([np.cos(values), np.sin(values)], axis=1)
         return values[:, None]
 
+    @cached_property
+    def _signed_axis(self) -> tuple[int, float] | None:
+        """``(index, sign)`` when the axis is exactly +-x, +-y or +-z (index 0, 1, 2), else
+        None. Exactly: URDF axes such as ``0 -1 -4.37114e-08`` (romeo) turn 4e-8 off y."""
+        index = int(np.argmax(np.abs(self.axis)))
+        if sum(abs(value) for value in self.axis) == abs(self.axis[index]):
+            return index, float(np.sign(self.axis[index]))
+        return None
+
     def _aligned_axis(self) -> str | None:
         """``"X"``, ``"Y"`` or ``"Z"`` when the axis is that unit axis, else None."""
-        index = int(np.argmax(np.abs(self.axis)))
-        return "XYZ"[index] if abs(self.axis[index] - 1.0) < _AXIS_TOLERANCE else None
+        signed = self._signed_axis
+        return "XYZ"[signed[0]] if signed is not None and signed[1] > 0 else None
+
+
+def _batched_sum(
+    translation: NDArray[np.float64], direction: NDArray[np.float64],
+    values: NDArray[np.float64] | float,
+) -> NDArray[np.float64]:
+    """``translation + direction * values`` for static or samples-last parts."""
+    if np.ndim(values) and direction.ndim == 1:
+        direction = direction[:, None]
+    step = direction * values
+    if translation.ndim < step.ndim:
+        translation = translation[:, None]
+    return translation + step
 
 
 def mimic_chain(joint: Joint, joints: Mapping[str, Joint]) -> list[Joint]:
