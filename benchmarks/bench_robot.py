@@ -1,10 +1,11 @@
 """Tool poses of a robot per sample: pinframes beside an independent numpy forward kinematics.
 
 Case: the Panda of example-robot-data on a mount frame that moves with 1,000 keyframes,
-10,000 joint samples, the hand pose in the world at every sample. Also timed: a hand-written
-Pinocchio loop (forwardKinematics per sample, mount poses given). Both thread settings, each
-in a child process (see ``_machine.py``); time and memory against the number of samples are
-in ``bench_curves.py``.
+10,000 joint samples, the hand pose in the world at every sample, and at one time (4.321 s,
+between samples: the joint values and the mount interpolated there). Also timed: a
+hand-written Pinocchio loop (forwardKinematics per sample, mount poses given). Both thread
+settings, each in a child process (see ``_machine.py``); time and memory against the number
+of samples are in ``bench_curves.py``.
 
 Run: ``python benchmarks/bench_robot.py [--quick]``.
 """
@@ -107,7 +108,25 @@ def child(quick: bool) -> None:
     expected = calls["numpy reference"]()
     rows[0]["error"] = float(np.max(np.abs(calls["pinframes"]().matrix - expected)))
     rows[2]["error"] = float(np.max(np.abs(calls["Pinocchio loop"]() - expected)))
+    rows += one_time_rows(tree, hand, chain, mount, times, positions, quick)
     print(json.dumps(rows))
+
+
+def one_time_rows(tree, hand, chain, mount, times, positions, quick):
+    """The hand at one time between joint samples: pinframes beside numpy, which
+    interpolates the seven joint values and the mount there and runs its forward kinematics."""
+    at = np.array([4.321])
+
+    def reference():
+        values = np.array([[np.interp(at[0], times, column) for column in positions.T]])
+        return numpy_reference(hand, chain, mount, at, values)
+
+    case = "Panda on moving mount, one time"
+    calls = {"pinframes": lambda: tree.pose("panda_hand", "world", times=4.321),
+             "numpy reference": reference}
+    rows = interleaved(case, calls, 300 if quick else 1500)
+    rows[0]["error"] = float(np.max(np.abs(calls["pinframes"]().matrix - reference())))
+    return rows
 
 
 def main() -> None:

@@ -14,6 +14,7 @@ import pinocchio as pin
 import pytest
 
 from pinframes import BrokenMimicWarning, FileFormatError, FrameTree, read_urdf
+from pinframes.kinematics._one_time import FEW_TIMES
 from urdf.test_robots_against_pinocchio import ROBOTS, pinocchio_configuration
 
 needs_robots = pytest.mark.skipif(ROBOTS is None, reason="example-robot-data is not installed")
@@ -63,10 +64,16 @@ def test_every_link_matches_pinocchio(urdf, rng):
     pin.framesForwardKinematics(model, data, pinocchio_configuration(model, tree, "r/", values))
     checked = [link for link in links if model.existFrame(link[2:], pin.BODY)]
     assert len(checked) == len(links)
+    # one time takes Pinocchio's own kinematics; many times the batched numpy kernels (the
+    # joints hold their one sample at every time)
+    many_times = np.linspace(-1.0, 1.0, FEW_TIMES + 1)
     for link in checked:
         expected = data.oMf[model.getFrameId(link[2:], pin.BODY)].homogeneous
         np.testing.assert_allclose(tree.pose(link, "world", times=[0.0]).matrix[0], expected,
                                    atol=1e-12, err_msg=link)
+        batched = tree.pose(link, "world", times=many_times).matrix
+        np.testing.assert_allclose(batched, np.broadcast_to(expected, batched.shape),
+                                   atol=1e-12, err_msg=f"{link}, {many_times.size} times")
 
 
 def test_a_mimic_of_an_unknown_joint_warns_once_and_moves_on_its_own():

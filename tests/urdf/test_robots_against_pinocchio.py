@@ -8,6 +8,7 @@ import pinocchio as pin
 import pytest
 
 from pinframes import FrameTree, JointLimitWarning, Pose
+from pinframes.kinematics._one_time import FEW_TIMES
 
 
 def robot_data_dir() -> Path | None:
@@ -53,8 +54,11 @@ def pinocchio_configuration(model, tree, prefix, values_by_joint):
     return q
 
 
+@pytest.mark.parametrize(
+    "sample_times", [[0.25, 1.5], list(np.linspace(0.1, 1.9, FEW_TIMES + 3))],
+    ids=["two times (Pinocchio per time)", "more than FEW_TIMES (numpy kernels)"])
 @pytest.mark.parametrize("relative_path", CASES)
-def test_link_poses_on_a_moving_mount_match_pinocchio(relative_path, rng):
+def test_link_poses_on_a_moving_mount_match_pinocchio(relative_path, sample_times, rng):
     urdf = ROBOTS / relative_path
     tree = FrameTree()
     mount_translations = rng.normal(size=(3, 3))
@@ -73,7 +77,6 @@ def test_link_poses_on_a_moving_mount_match_pinocchio(relative_path, rng):
 
     model = pin.buildModelFromUrdf(str(urdf))
     data = model.createData()
-    sample_times = [0.25, 1.5]
     checked = [link for link in links if model.existFrame(link[len(prefix):])]
     results = {link: tree.pose(link, "world", times=sample_times).matrix for link in checked}
     for row, t in enumerate(sample_times):

@@ -63,7 +63,7 @@ class TreeDescription:
     has_frame_references: bool
     _anchors: dict[str, tuple[str, Transform]] = field(
         default_factory=dict, init=False, repr=False, compare=False)
-    _evaluations: dict[tuple[str, str], Any] = field(
+    _evaluations: dict[tuple[str, ...], Any] = field(
         default_factory=dict, init=False, repr=False, compare=False)
     _time_groups: dict[str, str] | None = field(
         default=None, init=False, repr=False, compare=False)
@@ -140,11 +140,11 @@ class TreeDescription:
             object.__setattr__(self, "_time_groups", groups)  # whole, for concurrent queries
         return groups[joint_name]
 
-    def cached(self, key: tuple[str, str]) -> Any:
+    def cached(self, key: tuple[str, ...]) -> Any:
         """A prepared query path stored with :meth:`store`, or None."""
         return self._evaluations.get(key)
 
-    def store(self, key: tuple[str, str], prepared: Any) -> None:
+    def store(self, key: tuple[str, ...], prepared: Any) -> None:
         """Keep a prepared query path for this version of the tree."""
         # Queries may run in several threads at once: two of them may pick the same oldest
         # entry, or one may insert while another iterates, so eviction tolerates both races

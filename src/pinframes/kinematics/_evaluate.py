@@ -25,6 +25,7 @@ from ..values.pose import Pose, trusted_pose
 from ..values.timeconv import TimeAxis, parse_time_axis, timestamp_ns
 from ._description import TreeDescription, paths_to_common_ancestor
 from ._model import CompiledModel, compile_model
+from ._one_time import one_time_plan, takes_few_times
 
 __all__ = [
     "CHUNK",
@@ -76,6 +77,13 @@ def evaluate_pose(
         if offsets is None:
             return trusted_pose(*evaluation.static)
         rotation, translation = to_stacks(evaluation.static, offsets.shape[0])
+    elif takes_few_times(timeline):  # Pinocchio's own kinematics, time by time
+        assert evaluation.model is not None
+        plan = one_time_plan(tree, evaluation.model, frame, relative_to)
+        if plan.holds_rest_values:
+            _warn_joints_without_samples(tree)
+        rotation, translation = plan.poses(timeline.evaluation_times,
+                                           basis_shifts(sources, timeline))
     else:
         rotation, translation = _evaluate_in_chunks(tree, evaluation, sources, timeline)
     if offsets is None:

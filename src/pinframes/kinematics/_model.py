@@ -9,6 +9,7 @@ equals ``pinocchio.framesForwardKinematics`` at every sample (tested to 1e-12).
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 from typing import Any, cast
@@ -92,6 +93,26 @@ class CompiledModel:
         for name, fid in self.frame_ids.items():
             frame = self.model.frames[fid]
             self._frame_placements[name] = (frame.parentJoint - 1, _from_se3(frame.placement))
+        self._per_thread = threading.local()
+
+    def __getstate__(self) -> dict[str, Any]:
+        """Everything but the per-thread ``pinocchio.Data`` (created again where used)."""
+        state = self.__dict__.copy()
+        del state["_per_thread"]
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__dict__.update(state)
+        self._per_thread = threading.local()
+
+    @property
+    def data(self) -> pin.Data:
+        """This thread's ``pinocchio.Data`` of :attr:`model`, created on first use (queries
+        may run in several threads at once, and each needs its own workspace)."""
+        data = getattr(self._per_thread, "data", None)
+        if data is None:
+            data = self._per_thread.data = self.model.createData()
+        return data
 
     @property
     def joint_ids(self) -> dict[str, int]:

@@ -6,6 +6,7 @@ times before calling). SLERP takes the shortest arc between consecutive keyframe
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -15,7 +16,7 @@ from ._se3 import Transform, to_stacks
 from ._trigonometry import cos_sin
 from .rotations import matrix_rows_from_quaternion, quaternion_from_matrix
 
-__all__ = ["Keyframes", "segment_positions"]
+__all__ = ["Keyframes", "segment_position", "segment_positions"]
 
 _SMALL_ANGLE = 1e-12
 
@@ -40,6 +41,17 @@ def segment_positions(
     fraction = (times - start).astype(float) / span
     np.minimum(np.maximum(fraction, 0.0, out=fraction), 1.0, out=fraction)
     return index, fraction
+
+
+def segment_position(keyframe_times: NDArray[np.int64], time: int) -> tuple[int, float]:
+    """:func:`segment_positions` for one ``time`` (ns), in Python numbers: the same segment,
+    and the same fraction to the last bit, without arrays of length one."""
+    count = keyframe_times.shape[0]
+    if count == 1:
+        return 0, 0.0
+    index = min(max(int(keyframe_times.searchsorted(time, side="right")) - 1, 0), count - 2)
+    start, end = keyframe_times[index:index + 2].tolist()
+    return index, min(max(float(time - start) / float(end - start), 0.0), 1.0)
 
 
 @dataclass
@@ -72,10 +84,7 @@ class Keyframes:
         ``(3, N)``; static ``(3, 3)`` and ``(3,)`` for a single keyframe."""
         if self.times.shape[0] == 1:
             return self.rotations[0], self.translations[0]
-        if self._rows is None:
-            self._rows = (np.ascontiguousarray(self.translations.T),
-                          *_prepare_slerp(quaternion_from_matrix(self.rotations)))
-        translations, start, end, angle, inverse_sine, cotangent = self._rows
+        translations, start, end, angle, inverse_sine, cotangent = self._prepared_rows()
         index, fraction = segment_positions(self.times, times)
         before = 1.0 - fraction
         translation = translations[:, index]
@@ -91,6 +100,35 @@ class Keyframes:
         quaternion *= weight_start
         quaternion += weight_end * end[:, index]
         return matrix_rows_from_quaternion(*quaternion), translation
+
+    def pose_at(self, time: int) -> tuple[list[float], list[float]]:
+        """The pose at one ``time`` (ns) in Python floats: translation ``[x, y, z]`` (metres)
+        and unit quaternion ``[x, y, z, w]``; :meth:`transform_at`'s interpolation for one
+        sample, without numpy calls on arrays of length one."""
+        if self.times.shape[0] == 1:
+            return (self.translations[0].tolist(),
+                    quaternion_from_matrix(self.rotations[0]).tolist())
+        translations, start, end, angle, inverse_sine, cotangent = self._prepared_rows()
+        index, fraction = segment_position(self.times, time)
+        before = 1.0 - fraction
+        (x0, x1), (y0, y1), (z0, z1) = translations[:, index:index + 2].tolist()
+        # the weights of transform_at: cos(f a) - sin(f a) / tan(a) and sin(f a) / sin(a)
+        swept = fraction * float(angle[index])
+        sine = math.sin(swept)
+        weight_start = math.cos(swept) - sine * float(cotangent[index])
+        weight_end = sine * float(inverse_sine[index])
+        return ([x0 * before + fraction * x1, y0 * before + fraction * y1,
+                 z0 * before + fraction * z1],
+                [a * weight_start + weight_end * b
+                 for a, b in zip(start[:, index].tolist(), end[:, index].tolist(), strict=True)])
+
+    def _prepared_rows(self) -> tuple[NDArray[np.float64], ...]:
+        """Translations as rows ``(3, K)`` and the SLERP rows of :func:`_prepare_slerp`,
+        computed on first use."""
+        if self._rows is None:
+            self._rows = (np.ascontiguousarray(self.translations.T),
+                          *_prepare_slerp(quaternion_from_matrix(self.rotations)))
+        return self._rows
 
 
 def _prepare_slerp(quaternions: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:

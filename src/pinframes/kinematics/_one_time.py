@@ -1,0 +1,178 @@
+"""Queries at one time (or a few): every source sampled in Python floats, then Pinocchio's own
+forward kinematics.
+
+The batched kernels of :mod:`pinframes.kinematics._evaluate` are built for many samples; at
+one sample their cost is numpy's overhead per call (about 45 calls on arrays of length one
+to interpolate a moving frame, as many again to compose the path). Here, per time, the
+configuration ``q`` of the compiled model is set from the interpolated poses of its moving
+frames and from its joint values, and ``pinocchio.forwardKinematics`` with
+``updateFramePlacement`` yields the two frames in the model's root:
+
+- a free-flyer takes its moving frame's pose in the frame's parent (the raw keyframes; the
+  static placement of the joint is in the model) as ``x y z qx qy qz qw``;
+- a robot joint its value (radians or metres) from its trajectory (held outside its
+  samples), its mimic primary's (``multiplier * primary + offset``) or its rest value; a
+  continuous joint about an aligned axis, which Pinocchio stores as ``(cos, sin)``, both.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+from numpy.typing import NDArray
+
+from ..values._interpolation import Keyframes, segment_position
+from ..values._se3 import Transform
+from ..values._timeline import QueryTimeline
+from ..values.joint import mimic_chain
+from ..values.joint_trajectory import JointTrajectory
+from ._description import TreeDescription
+from ._model import CompiledModel
+
+__all__ = ["FEW_TIMES", "OneTimePlan", "one_time_plan", "takes_few_times"]
+
+FEW_TIMES = 8
+"""Queries with at most this many evaluation times take this path, longer ones the batched
+kernels. Measured with benchmarks/bench_few_times.py (shared 2-core machine, both thread
+settings alike): this path costs about 7-10 us per time on a frame moving between two static
+frames and 20-25 us per time on the Panda on a moving mount, the batched kernels about 90 us
+and 320 us whatever the count up to 32; one-time / batched was 0.93 at 8 times and 1.2 at 12
+on the light path, 0.48 at 8 and 1.09 at 24 on the Panda."""
+
+
+def takes_few_times(timeline: QueryTimeline) -> bool:
+    """Whether a query on ``timeline`` is answered here: it has at most :data:`FEW_TIMES`
+    evaluation times, or none (nothing on its path is sampled: one configuration)."""
+    times = timeline.evaluation_times
+    return times is None or times.shape[0] <= FEW_TIMES
+
+
+@dataclass(frozen=True)
+class _MovingFrame:
+    """A free-flyer: the moving frame ``source`` and its keyframes in its parent."""
+
+    source: str
+    keyframes: Keyframes
+
+
+@dataclass(frozen=True)
+class _RobotJoint:
+    """A robot joint: driven by the joint ``primary`` (itself unless it mimics one), from
+    its ``trajectory``, whose times it shares with the joints of ``time_group`` (see
+    :meth:`TreeDescription.time_group`), or, without one, at ``rest`` (radians or metres);
+    ``mimics`` are the ``(multiplier, offset)`` of the mimic links from the primary out to
+    the joint."""
+
+    primary: str
+    trajectory: JointTrajectory | None
+    time_group: str
+    rest: float
+    mimics: tuple[tuple[float, float], ...]
+    cos_sin: bool
+
+
+class OneTimePlan:
+    """A compiled query path prepared for evaluation at single times.
+
+    Parameters
+    ----------
+    tree : TreeDescription
+        The tree version the model was compiled from.
+    model : CompiledModel
+        The query's model.
+    frame, relative_to : str
+        The result is the pose of ``frame`` in ``relative_to``.
+    """
+
+    def __init__(
+        self, tree: TreeDescription, model: CompiledModel, frame: str, relative_to: str
+    ) -> None:
+        self.model = model
+        self.frame_id = model.frame_ids[frame]
+        self.reference_id = model.frame_ids[relative_to]
+        steps: list[_MovingFrame | _RobotJoint] = []
+        for position, joint in enumerate(model.joints):
+            if joint.joint is None:
+                steps.append(_MovingFrame(joint.frame, tree.local_poses[joint.frame].keyframes))
+                continue
+            chain = mimic_chain(joint.joint, tree.joints_by_name)
+            primary = chain[-1]
+            mimics = tuple((link.mimic.multiplier, link.mimic.offset)
+                           for link in reversed(chain[:-1]) if link.mimic is not None)
+            trajectory = tree.joint_trajectories.get(primary.name)
+            group = "" if trajectory is None else tree.time_group(primary.name)
+            # Pinocchio's joint ids count from 1 (0 is the universe)
+            cos_sin = model.model.joints[position + 1].nq == 2
+            steps.append(_RobotJoint(primary.name, trajectory, group, primary.rest_value,
+                                     mimics, cos_sin))
+        self._steps = tuple(steps)
+        self.holds_rest_values = any(isinstance(step, _RobotJoint) and step.trajectory is None
+                                     for step in steps)
+        """Whether a joint on the path has no samples and holds its rest value."""
+
+    def poses(self, times: NDArray[np.int64] | None, shifts: dict[str, int]) -> Transform:
+        """The pose of the frame in the reference frame at each of ``times`` (timeline
+        basis, ns; None: the one configuration of a path without samples) as ``(N, 3, 3)``
+        rotations and ``(N, 3)`` translations (metres).
+
+        ``shifts`` holds, per source, what to subtract from a timeline time to land on the
+        source's own time basis.
+        """
+        moments: list[int] = [0] if times is None else times.tolist()
+        rotations = np.empty((len(moments), 3, 3))
+        translations = np.empty((len(moments), 3))
+        model, data = self.model.model, self.model.data
+        for sample, time in enumerate(moments):
+            pin.forwardKinematics(model, data, np.array(self._configuration(time, shifts)))
+            frame_in_root = pin.updateFramePlacement(model, data, self.frame_id)
+            reference_in_root = pin.updateFramePlacement(model, data, self.reference_id)
+            frame_in_reference = reference_in_root.actInv(frame_in_root)
+            rotations[sample] = frame_in_reference.rotation
+            translations[sample] = frame_in_reference.translation
+        return rotations, translations
+
+    def _configuration(self, time: int, shifts: dict[str, int]) -> list[float]:
+        """Pinocchio's configuration ``q`` of the model at ``time`` (timeline basis, ns)."""
+        q: list[float] = []
+        # joints driven together have equal times: search their segments once
+        positions: dict[tuple[str, int], tuple[int, float]] = {}
+        for step in self._steps:
+            if isinstance(step, _MovingFrame):
+                translation, quaternion = step.keyframes.pose_at(time - shifts[step.source])
+                q += translation
+                q += quaternion
+                continue
+            trajectory = step.trajectory
+            if trajectory is None:
+                value = step.rest
+            else:
+                shift = shifts[step.primary]
+                position = positions.get((step.time_group, shift))
+                if position is None:
+                    position = positions[step.time_group, shift] = segment_position(
+                        trajectory.times, time - shift)
+                value = trajectory.value_at(time - shift, position)
+            for multiplier, offset in step.mimics:
+                value = multiplier * value + offset
+            if step.cos_sin:
+                q += (math.cos(value), math.sin(value))
+            else:
+                q.append(value)
+        return q
+
+
+def one_time_plan(
+    tree: TreeDescription, model: CompiledModel, frame: str, relative_to: str
+) -> OneTimePlan:
+    """The :class:`OneTimePlan` of the query of ``frame`` in ``relative_to``, prepared once
+    per tree version."""
+    key = ("one time", frame, relative_to)
+    plan = tree.cached(key)
+    if plan is None:
+        plan = OneTimePlan(tree, model, frame, relative_to)
+        tree.store(key, plan)
+    assert isinstance(plan, OneTimePlan)
+    return plan
