@@ -198,10 +198,10 @@ URDF = [
          + "".join(f'<!ENTITY {chr(98 + i)} "' + f"&{chr(97 + i)};" * 10 + '">'
                    for i in range(8))
          + ']><robot name="&i;"><link name="a"/></robot>',
-         FileFormatError, None, None, "amplification"),
+         FileFormatError, None, "DOCTYPE", "entities defined in one can expand"),
     Case("deeply-nested-link", "urdf",
          '<robot name="r"><link name="a">' + "<v>" * 3000 + "</v>" * 3000 + "</link></robot>",
-         FileFormatError, None, None, "nested too deeply"),
+         FileFormatError, None, "v", "nested more than 1,000 levels deep"),
     Case("binary-garbage", "urdf", GARBAGE, ReadError, None, None, "not UTF-8"),
     Case("missing", "urdf", MISSING, ReadError, None, None, "no such file"),
     Case("folder", "urdf", FOLDER, ReadError, None, None, "is a folder"),
