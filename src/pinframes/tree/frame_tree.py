@@ -85,9 +85,18 @@ class FrameTree(TreeQueries):
         Keyframes counting from ``other``'s reference time keep their absolute times. A
         :class:`Subsystem` named ``name`` (default: ``prefix + other.name``) records the graft; the
         subsystems of ``other`` come along nested in it (with ``record=False`` there is no
-        record, and they nest in nothing). A name taken twice is a
-        :class:`~pinframes.errors.FrameExistsError`, and any failure leaves both trees as
-        they were. Returns the record.
+        record, and they nest in nothing).
+
+        The tree :attr:`metadata` of ``other`` comes along too: every entry, deep-copied,
+        under ``prefix + key``, beside this tree's own entries, which stay as they are. The
+        formats read only their own key (``"urdf"``, ``"frames_yaml"``), so entries that took
+        a prefix are kept but not used when this tree is written. With a prefix, metadata keys
+        must be strings (:class:`~pinframes.errors.ArgumentTypeError`, field ``metadata``).
+
+        A name taken twice (frame, joint, data, subsystem, or metadata key) is a
+        :class:`~pinframes.errors.FrameExistsError` naming it and its field (``frames``,
+        ``joints``, ``data``, ``subsystems``, ``metadata``), and any failure leaves both trees
+        as they were. Returns the record.
         """
         return grafting.graft(self, other, at, prefix, name, record)
 
@@ -95,7 +104,8 @@ class FrameTree(TreeQueries):
         """A new tree rooted at ``frame`` with copies of everything below it: poses, joints
         and their trajectories, data, frame metadata and the subsystems inside it. A subsystem
         recording exactly this part (a :meth:`graft`) names the copy, gives its reference
-        time and is not kept, so ``subtree`` undoes ``graft``."""
+        time and is not kept, so ``subtree`` undoes ``graft``. The tree :attr:`metadata` is
+        not copied (:meth:`copy` copies it)."""
         return grafting.subtree(self, frame)
 
     def copy(self) -> FrameTree:

@@ -2,16 +2,18 @@
 
 ``graft`` is weldx's ``CoordinateSystemManager.merge`` with a mount point: the other tree's
 root becomes frame ``at`` of this tree, every other frame of it (moving frames, robot links
-with their joints and trajectories, data) comes along with ``prefix`` before its name, and a
-:class:`Subsystem` records what came. ``subtree`` is the reverse: a new tree rooted at a
-frame, holding what lies below it; a subsystem that recorded exactly that part is unwrapped
-again, so that grafting and then taking the subtree gives back the tree that was grafted.
+with their joints and trajectories, data, and the entries of its tree metadata) comes along
+with ``prefix`` before its name, and a :class:`Subsystem` records what came. ``subtree`` is
+the reverse: a new tree rooted at a frame, holding what lies below it; a subsystem that
+recorded exactly that part is unwrapped again, so that grafting and then taking the subtree
+gives back the tree that was grafted (its frames; tree metadata is not taken back).
 """
 
 from __future__ import annotations
 
 import copy
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
@@ -47,8 +49,9 @@ def graft(tree: Tree, other: Tree, at: str | None = None, prefix: str = "",
 
     record_name = name if name is not None else prefix + (other.name or other.root)
     subsystems = _renamed_subsystems(other, renamed, prefix, record_name if record else None)
+    metadata = _renamed_metadata(other, prefix)
     _refuse_clashes(tree, other, renamed, prefix,
-                    [record_name] * record + [s.name for s in subsystems])
+                    [record_name] * record + [s.name for s in subsystems], list(metadata))
     entry = Subsystem(record_name, at, tuple(renamed(frame) for frame in other.frames),
                       tree.name, other.reference_time,
                       tuple(s.name for s in subsystems if s.parent == record_name),
@@ -62,6 +65,7 @@ def graft(tree: Tree, other: Tree, at: str | None = None, prefix: str = "",
                 tree.remove(child, recursive=True, drop_data=True)
         raise
     tree.subsystems = [*tree.subsystems, *([entry] if entry else []), *subsystems]
+    tree.metadata.update(metadata)
     return entry
 
 
@@ -149,7 +153,7 @@ def _anchored_data(data: SpatialData, reference: np.datetime64 | None) -> Spatia
 
 
 def _refuse_clashes(tree: TreeLike, other: TreeLike, renamed: Callable[[str], str],
-                    prefix: str, subsystem_names: list[str]) -> None:
+                    prefix: str, subsystem_names: list[str], metadata_keys: list[Any]) -> None:
     """A :class:`FrameExistsError` for any name the graft would take twice; nothing changed."""
     clashes = [
         ("frames", [renamed(f) for f in other.frames[1:] if renamed(f) in tree]),
@@ -157,6 +161,7 @@ def _refuse_clashes(tree: TreeLike, other: TreeLike, renamed: Callable[[str], st
         ("data", [prefix + d for d in other.data_names if prefix + d in tree.data_names]),
         ("subsystems", [n for n in subsystem_names
                         if n in {s.name for s in tree.subsystems}]),
+        ("metadata", [key for key in metadata_keys if key in tree.metadata]),
     ]
     for kind, names in clashes:
         if names:
@@ -164,6 +169,18 @@ def _refuse_clashes(tree: TreeLike, other: TreeLike, renamed: Callable[[str], st
                 f"the tree already has {kind} named {', '.join(map(repr, names[:5]))}"
                 + (" ..." if len(names) > 5 else "") + "; graft with another prefix or name",
                 frame=names[0] if kind == "frames" else None, field=kind)
+
+
+def _renamed_metadata(other: TreeLike, prefix: str) -> dict[Any, Any]:
+    """``other.metadata`` deep-copied, with ``prefix`` before every key; with a prefix, a key
+    that is not a string is an :class:`ArgumentTypeError` (raised before the tree changes)."""
+    if prefix:
+        odd = [key for key in other.metadata if not isinstance(key, str)]
+        if odd:
+            raise ArgumentTypeError(f"metadata key {odd[0]!r} is not a string, so it cannot "
+                                    f"take the prefix {prefix!r}", field="metadata")
+    return {prefix + key if prefix else key: value
+            for key, value in copy.deepcopy(other.metadata).items()}
 
 
 def _renamed_subsystems(other: TreeLike, renamed: Callable[[str], str], prefix: str,
