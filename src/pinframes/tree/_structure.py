@@ -68,6 +68,14 @@ class TreeStructure:
         self._data: dict[str, tuple[str, SpatialData]] = {}
         self._description: TreeDescription | None = None
 
+    def __getstate__(self) -> dict[str, Any]:
+        """The tree without the description of its current version (a cache, rebuilt on
+        the next query), so that a queried tree pickles and deep-copies (to Dask workers,
+        through ``multiprocessing``)."""
+        state = self.__dict__.copy()
+        state["_description"] = None
+        return state
+
     # -- inspection ------------------------------------------------------------------------
     @property
     def root(self) -> str:
