@@ -3,10 +3,14 @@ frame in every other at many times, to 1e-12); clashing names change neither tre
 
 from __future__ import annotations
 
+import xml.etree.ElementTree as ET
+
 import numpy as np
 import pytest
 
+import pinframes
 from pinframes import (
+    ArgumentTypeError,
     FrameExistsError,
     FrameTree,
     Joint,
@@ -170,3 +174,90 @@ def test_subtree_of_a_plain_frame_keeps_the_tree_name_and_reference_time():
         np.testing.assert_allclose(part.pose(frame, "table", times=TIMES).matrix,
                                    original.pose(frame, "table", times=TIMES).matrix,
                                    atol=1e-12)
+
+
+# -- tree metadata ---------------------------------------------------------------------------
+def with_metadata(tree: FrameTree, metadata: dict) -> FrameTree:
+    tree.metadata = metadata
+    return tree
+
+
+def test_graft_adds_the_grafted_metadata_under_the_prefix_and_keeps_its_own():
+    shop = with_metadata(host(), {"site": "hall 3", "urdf": {"crane": {"name": "hoist"}}})
+    grafted = with_metadata(cell(), {"urdf": {"arm": {"name": "ur5", "extra_xml": ["<m/>"]}},
+                                     "calibrated": "2024-02-28"})
+    shop.graft(grafted, at="crane", prefix="left/")
+    assert shop.metadata == {"site": "hall 3", "urdf": {"crane": {"name": "hoist"}},
+                             "left/urdf": {"arm": {"name": "ur5", "extra_xml": ["<m/>"]}},
+                             "left/calibrated": "2024-02-28"}
+    # deep copies: changing either tree afterwards leaves the other alone
+    grafted.metadata["urdf"]["arm"]["extra_xml"].append("<n/>")
+    shop.metadata["left/urdf"]["arm"]["name"] = "changed"
+    assert shop.metadata["left/urdf"]["arm"]["extra_xml"] == ["<m/>"]
+    assert grafted.metadata["urdf"]["arm"]["name"] == "ur5"
+
+
+def test_graft_without_a_prefix_adds_the_keys_as_they_are():
+    shop = with_metadata(host(), {"site": "hall 3"})
+    shop.graft(with_metadata(cell(), {"urdf": {"arm": {"name": "ur5"}}}), at="cell_base")
+    assert shop.metadata == {"site": "hall 3", "urdf": {"arm": {"name": "ur5"}}}
+
+
+def test_a_clashing_metadata_key_is_an_error_that_changes_neither_tree():
+    shop = with_metadata(host(), {"site": "hall 3", "left/note": "mine"})
+    grafted = with_metadata(cell(), {"note": "theirs"})
+    before, before_grafted = snapshot(shop), snapshot(grafted)
+    with pytest.raises(FrameExistsError) as caught:
+        shop.graft(grafted, at="crane", prefix="left/")
+    assert caught.value.field == "metadata" and "'left/note'" in str(caught.value)
+    assert snapshot(shop) == before and snapshot(grafted) == before_grafted
+    assert shop.metadata == {"site": "hall 3", "left/note": "mine"}
+    assert grafted.metadata == {"note": "theirs"}
+    # another prefix takes it
+    shop.graft(grafted, at="crane", prefix="right/")
+    assert shop.metadata == {"site": "hall 3", "left/note": "mine", "right/note": "theirs"}
+
+
+def test_a_failure_midway_leaves_the_metadata_as_it_was():
+    shop = with_metadata(FrameTree("world"), {"site": "hall 3"})
+    shop.add("cell_base", "world", Pose([[0, 0, 0], [1, 0, 0]], times=[0.0, 1.0]))
+    with pytest.raises(ReferenceTimeError):
+        shop.graft(with_metadata(cell(), {"note": "theirs"}), at="cell_base")
+    assert shop.metadata == {"site": "hall 3"}
+
+
+def test_a_metadata_key_that_cannot_take_the_prefix_is_an_error_before_any_change():
+    shop = host()
+    before = snapshot(shop)
+    with pytest.raises(ArgumentTypeError) as caught:
+        shop.graft(with_metadata(cell(), {7: "seven"}), at="crane", prefix="left/")
+    assert caught.value.field == "metadata" and "7" in str(caught.value)
+    assert snapshot(shop) == before and shop.metadata == {}
+    shop.graft(with_metadata(cell(), {7: "seven"}), at="cell_base")  # no prefix: kept as is
+    assert shop.metadata == {7: "seven"}
+
+
+ROBOT = """<robot name="arm">
+  <material name="blue"><color rgba="0 0 1 1"/></material>
+  <link name="base"/><link name="tip"/>
+  <joint name="turn" type="revolute">
+    <parent link="base"/><child link="tip"/><origin xyz="0 0 1"/><axis xyz="0 0 1"/>
+    <limit lower="-1" upper="1" effort="1" velocity="1"/>
+  </joint>
+</robot>
+"""
+
+
+@pytest.mark.filterwarnings("ignore::pinframes.errors.JointWithoutSamplesWarning")
+def test_a_grafted_robot_keeps_its_urdf_details_for_the_urdf_writer(tmp_path):
+    (tmp_path / "arm.urdf").write_text(ROBOT)
+    robot = pinframes.read(tmp_path / "arm.urdf")
+    cell_tree = FrameTree("world")
+    cell_tree.add("base", "world", Pose([1.0, 0.0, 0.0]))
+    cell_tree.graft(robot)
+    cell_tree.graft(robot, at="world", prefix="spare/")
+    assert set(cell_tree.metadata) == {"urdf", "spare/urdf"}
+    pinframes.write(cell_tree, tmp_path / "cell.urdf")
+    written = ET.parse(tmp_path / "cell.urdf").getroot()
+    assert [m.get("name") for m in written.findall("material")] == ["blue"]
+    assert written.find("material/color").get("rgba") == "0 0 1 1"

@@ -240,6 +240,24 @@ def test_frames_yaml_layer_mounted_with_prefix(tmp_path):
     np.testing.assert_allclose(lamp.rotation, rot_z(3 * np.pi / 2), atol=1e-12)
 
 
+def test_two_frames_yaml_layers_without_prefix_and_no_layer_file_details(tmp_path):
+    """Each layer's reader keeps its file's top-level keys in tree metadata; the scene keeps
+    neither (docs/scene-format.md), so two layers never clash over them."""
+    (tmp_path / "a.yaml").write_text("version: 1.0\nframes:\n"
+                                     "  desk: {relative_to: ~, pose: {x: 1}}\n")
+    (tmp_path / "b.yaml").write_text("version: 1.0\nframes:\n"
+                                     "  shelf: {relative_to: ~, pose: {y: 2}}\n")
+    path = scene_file(tmp_path, """\
+        pinframes_scene: 1
+        layers:
+          - {file: a.yaml, mount: world}
+          - {file: b.yaml, mount: world}
+        """)
+    tree = read_scene(path)
+    assert tree.frames == ["world", "desk", "shelf"]
+    np.testing.assert_allclose(tree.pose("shelf", "world").translation, [0, 2, 0])
+    assert tree.metadata == {}
+
 def test_errors_inside_a_layer_name_the_layer_file(tmp_path):
     (tmp_path / "frames.yaml").write_text("frames:\n  a: {pose: {x: oops}}\n")
     path = scene_file(tmp_path, "pinframes_scene: 1\nlayers:\n- {file: frames.yaml}\n")

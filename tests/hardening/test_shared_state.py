@@ -8,6 +8,8 @@ against values written out by hand.
 
 from __future__ import annotations
 
+import copy
+import pickle
 from collections.abc import Callable
 
 import numpy as np
@@ -215,3 +217,20 @@ def test_joints_set_together_share_one_read_only_copy_of_their_times():
     assert first.times is second.times
     assert not first.times.flags.writeable
     np.testing.assert_array_equal(first.times, [0, 1_000_000_000, 2_000_000_000])
+
+
+@pytest.mark.parametrize("duplicate", [copy.deepcopy,
+                                       lambda tree: pickle.loads(pickle.dumps(tree))],
+                         ids=["deepcopy", "pickle"])
+def test_a_queried_tree_pickles_and_deep_copies_and_answers_alike(duplicate):
+    """The description a query builds (read-only mappings, prepared paths) is a cache: it
+    stays behind, and the copy builds its own."""
+    tree = sample_tree()
+    times = np.linspace(0.0, 1.5, 12)  # the batched kernels and, below, one time
+    expected = tree.pose("arm/c", "world", times=times, time_ref=START)
+    expected_once = tree.pose("arm/c", "world", times=0.7, time_ref=START)
+    twin = duplicate(tree)
+    np.testing.assert_array_equal(
+        twin.pose("arm/c", "world", times=times, time_ref=START).matrix, expected.matrix)
+    np.testing.assert_array_equal(
+        twin.pose("arm/c", "world", times=0.7, time_ref=START).matrix, expected_once.matrix)

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..values._se3 import Transform, samples_first
+from ..values._se3 import Transform
 from ..values._timeline import QueryTimeline
 from . import _evaluate
 from ._description import TreeDescription
@@ -105,6 +105,14 @@ def sample_path(tree: TreeDescription, evaluation: _evaluate.Evaluation, signs: 
     frame, relative_to = model.frame_placements_in_root(
         joints, [evaluation.frame, evaluation.relative_to])
     # the twist sums work on (N, 3, 3) / (N, 3) stacks; the evaluator's are samples last
-    # (static parts stay the same objects: the shared identity is still recognised)
-    return SampledPath(model, [samples_first(joint) for joint in joints],
-                       samples_first(frame), samples_first(relative_to), signs, shifts, times)
+    return SampledPath(model, [_stacked(joint) for joint in joints], _stacked(frame),
+                       _stacked(relative_to), signs, shifts, times)
+
+
+def _stacked(transform: Transform) -> Transform:
+    """``(N, 3, 3)`` / ``(N, 3)`` views of a samples-last transform (copying every joint
+    frame took a quarter of a velocity query); static parts stay the same objects, so the
+    shared identity is still recognised."""
+    rotation, translation = transform
+    return (np.moveaxis(rotation, -1, 0) if rotation.ndim == 3 else rotation,
+            translation.T if translation.ndim == 2 else translation)

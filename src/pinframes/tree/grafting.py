@@ -2,15 +2,17 @@
 
 ``graft`` is weldx's ``CoordinateSystemManager.merge`` with a mount point: the other tree's
 root becomes frame ``at`` of this tree, every other frame of it (moving frames, robot links
-with their joints and trajectories, data) comes along with ``prefix`` before its name, and a
-:class:`Subsystem` records what came. ``subtree`` is the reverse: a new tree rooted at a
-frame, holding what lies below it; a subsystem that recorded exactly that part is unwrapped
-again, so that grafting and then taking the subtree gives back the tree that was grafted.
+with their joints and trajectories, data, and the entries of its tree metadata) comes along
+with ``prefix`` before its name, and a :class:`Subsystem` records what came. ``subtree`` is
+the reverse: a new tree rooted at a frame, holding what lies below it; a subsystem that
+recorded exactly that part is unwrapped again, so that grafting and then taking the subtree
+gives back the tree that was grafted (its frames; tree metadata is not taken back).
 """
 
 from __future__ import annotations
 
 import copy
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -21,15 +23,12 @@ from ..values.joint_trajectory import JointTrajectory
 from ..values.pose import Pose
 from ..values.spatial_data import SpatialData
 from ..values.subsystem import Subsystem
-
-# A FrameTree, by name only: frame_tree imports this module, and an import back would be a
-# cycle (tests/test_layers.py); new trees are made with type(tree).
-FrameTree = Any
+from ._tree_like import Tree, TreeLike
 
 __all__ = ["copy_tree", "graft", "subtree"]
 
 
-def graft(tree: FrameTree, other: FrameTree, at: str | None = None, prefix: str = "",
+def graft(tree: Tree, other: Tree, at: str | None = None, prefix: str = "",
           name: str | None = None, record: bool = True) -> Subsystem | None:
     """Mount ``other`` on ``tree``; see :meth:`pinframes.FrameTree.graft`."""
     if not isinstance(other, type(tree)):
@@ -50,8 +49,9 @@ def graft(tree: FrameTree, other: FrameTree, at: str | None = None, prefix: str 
 
     record_name = name if name is not None else prefix + (other.name or other.root)
     subsystems = _renamed_subsystems(other, renamed, prefix, record_name if record else None)
+    metadata = _renamed_metadata(other, prefix)
     _refuse_clashes(tree, other, renamed, prefix,
-                    [record_name] * record + [s.name for s in subsystems])
+                    [record_name] * record + [s.name for s in subsystems], list(metadata))
     entry = Subsystem(record_name, at, tuple(renamed(frame) for frame in other.frames),
                       tree.name, other.reference_time,
                       tuple(s.name for s in subsystems if s.parent == record_name),
@@ -65,15 +65,16 @@ def graft(tree: FrameTree, other: FrameTree, at: str | None = None, prefix: str 
                 tree.remove(child, recursive=True, drop_data=True)
         raise
     tree.subsystems = [*tree.subsystems, *([entry] if entry else []), *subsystems]
+    tree.metadata.update(metadata)
     return entry
 
 
-def subtree(tree: FrameTree, frame: str) -> FrameTree:
+def subtree(tree: Tree, frame: str) -> Tree:
     """A copy of ``frame`` and everything below it; see :meth:`pinframes.FrameTree.subtree`."""
     if frame not in tree:
         raise FrameNotFoundError("no frame of this name in the tree", frame=str(frame),
                                  field="frame")
-    below = set(tree._subtree(frame))
+    below = _below(tree, frame)
     kept = [s for s in tree.subsystems if s.root in below and set(s.members) <= below]
     whole = [s for s in kept if s.root == frame and set(s.members) == below]
     record = whole[0] if len(whole) == 1 else None
@@ -87,7 +88,7 @@ def subtree(tree: FrameTree, frame: str) -> FrameTree:
     return copy_tree
 
 
-def copy_tree(tree: FrameTree) -> FrameTree:
+def copy_tree(tree: Tree) -> Tree:
     """An independent copy of ``tree``: frames, joints, trajectories, data, subsystems and
     metadata (deep-copied)."""
     copied = type(tree)(tree.root, name=tree.name, reference_time=tree.reference_time)
@@ -98,18 +99,20 @@ def copy_tree(tree: FrameTree) -> FrameTree:
     return copied
 
 
-def _copy_frames(source: FrameTree, target: FrameTree, renamed, prefix: str,
-                 reference: np.datetime64 | None, top: str | None = None) -> None:
+def _copy_frames(source: TreeLike, target: TreeLike, renamed: Callable[[str], str],
+                 prefix: str, reference: np.datetime64 | None, top: str | None = None) -> None:
     """Add every frame below ``top`` (default: the root) of ``source`` to ``target``.
 
     Keyframes, joint tracks and data that count from ``reference`` (the source's reference
     time, when it changes tree) get it as their own, so they keep their absolute times.
     """
     top = source.root if top is None else top
-    below = set(source._subtree(top))
+    below = _below(source, top)
     frames = [f for f in source.frames if f in below and f != top]
     for frame in frames:
-        parent = renamed(source.parent(frame))
+        above = source.parent(frame)
+        assert above is not None  # frames below top, never the root
+        parent = renamed(above)
         pose = _anchored_pose(source.local_pose(frame), reference)
         joint = source.joint_of(frame)
         if joint is None:
@@ -149,8 +152,8 @@ def _anchored_data(data: SpatialData, reference: np.datetime64 | None) -> Spatia
     return data.with_points(data.points, times.astype(np.int64), reference)
 
 
-def _refuse_clashes(tree: FrameTree, other: FrameTree, renamed, prefix: str,
-                    subsystem_names: list[str]) -> None:
+def _refuse_clashes(tree: TreeLike, other: TreeLike, renamed: Callable[[str], str],
+                    prefix: str, subsystem_names: list[str], metadata_keys: list[Any]) -> None:
     """A :class:`FrameExistsError` for any name the graft would take twice; nothing changed."""
     clashes = [
         ("frames", [renamed(f) for f in other.frames[1:] if renamed(f) in tree]),
@@ -158,6 +161,7 @@ def _refuse_clashes(tree: FrameTree, other: FrameTree, renamed, prefix: str,
         ("data", [prefix + d for d in other.data_names if prefix + d in tree.data_names]),
         ("subsystems", [n for n in subsystem_names
                         if n in {s.name for s in tree.subsystems}]),
+        ("metadata", [key for key in metadata_keys if key in tree.metadata]),
     ]
     for kind, names in clashes:
         if names:
@@ -167,8 +171,20 @@ def _refuse_clashes(tree: FrameTree, other: FrameTree, renamed, prefix: str,
                 frame=names[0] if kind == "frames" else None, field=kind)
 
 
-def _renamed_subsystems(other: FrameTree, renamed, prefix: str, record: str | None
-                        ) -> list[Subsystem]:
+def _renamed_metadata(other: TreeLike, prefix: str) -> dict[Any, Any]:
+    """``other.metadata`` deep-copied, with ``prefix`` before every key; with a prefix, a key
+    that is not a string is an :class:`ArgumentTypeError` (raised before the tree changes)."""
+    if prefix:
+        odd = [key for key in other.metadata if not isinstance(key, str)]
+        if odd:
+            raise ArgumentTypeError(f"metadata key {odd[0]!r} is not a string, so it cannot "
+                                    f"take the prefix {prefix!r}", field="metadata")
+    return {prefix + key if prefix else key: value
+            for key, value in copy.deepcopy(other.metadata).items()}
+
+
+def _renamed_subsystems(other: TreeLike, renamed: Callable[[str], str], prefix: str,
+                        record: str | None) -> list[Subsystem]:
     """The grafted tree's subsystems: names prefixed, top-level ones nested in ``record``."""
     nesting = {inner: s.name for s in other.subsystems for inner in s.subsystems}
     return [Subsystem(prefix + s.name, renamed(s.root), tuple(renamed(m) for m in s.members),
@@ -176,3 +192,13 @@ def _renamed_subsystems(other: FrameTree, renamed, prefix: str, record: str | No
                       s.reference_time, tuple(prefix + n for n in s.subsystems),
                       tuple(prefix + d for d in s.data))
             for s in other.subsystems]
+
+
+def _below(tree: TreeLike, frame: str) -> set[str]:
+    """``frame`` and every frame below it."""
+    below, stack = set(), [frame]
+    while stack:
+        name = stack.pop()
+        below.add(name)
+        stack.extend(tree.children(name))
+    return below

@@ -18,17 +18,14 @@ from ..values.joint import mimic_chain
 from ..values.joint_trajectory import JointTrajectory
 from ..values.pose import Pose
 from ..values.timeconv import TimeAxis, parse_time_axis, parse_timestamp, shift_ns, timestamp_ns
-
-# A FrameTree, by name only: frame_tree imports this module, and an import back would be a
-# cycle (tests/test_layers.py); new trees are made with type(tree).
-FrameTree = Any
+from ._tree_like import Tree, TreeLike
 
 __all__ = ["resampled", "time_union"]
 
 _Samples = tuple[NDArray[np.int64], "np.datetime64 | None"]
 
 
-def time_union(tree: FrameTree, frames: Iterable[str] | None = None) -> TimeAxis | None:
+def time_union(tree: TreeLike, frames: Iterable[str] | None = None) -> TimeAxis | None:
     """Every keyframe and joint sample time of ``frames`` (default: all); see
     :meth:`pinframes.FrameTree.time_union`."""
     if isinstance(frames, str):
@@ -48,7 +45,7 @@ def time_union(tree: FrameTree, frames: Iterable[str] | None = None) -> TimeAxis
     return None if offsets is None else TimeAxis(offsets, timeline.reference)
 
 
-def resampled(tree: FrameTree, times: Any, time_ref: Any = None) -> FrameTree:
+def resampled(tree: Tree, times: Any, time_ref: Any = None) -> Tree:
     """A copy of ``tree`` whose moving frames and joint trajectories are sampled at ``times``
     only; see :meth:`pinframes.FrameTree.resampled`."""
     axis = parse_time_axis(times)
@@ -78,7 +75,7 @@ def resampled(tree: FrameTree, times: Any, time_ref: Any = None) -> FrameTree:
     return copy
 
 
-def _frame_samples(tree: FrameTree, frame: str) -> list[_Samples]:
+def _frame_samples(tree: TreeLike, frame: str) -> list[_Samples]:
     joint = tree.joint_of(frame)
     if joint is None:
         pose = tree.local_pose(frame)
@@ -90,7 +87,7 @@ def _frame_samples(tree: FrameTree, frame: str) -> list[_Samples]:
 
 
 def _own_basis(axis: TimeAxis, instants: NDArray[np.int64] | None,
-               own: np.datetime64 | None, tree: FrameTree, frame: str) -> NDArray[np.int64]:
+               own: np.datetime64 | None, tree: TreeLike, frame: str) -> NDArray[np.int64]:
     """The requested times as ns on the basis of a pose or track (its own reference time,
     else the tree's, else plain offsets)."""
     reference = own if own is not None else tree.reference_time

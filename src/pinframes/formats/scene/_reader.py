@@ -384,8 +384,11 @@ def _graft(tree: FrameTree, layer: FrameTree, mount: str, prefix: str) -> None:
     (:meth:`FrameTree.graft`, without a subsystem record: layers need no unique names).
 
     Moving frames keep their absolute times: a frame that counted from the layer's
-    reference time gets that reference time as its own.
+    reference time gets that reference time as its own. The layer's tree metadata (what its
+    format keeps about the file itself: frames.yaml top-level keys) is not kept: the scene,
+    not the layer file, is what the tree was read from (docs/scene-format.md).
     """
     if layer.joints:
         raise UnsupportedFeatureError("layers with robot joints; list robots under 'robots'")
+    layer.metadata = {}
     tree.graft(layer, at=mount, prefix=prefix, record=False)

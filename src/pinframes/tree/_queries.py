@@ -1,0 +1,278 @@
+"""`TreeQueries`: the questions asked of a frame tree's frames, handed to the kinematics.
+
+Poses (one pair, many pairs), points and vectors carried between frames, velocities,
+Jacobians, the default sample times, the whole tree at one instant and as one Pinocchio
+model. Each method checks the frame names, then hands the tree's
+:class:`~pinframes.kinematics.TreeDescription` of this version to the kinematics, which does
+all the work. :class:`~pinframes.FrameTree` is this class with the data and the whole-tree
+operations added.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from typing import Any
+
+import numpy as np
+
+from ..errors import PinframesError, TreeStructureError
+from ..kinematics import (
+    FrameJacobian,
+    PinocchioTree,
+    Snapshot,
+    Velocity,
+    default_times,
+    evaluate_jacobian,
+    evaluate_pose,
+    evaluate_poses,
+    evaluate_velocity,
+    paths_to_common_ancestor,
+    snapshot,
+)
+from ..values.pose import Pose
+from ..values.pose_stack import PoseStack
+from ..values.timeconv import TimeAxis
+from ._structure import TreeStructure
+
+__all__ = ["TreeQueries"]
+
+
+class TreeQueries(TreeStructure):
+    """The queries of a :class:`~pinframes.FrameTree` (see there)."""
+
+    # -- queries ---------------------------------------------------------------------------
+    def path(self, frame: str, relative_to: str) -> list[str]:
+        """Frames from ``frame`` up to their lowest common ancestor and down to ``relative_to``."""
+        self._require(frame)
+        self._require(relative_to)
+        up, down = paths_to_common_ancestor(self._parent, self._depth, frame, relative_to)
+        return up + down[::-1][1:]
+
+    def pose(
+        self,
+        frame: str,
+        relative_to: str | None = None,
+        times: Any = None,
+        time_ref: Any = None,
+        *,
+        extrapolation: str = "clamp",
+    ) -> Pose:
+        """The pose of ``frame`` in ``relative_to`` (default: its parent).
+
+        Follows weldx ``CoordinateSystemManager.get_cs`` (SPEC section 4): every moving
+        frame and joint on the path is interpolated onto one timeline first (translation
+        linear, rotation SLERP), then Pinocchio's kinematics composes the path.
+
+        Parameters
+        ----------
+        frame, relative_to : str
+            Frame names; the result maps coordinates in ``frame`` to ``relative_to``.
+        times : None, times, or a frame name
+            None: the union of the keyframe times of the moving things on the path (a
+            static pose if nothing on it moves). A frame name: that frame's keyframe times.
+            Relative times count from ``time_ref``, else from the result's reference time.
+        time_ref : None or timestamp
+            Reference time of the result (ignored when ``times`` is None).
+        extrapolation : {"clamp", "error"}
+            Outside a frame's keyframes hold its first/last pose, or raise
+            :class:`~pinframes.errors.ExtrapolationError`.
+
+        Returns
+        -------
+        Pose
+            One pose per requested time; ``reference_time`` set by the rules of SPEC 4.
+        """
+        self._require(frame, "frame")
+        relative_to = self._default_reference(frame, relative_to)
+        self._require(relative_to, "relative_to")
+        return evaluate_pose(self._frozen(), frame, relative_to, times, time_ref,
+                             extrapolation)
+
+    def poses(
+        self,
+        frames: Sequence[str],
+        relative_to: str | Sequence[str] | None = None,
+        times: Any = None,
+        time_ref: Any = None,
+        *,
+        extrapolation: str = "clamp",
+    ) -> PoseStack:
+        """The poses of many frames in one call, stacked: ``result[i]`` equals
+        ``self.pose(frames[i], relative_to[i], times, time_ref)``.
+
+        Parameters
+        ----------
+        frames : sequence of str
+            F frame names.
+        relative_to : None, str or sequence of F str
+            One frame for all (the poses of several frames in it), one per frame (F pairs),
+            or None for each frame's parent.
+        times, time_ref, extrapolation
+            As for :meth:`pose`, shared by all pairs.
+
+        Returns
+        -------
+        PoseStack
+            Rotations ``(F, 3, 3)`` / translations ``(F, 3)`` when no pair moves and no
+            times are given, else ``(F, T, 3, 3)`` / ``(F, T, 3)`` on the one timeline of the
+            moving pairs (static pairs repeat over it). Pairs whose default timelines or
+            reference times differ are an :class:`~pinframes.errors.InvalidTimeError`:
+            pass ``times`` (and ``time_ref``).
+        """
+        frames = list(frames)
+        if relative_to is None:
+            references = [self._default_reference(frame, None) for frame in frames]
+        elif isinstance(relative_to, str):
+            references = [relative_to] * len(frames)
+        else:
+            references = list(relative_to)
+            if len(references) != len(frames):
+                raise TreeStructureError(
+                    f"relative_to names {len(references)} frames for {len(frames)} frames",
+                    field="relative_to")
+        for name in set(frames):
+            self._require(name, "frame")
+        for name in set(references):
+            self._require(name, "relative_to")
+        if not frames:
+            return PoseStack(np.empty((0, 3, 3)), np.empty((0, 3)))
+        return evaluate_poses(self._frozen(), frames, references, times, time_ref,
+                              extrapolation)
+
+    def transform_points(
+        self, points: Any, frame: str, relative_to: str, times: Any = None, *,
+        time_ref: Any = None, extrapolation: str = "clamp",
+    ) -> np.ndarray:
+        """Points given in ``frame`` (metres), returned in ``relative_to``, at ``times``.
+
+        Times follow :meth:`pose` (None: every keyframe and joint sample on the path; a
+        static path keeps the points' shape). Shapes follow :meth:`Pose.transform_points`:
+        with ``T`` times, ``(T, 3)`` is one point per time (row ``i`` at time ``i``),
+        ``(M, 3)`` (``M != T``) the same points at every time giving ``(T, M, 3)``,
+        ``(T, M, 3)`` a profile per time; ``(1, M, 3)`` forces the same points at every time
+        when ``M == T``. Bad data raise :class:`~pinframes.errors.InvalidDataError` naming
+        ``points`` and ``frame``.
+        """
+        pose = self.pose(frame, relative_to, times, time_ref, extrapolation=extrapolation)
+        return _located(pose.transform_points, points, frame)
+
+    def transform_vectors(
+        self, vectors: Any, frame: str, relative_to: str, times: Any = None, *,
+        time_ref: Any = None, extrapolation: str = "clamp",
+    ) -> np.ndarray:
+        """Directions given in ``frame``, returned in ``relative_to``: rotated, never moved.
+
+        Arguments, times and shapes as :meth:`transform_points`.
+        """
+        pose = self.pose(frame, relative_to, times, time_ref, extrapolation=extrapolation)
+        return _located(pose.transform_vectors, vectors, frame)
+
+    def velocity(
+        self, frame: str, relative_to: str | None = None, times: Any = None,
+        expressed_in: str | None = None, *, time_ref: Any = None,
+        extrapolation: str = "clamp",
+    ) -> Velocity:
+        """Linear (m/s) and angular (rad/s) velocity of ``frame`` relative to ``relative_to``.
+
+        Exact derivatives of what :meth:`pose` interpolates, at the times :meth:`pose` would
+        use (arguments as there): translations move linearly and rotations by SLERP between
+        keyframes, and joints linearly between samples (mimic joints at their multiplier
+        times their primary's rate), so velocities are constant on each segment; a frame
+        held outside its keyframes does not move. At a keyframe the segment that starts
+        there counts; at the last keyframe, the segment that ends there.
+
+        ``linear`` is the velocity of the origin of ``frame`` seen from ``relative_to`` (the
+        derivative of ``pose(frame, relative_to).translation``), ``angular`` the angular
+        velocity ``w`` with ``dR/dt = [w]x @ R``. Both are written in the axes of
+        ``expressed_in``: ``relative_to`` by default (Pinocchio's ``LOCAL_WORLD_ALIGNED``
+        frame velocity when ``relative_to`` is the root of the model), ``frame`` (Pinocchio's
+        ``LOCAL``), or any other frame of the tree (rotated by its pose in ``relative_to``).
+
+        Returns
+        -------
+        Velocity
+            ``linear`` and ``angular`` of shape (T, 3), ``times`` and ``reference_time`` as
+            :meth:`pose` gives them (a static path without times: T = 1, ``times`` None).
+        """
+        self._require(frame, "frame")
+        relative_to = self._default_reference(frame, relative_to)
+        self._require(relative_to, "relative_to")
+        if expressed_in is None:
+            expressed_in = relative_to
+        self._require(expressed_in, "expressed_in")
+        return evaluate_velocity(self._frozen(), frame, relative_to, times, time_ref,
+                                 extrapolation, expressed_in)
+
+    def jacobian(
+        self, frame: str, relative_to: str | None = None, times: Any = None,
+        joints: Sequence[str] | None = None, *, time_ref: Any = None,
+        extrapolation: str = "clamp",
+    ) -> FrameJacobian:
+        """Jacobians ``(T, 6, n)`` of ``frame`` relative to ``relative_to`` in the robot joints.
+
+        Column ``k`` holds the velocity (rows: linear m/s of the origin of ``frame``, then
+        angular rad/s, in the axes of ``relative_to``, as :meth:`velocity`) per unit
+        velocity of joint ``k``: every actuated joint of the tree in its order (as
+        :meth:`set_joint_trajectory` takes them), or those named in ``joints``. Joints off
+        the path have zero columns; a mimic joint counts in its primary's column. When
+        ``relative_to`` is an ancestor of ``frame`` this is Pinocchio's
+        ``computeFrameJacobian(..., LOCAL_WORLD_ALIGNED)`` in a model rooted at
+        ``relative_to``; otherwise it is the same in the tree re-rooted at ``relative_to``
+        (joints that move ``relative_to`` count with the opposite sign, about the origin of
+        ``frame``). ``J @ qdot`` is the part of :meth:`velocity` that the joints cause.
+        Times as :meth:`pose`.
+        """
+        self._require(frame, "frame")
+        relative_to = self._default_reference(frame, relative_to)
+        self._require(relative_to, "relative_to")
+        return evaluate_jacobian(self._frozen(), frame, relative_to, times, time_ref,
+                                 extrapolation, joints)
+
+    def sample_times(self, frame: str, relative_to: str | None = None) -> TimeAxis | None:
+        """The times :meth:`pose` evaluates at when given none, without evaluating.
+
+        Every keyframe and joint sample time on the path, as a :class:`~pinframes.TimeAxis`
+        (int64 nanosecond ``offsets`` after the ``reference`` time the result would carry);
+        None when nothing on the path moves.
+        """
+        self._require(frame, "frame")
+        relative_to = self._default_reference(frame, relative_to)
+        self._require(relative_to, "relative_to")
+        return default_times(self._frozen(), frame, relative_to)
+
+    def snapshot(self, time: Any = None, time_ref: Any = None) -> Snapshot:
+        """The instant ``time`` for the whole tree, and every joint's value then.
+
+        One instant for every frame (a relative ``time`` counts from the tree's reference
+        time, else the lowest reference time of its moving frames and joints, as in
+        :meth:`to_pinocchio`); pass ``snapshot.time`` to :meth:`pose` to take any pose then.
+        ``time=None`` is for trees in which nothing moves.
+        """
+        return snapshot(self._frozen(), time, time_ref)
+
+    def to_pinocchio(self) -> PinocchioTree:
+        """The whole tree as one Pinocchio model, with name mappings and configurations.
+
+        Beware: Pinocchio's ``createData`` grows with the cube of the number of joints
+        (SPEC section 5); :meth:`pose` never builds such a model.
+        """
+        return PinocchioTree(self._frozen())
+
+    # -- helpers ---------------------------------------------------------------------------
+    def _default_reference(self, frame: str, relative_to: str | None) -> str:
+        """``relative_to``, or the parent of ``frame`` when it is None."""
+        if relative_to is not None:
+            return relative_to
+        parent = self._parent.get(frame)
+        if parent is None:
+            raise TreeStructureError("the root frame has no parent; pass relative_to",
+                                     frame=frame, field="relative_to")
+        return parent
+
+
+def _located(transform: Callable[[Any], np.ndarray], data: Any, frame: str) -> np.ndarray:
+    """``transform(data)``, with its errors naming the frame the data are given in."""
+    try:
+        return transform(data)
+    except PinframesError as exc:
+        raise exc.located(frame=frame) from None
