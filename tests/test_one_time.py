@@ -21,7 +21,7 @@ from hardening.tree_strategies import absolute_trees, trees
 from pinframes import FrameTree, JointWithoutSamplesWarning, Pose
 from pinframes.errors import ExtrapolationError
 from pinframes.kinematics._evaluate import prepare_evaluation
-from pinframes.kinematics._one_time import FEW_TIMES
+from pinframes.kinematics._one_time import FEW_TIMES, MAX_DEGREES_OF_FREEDOM
 from pinframes.values._interpolation import Keyframes, segment_position, segment_positions
 from pinframes.values.joint_trajectory import JointTrajectory
 
@@ -384,3 +384,31 @@ def test_a_used_compiled_model_pickles_and_evaluates_in_the_copy(rng):
     frame_id = model.frame_ids["panda_hand"]
     np.testing.assert_array_equal(copy.data.oMf[frame_id].homogeneous,
                                   model.data.oMf[frame_id].homogeneous)
+
+
+@pytest.mark.parametrize("joints", [MAX_DEGREES_OF_FREEDOM, MAX_DEGREES_OF_FREEDOM + 1])
+def test_one_time_on_a_long_chain_matches_a_hand_composition(joints, rng):
+    """Up to MAX_DEGREES_OF_FREEDOM Pinocchio answers one time, beyond it the numpy kernels
+    (pinocchio.Data grows with the cube of the joints): the same pose either way."""
+    links = "".join(f'<link name="l{index}"/>' for index in range(joints + 1))
+    chain = "".join(
+        f'<joint name="j{index}" type="revolute"><parent link="l{index}"/>'
+        f'<child link="l{index + 1}"/><origin xyz="0.1 0 0.02" rpy="0.3 0 0"/>'
+        f'<axis xyz="0 0 1"/><limit lower="-3" upper="3" effort="1" velocity="1"/></joint>'
+        for index in range(joints))
+    tree = FrameTree()
+    tree.attach_urdf(f'<robot name="chain">{links}{chain}</robot>', "world")
+    names = [f"j{index}" for index in range(joints)]
+    values = rng.uniform(-1, 1, size=(2, joints))
+    tree.set_joint_trajectory([0.0, 2.0], values, names)
+    pose = tree.pose(f"l{joints}", "world", times=0.5)
+    at = 0.75 * values[0] + 0.25 * values[1]
+    roll = np.array([[1, 0, 0], [0, np.cos(0.3), -np.sin(0.3)], [0, np.sin(0.3), np.cos(0.3)]])
+    expected = np.eye(4)
+    for angle in at:
+        origin = np.eye(4)
+        origin[:3, :3], origin[:3, 3] = roll, [0.1, 0.0, 0.02]
+        turn = np.eye(4)
+        turn[:2, :2] = [[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]]
+        expected = expected @ origin @ turn
+    np.testing.assert_allclose(pose.matrix[0], expected, rtol=0, atol=1e-12)

@@ -133,10 +133,8 @@ def test_a_long_mimic_chain_is_read_in_linear_time_and_evaluated():
     np.testing.assert_allclose(pose.rotation, expected, rtol=0, atol=1e-12)
 
 
-@pytest.mark.xfail(strict=True, reason="a query at one time builds pinocchio.Data, whose "
-                   "second-order tensors take 64 nv**3 bytes: 4 GB for 400 joints (for "
-                   "the kinematics layer to route large models to the numpy kernels)")
 def test_a_one_time_query_on_hundreds_of_joints_stays_small(tmp_path):
+    """pinocchio.Data of 400 joints would take 4 GB: such a path takes the numpy kernels."""
     path = tmp_path / "robot.urdf"  # 60 kB
     path.write_text(_mimic_chain(400, mimic=False))
     child = ("import sys, warnings; warnings.simplefilter('ignore'); "

@@ -77,8 +77,8 @@ def evaluate_pose(
         if offsets is None:
             return trusted_pose(*evaluation.static)
         rotation, translation = to_stacks(evaluation.static, offsets.shape[0])
-    elif takes_few_times(timeline):  # Pinocchio's own kinematics, time by time
-        assert evaluation.model is not None
+    elif evaluation.model is not None and takes_few_times(timeline, evaluation.model):
+        # Pinocchio's own kinematics, time by time
         plan = one_time_plan(tree, evaluation.model, frame, relative_to)
         if plan.holds_rest_values:
             _warn_joints_without_samples(tree)
