@@ -122,6 +122,25 @@ def interleaved(case: str, calls: dict[str, Callable[[], object]], repeats: int,
         t / b for t, b in zip(times, base, strict=True))) for name, times in samples.items()]
 
 
+def interleaved_per_call(case: str, calls: dict[str, Callable[[], object]], rounds: int,
+                         in_a_row: int = 50) -> list[dict]:
+    """:func:`interleaved` for calls of a few microseconds: each measurement makes a call
+    ``in_a_row`` times in a row, and the rows give the time per call. Timed one call at a
+    time, the one-query cases of bench_queries ran 2-3x slower in the one-thread child than
+    beside the busy process, pinframes and reference alike (a call that short finds the
+    process cold after every switch; likely the scheduler moving it between idle cores);
+    in a row, both settings agree."""
+    def repeated(call: Callable[[], object]) -> Callable[[], object]:
+        def calls_in_a_row() -> None:
+            for _ in range(in_a_row):
+                call()
+        return calls_in_a_row
+
+    measured = interleaved(case, {name: repeated(call) for name, call in calls.items()},
+                           rounds)
+    return [{**entry, "seconds": entry["seconds"] / in_a_row} for entry in measured]
+
+
 def print_table(results: dict[str, list[dict]], reference: str = "numpy reference") -> None:
     """Per case and method: median time and ratio to ``reference`` in both settings."""
     first = results[SETTINGS[0]]

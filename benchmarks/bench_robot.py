@@ -21,7 +21,13 @@ import numpy as np
 import pinocchio as pin
 
 import _reference as ref
-from _machine import describe_machine, interleaved, print_table, run_in_settings
+from _machine import (
+    describe_machine,
+    interleaved,
+    interleaved_per_call,
+    print_table,
+    run_in_settings,
+)
 from pinframes import FrameTree, Pose
 
 ARM = [f"panda_joint{i}" for i in range(1, 8)]
@@ -124,7 +130,7 @@ def one_time_rows(tree, hand, chain, mount, times, positions, quick):
     case = "Panda on moving mount, one time"
     calls = {"pinframes": lambda: tree.pose("panda_hand", "world", times=4.321),
              "numpy reference": reference}
-    rows = interleaved(case, calls, 300 if quick else 1500)
+    rows = interleaved_per_call(case, calls, 6 if quick else 30)
     rows[0]["error"] = float(np.max(np.abs(calls["pinframes"]().matrix - reference())))
     return rows
 

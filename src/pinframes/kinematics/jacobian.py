@@ -25,7 +25,7 @@ from ..values._se3 import IDENTITY
 from ..values.joint import mimic_primary
 from ._description import TreeDescription
 from .sampled_path import SampledPath, plan_query
-from .twists import Twist, jacobian_columns, robot_joint_axes
+from .twists import Twist, jacobian_columns
 
 __all__ = ["FrameJacobian", "evaluate_jacobian"]
 
@@ -83,11 +83,10 @@ def _columns_in_reference(tree: TreeDescription, path: SampledPath,
         column = column_of.get(primary.name)
         if column is None:
             continue
-        unit_twists[position] = robot_joint_axes(compiled.joint, path.joints[position][0])
+        unit_twists[position] = path.unit_twists[position]
         targets[position] = (column, multiplier)
-    origins = [translation for _, translation in path.joints]
     root_matrix = np.zeros((count, 6, len(column_of)))
-    for position, (linear, angular) in jacobian_columns(path.signs, origins, unit_twists,
+    for position, (linear, angular) in jacobian_columns(path.signs, path.origins, unit_twists,
                                                         path.frame[1]).items():
         column, multiplier = targets[position]
         root_matrix[:, :3, column] += multiplier * linear

@@ -19,21 +19,26 @@ from ..values._timeline import QueryTimeline
 from . import _evaluate
 from ._description import TreeDescription
 from ._model import CompiledModel
-from .twists import joint_signs
+from .twists import Twist, joint_signs, robot_joint_axes
 
 __all__ = ["PlannedQuery", "SampledPath", "plan_query", "sample_path"]
 
 
 @dataclass(frozen=True)
 class SampledPath:
-    """A query path at ``N`` samples, in its model's root ``C``.
+    """What velocities and Jacobians need of a query path at ``N`` samples, in its model's
+    root ``C``; arrays samples first (``(N, 3)``, ``(N, 3, 3)``) or static.
 
     Attributes
     ----------
     model : CompiledModel
         The compiled path.
-    joints : list of Transform
-        Per joint of the model, its frame in ``C`` (``oMi``).
+    origins : dict of int to array
+        Per joint that moves an end (a key of ``signs``), its origin ``p_j`` in ``C``, metres.
+    parent_rotations : dict of int to array
+        Per such free-flyer below another joint, that joint's rotation in ``C``.
+    unit_twists : dict of int to Twist
+        Per such robot joint, its twist per unit of joint velocity in ``C``'s axes.
     frame, relative_to : Transform
         The query frame and the reference frame in ``C``.
     signs : dict of int to float
@@ -45,7 +50,9 @@ class SampledPath:
     """
 
     model: CompiledModel
-    joints: list[Transform]
+    origins: dict[int, NDArray[np.float64]]
+    parent_rotations: dict[int, NDArray[np.float64]]
+    unit_twists: dict[int, Twist]
     frame: Transform
     relative_to: Transform
     signs: dict[int, float]
@@ -97,22 +104,53 @@ def plan_query(tree: TreeDescription, frame: str, relative_to: str, times: Any, 
 
 def sample_path(tree: TreeDescription, evaluation: _evaluate.Evaluation, signs: dict[int, float],
                 shifts: dict[str, int], times: NDArray[np.int64]) -> SampledPath:
-    """The path of ``evaluation`` (a moving one) at ``times`` (timeline basis)."""
+    """The path of ``evaluation`` (a moving one) at ``times`` (timeline basis).
+
+    Keeps of each joint's frame only what the twists need (its origin, its axis, a
+    free-flyer's parent rotation), so that the forward kinematics can let the frames go
+    (see :meth:`CompiledModel.joint_frames`).
+    """
     model = evaluation.model
     assert model is not None, "a static path has no model to sample"
     samples = _evaluate.sample_joints(tree, model, evaluation.placed_keyframes, times, shifts)
-    joints = model.joint_placements_in_root(samples)
+    ends = model.frame_parents([evaluation.frame, evaluation.relative_to])
+    flyer_parents = {joint.parent for index, joint in enumerate(model.joints)
+                     if index in signs and joint.joint is None and joint.parent >= 0}
+    kept: dict[int, Transform] = {}
+    origins: dict[int, NDArray[np.float64]] = {}
+    unit_twists: dict[int, Twist] = {}
+    for index, (rotation, translation) in model.joint_frames(samples):
+        if index in ends or index in flyer_parents:
+            kept[index] = (rotation, translation)
+        if index not in signs:
+            continue
+        origins[index] = _vectors_first(translation)
+        robot_joint = model.joints[index].joint
+        if robot_joint is not None:  # copies: a column view would hold the whole rotation
+            unit_twists[index] = _copied(robot_joint_axes(robot_joint, _rotations_first(rotation)))
+    parent_rotations = {index: _rotations_first(kept[joint.parent][0])
+                        for index, joint in enumerate(model.joints)
+                        if index in signs and joint.joint is None and joint.parent >= 0}
     frame, relative_to = model.frame_placements_in_root(
-        joints, [evaluation.frame, evaluation.relative_to])
-    # the twist sums work on (N, 3, 3) / (N, 3) stacks; the evaluator's are samples last
-    return SampledPath(model, [_stacked(joint) for joint in joints], _stacked(frame),
-                       _stacked(relative_to), signs, shifts, times)
+        kept, [evaluation.frame, evaluation.relative_to])
+    return SampledPath(model, origins, parent_rotations, unit_twists,
+                       (_rotations_first(frame[0]), _vectors_first(frame[1])),
+                       (_rotations_first(relative_to[0]), _vectors_first(relative_to[1])),
+                       signs, shifts, times)
 
 
-def _stacked(transform: Transform) -> Transform:
-    """``(N, 3, 3)`` / ``(N, 3)`` views of a samples-last transform (copying every joint
-    frame took a quarter of a velocity query); static parts stay the same objects, so the
-    shared identity is still recognised."""
-    rotation, translation = transform
-    return (np.moveaxis(rotation, -1, 0) if rotation.ndim == 3 else rotation,
-            translation.T if translation.ndim == 2 else translation)
+def _rotations_first(rotation: NDArray[np.float64]) -> NDArray[np.float64]:
+    """A ``(N, 3, 3)`` view of ``(3, 3, N)`` rotations; a static one stays the same object
+    (the shared identity is still recognised)."""
+    return np.moveaxis(rotation, -1, 0) if rotation.ndim == 3 else rotation
+
+
+def _vectors_first(vector: NDArray[np.float64]) -> NDArray[np.float64]:
+    """A ``(N, 3)`` view of ``(3, N)`` vectors; a static one stays as it is."""
+    return vector.T if vector.ndim == 2 else vector
+
+
+def _copied(twist: Twist) -> Twist:
+    linear, angular = twist
+    return (None if linear is None else np.ascontiguousarray(linear),
+            None if angular is None else np.ascontiguousarray(angular))

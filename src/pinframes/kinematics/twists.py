@@ -19,7 +19,7 @@ Arrays are batched over samples ``(N, 3)`` / ``(N, 3, 3)`` or static ``(3,)`` / 
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping
 
 import numpy as np
 from numpy.typing import NDArray
@@ -76,18 +76,19 @@ def robot_joint_axes(joint: Joint, rotation_in_root: FloatArray) -> Twist:
 
 
 def velocity_sum(
-    signs: dict[int, float], joint_origins: Sequence[FloatArray],
-    twists: Sequence[Twist | None], point: FloatArray,
+    signs: dict[int, float], joint_origins: Mapping[int, FloatArray],
+    twists: Mapping[int, Twist], point: FloatArray,
 ) -> tuple[FloatArray, FloatArray]:
     """``(v, w)`` of the formula above at ``point`` (``p_A``), in the root's axes.
 
-    ``twists[j]`` is joint ``j``'s ``(u_j, w_j)`` (a None part is zero), or None when it does
-    not move; ``joint_origins[j]`` is ``p_j``. Uses ``sum (u_j - w_j x p_j) + (sum w_j) x p_A``.
+    ``twists[j]`` is joint ``j``'s ``(u_j, w_j)`` (a None part is zero; a joint that does
+    not move has none); ``joint_origins[j]`` is ``p_j``. Uses
+    ``sum (u_j - w_j x p_j) + (sum w_j) x p_A``.
     """
     linear: FloatArray | None = None
     angular: FloatArray | None = None
     for joint, sign in signs.items():
-        twist = twists[joint]
+        twist = twists.get(joint)
         if twist is None:
             continue
         u, w = twist
@@ -103,7 +104,7 @@ def velocity_sum(
 
 
 def jacobian_columns(
-    signs: dict[int, float], joint_origins: Sequence[FloatArray],
+    signs: dict[int, float], joint_origins: Mapping[int, FloatArray],
     unit_twists: dict[int, Twist], point: FloatArray,
 ) -> dict[int, tuple[FloatArray, FloatArray]]:
     """Per robot joint ``j`` of ``unit_twists``: ``(dv/dq_j, dw/dq_j)`` at ``point``."""

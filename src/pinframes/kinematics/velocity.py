@@ -23,7 +23,7 @@ from ._description import TreeDescription
 from ._evaluate import Evaluation, evaluate_pose
 from .rates import keyframe_rates, segment_rates, track_rates
 from .sampled_path import PlannedQuery, SampledPath, plan_query
-from .twists import Twist, robot_joint_axes, rotate, velocity_sum
+from .twists import Twist, rotate, velocity_sum
 
 __all__ = ["Velocity", "evaluate_velocity", "joint_rates"]
 
@@ -99,30 +99,27 @@ def _orientation(tree: TreeDescription, other: str, relative_to: str, planned: P
 def _velocity_in_root(tree: TreeDescription, evaluation: Evaluation, path: SampledPath
                       ) -> tuple[FloatArray, FloatArray]:
     """``(v, w)`` of the frame relative to the reference frame, in the root's axes."""
-    twists: list[Twist | None] = []
+    twists: dict[int, Twist] = {}
     segments: dict[tuple[int, int], tuple[NDArray[np.intp], FloatArray]] = {}
     for position, joint in enumerate(path.model.joints):
         keyframes = evaluation.placed_keyframes[position]
         if position not in path.signs:
-            twists.append(None)
-        elif keyframes is not None:  # a moving frame's free-flyer
+            continue
+        if keyframes is not None:  # a moving frame's free-flyer
             linear, angular = keyframe_rates(keyframes, path.times - path.shifts[joint.frame])
-            if joint.parent >= 0:
-                parent_rotation = path.joints[joint.parent][0]
+            parent_rotation = path.parent_rotations.get(position)
+            if parent_rotation is not None:
                 linear = rotate(parent_rotation, linear)
                 angular = rotate(parent_rotation, angular)
-            twists.append((linear, angular))
-        else:
-            rates = None if joint.joint is None else joint_rates(
-                tree, joint.joint, path.times, path.shifts, segments)
-            if joint.joint is None or rates is None:
-                twists.append(None)
-                continue
-            sliding, turning = robot_joint_axes(joint.joint, path.joints[position][0])
-            twists.append((None if sliding is None else sliding * rates[:, None],
-                           None if turning is None else turning * rates[:, None]))
-    origins = [translation for _, translation in path.joints]
-    return velocity_sum(path.signs, origins, twists, path.frame[1])
+            twists[position] = (linear, angular)
+            continue
+        rates = None if joint.joint is None else joint_rates(
+            tree, joint.joint, path.times, path.shifts, segments)
+        if rates is not None:
+            sliding, turning = path.unit_twists[position]
+            twists[position] = (None if sliding is None else sliding * rates[:, None],
+                                None if turning is None else turning * rates[:, None])
+    return velocity_sum(path.signs, path.origins, twists, path.frame[1])
 
 
 def joint_rates(
