@@ -17,9 +17,8 @@ from numpy.typing import NDArray
 
 from ..values._interpolation import Keyframes
 from ..values.joint_trajectory import JointTrajectory
-from ..values.rotations import quaternion_from_matrix
 
-__all__ = ["keyframe_rates", "rotation_steps", "segment_rates", "track_rates"]
+__all__ = ["keyframe_rates", "segment_rates", "track_rates"]
 
 FloatArray = NDArray[np.float64]
 _NS_PER_S = 1e9
@@ -35,8 +34,9 @@ def segment_rates(
         return np.zeros(times.shape, dtype=np.intp), np.zeros(times.shape)
     index = np.searchsorted(keyframe_times, times, side="right") - 1
     np.minimum(np.maximum(index, 0, out=index), count - 2, out=index)
-    spans = np.diff(keyframe_times).astype(float) / _NS_PER_S
-    inverse = 1.0 / spans[index]
+    # the spans of the segments used, not of all of them: a query in chunks must not pay
+    # for every keyframe in every chunk
+    inverse = _NS_PER_S / (keyframe_times[index + 1] - keyframe_times[index]).astype(float)
     held = (times < keyframe_times[0]) | (times > keyframe_times[-1])
     inverse[held] = 0.0
     return index, inverse
@@ -52,29 +52,9 @@ def keyframe_rates(keyframes: Keyframes, times: NDArray[np.int64]
     index, inverse = segment_rates(keyframes.times, times)
     if keyframes.times.shape[0] == 1:
         return np.zeros((times.shape[0], 3)), np.zeros((times.shape[0], 3))
-    steps = np.diff(keyframes.translations, axis=0)
-    return (steps[index] * inverse[:, None],
-            rotation_steps(keyframes.rotations)[index] * inverse[:, None])
-
-
-def rotation_steps(rotations: FloatArray) -> FloatArray:
-    """Rotation vectors ``log(R[k+1] @ R[k].T)`` ``(K-1, 3)``, radians, the way SLERP turns.
-
-    From the quaternions ``q[k]`` and ``q[k+1]`` put on one hemisphere (SLERP's rule), the
-    step ``q[k+1] * conj(q[k])`` has a non-negative scalar part: its angle is at most pi.
-    """
-    quaternions = quaternion_from_matrix(rotations)
-    start, end = quaternions[:-1], quaternions[1:].copy()
-    end[np.einsum("ij,ij->i", start, end) < 0.0] *= -1.0
-    v0, w0, v1, w1 = start[:, :3], start[:, 3:], end[:, :3], end[:, 3:]
-    vector = w0 * v1 - w1 * v0 + np.cross(v0, v1)
-    scalar = np.einsum("ij,ij->i", start, end)
-    norm = np.linalg.norm(vector, axis=1)
-    # 2 atan2(|v|, w) / |v| is the angle per unit of |v|; it tends to 2 / w as |v| -> 0
-    small = norm < 1e-12
-    scale = np.where(small, 2.0 / np.maximum(scalar, 1e-300),
-                     2.0 * np.arctan2(norm, scalar) / np.where(small, 1.0, norm))
-    return vector * scale[:, None]
+    translations = keyframes.translations
+    return ((translations[index + 1] - translations[index]) * inverse[:, None],
+            keyframes.rotation_steps()[index] * inverse[:, None])
 
 
 def track_rates(
@@ -89,4 +69,5 @@ def track_rates(
     if track.values.shape[0] == 1:
         return np.zeros(times.shape)
     index, inverse = segment_rates(track.times, times) if segments is None else segments
-    return np.diff(track.values)[index] * inverse
+    values = track.values
+    return (values[index + 1] - values[index]) * inverse

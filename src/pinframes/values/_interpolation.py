@@ -16,7 +16,7 @@ from ._se3 import Transform, to_stacks
 from ._trigonometry import cos_sin
 from .rotations import matrix_rows_from_quaternion, quaternion_from_matrix
 
-__all__ = ["Keyframes", "segment_position", "segment_positions"]
+__all__ = ["Keyframes", "rotation_steps", "segment_position", "segment_positions"]
 
 _SMALL_ANGLE = 1e-12
 
@@ -72,6 +72,7 @@ class Keyframes:
     rotations: NDArray[np.float64]
     translations: NDArray[np.float64]
     _rows: tuple[NDArray[np.float64], ...] | None = field(default=None, repr=False)
+    _steps: NDArray[np.float64] | None = field(default=None, repr=False)
 
     def sample(
         self, times: NDArray[np.int64]
@@ -122,6 +123,13 @@ class Keyframes:
                 [a * weight_start + weight_end * b
                  for a, b in zip(start[:, index].tolist(), end[:, index].tolist(), strict=True)])
 
+    def rotation_steps(self) -> NDArray[np.float64]:
+        """Per segment, the rotation vector of its step, ``(K - 1, 3)`` radians (see
+        :func:`rotation_steps`), computed on first use."""
+        if self._steps is None:
+            self._steps = rotation_steps(self.rotations)
+        return self._steps
+
     def _prepared_rows(self) -> tuple[NDArray[np.float64], ...]:
         """Translations as rows ``(3, K)`` and the SLERP rows of :func:`_prepare_slerp`,
         computed on first use."""
@@ -147,3 +155,23 @@ def _prepare_slerp(quaternions: NDArray[np.float64]) -> tuple[NDArray[np.float64
     angle = np.maximum(angle, _SMALL_ANGLE)
     return (np.ascontiguousarray(start.T), np.ascontiguousarray(end.T), angle,
             1.0 / np.sin(angle), 1.0 / np.tan(angle))
+
+
+def rotation_steps(rotations: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Rotation vectors ``log(R[k+1] @ R[k].T)`` ``(K-1, 3)``, radians, the way SLERP turns.
+
+    From the quaternions ``q[k]`` and ``q[k+1]`` put on one hemisphere (SLERP's rule), the
+    step ``q[k+1] * conj(q[k])`` has a non-negative scalar part: its angle is at most pi.
+    """
+    quaternions = quaternion_from_matrix(rotations)
+    start, end = quaternions[:-1], quaternions[1:].copy()
+    end[np.einsum("ij,ij->i", start, end) < 0.0] *= -1.0
+    v0, w0, v1, w1 = start[:, :3], start[:, 3:], end[:, :3], end[:, 3:]
+    vector = w0 * v1 - w1 * v0 + np.cross(v0, v1)
+    scalar = np.einsum("ij,ij->i", start, end)
+    norm = np.linalg.norm(vector, axis=1)
+    # 2 atan2(|v|, w) / |v| is the angle per unit of |v|; it tends to 2 / w as |v| -> 0
+    small = norm < 1e-12
+    scale = np.where(small, 2.0 / np.maximum(scalar, 1e-300),
+                     2.0 * np.arctan2(norm, scalar) / np.where(small, 1.0, norm))
+    return vector * scale[:, None]
