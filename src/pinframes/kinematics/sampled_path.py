@@ -114,13 +114,14 @@ def sample_path(tree: TreeDescription, evaluation: _evaluate.Evaluation, signs: 
     assert model is not None, "a static path has no model to sample"
     samples = _evaluate.sample_joints(tree, model, evaluation.placed_keyframes, times, shifts)
     ends = model.frame_parents([evaluation.frame, evaluation.relative_to])
-    flyer_parents = {joint.parent for index, joint in enumerate(model.joints)
+    # the moving frames' free-flyers below another joint: their twists turn by its rotation
+    flyer_parents = {index: joint.parent for index, joint in enumerate(model.joints)
                      if index in signs and joint.joint is None and joint.parent >= 0}
     kept: dict[int, Transform] = {}
     origins: dict[int, NDArray[np.float64]] = {}
     unit_twists: dict[int, Twist] = {}
     for index, (rotation, translation) in model.joint_frames(samples):
-        if index in ends or index in flyer_parents:
+        if index in ends or index in flyer_parents.values():
             kept[index] = (rotation, translation)
         if index not in signs:
             continue
@@ -128,9 +129,8 @@ def sample_path(tree: TreeDescription, evaluation: _evaluate.Evaluation, signs: 
         robot_joint = model.joints[index].joint
         if robot_joint is not None:  # copies: a column view would hold the whole rotation
             unit_twists[index] = _copied(robot_joint_axes(robot_joint, _rotations_first(rotation)))
-    parent_rotations = {index: _rotations_first(kept[joint.parent][0])
-                        for index, joint in enumerate(model.joints)
-                        if index in signs and joint.joint is None and joint.parent >= 0}
+    parent_rotations = {index: _rotations_first(kept[parent][0])
+                        for index, parent in flyer_parents.items()}
     frame, relative_to = model.frame_placements_in_root(
         kept, [evaluation.frame, evaluation.relative_to])
     return SampledPath(model, origins, parent_rotations, unit_twists,
