@@ -8,6 +8,7 @@ the two thread settings every case runs in (each in a child process of its own).
 
 from __future__ import annotations
 
+import argparse
 import json
 import os
 import platform
@@ -74,6 +75,21 @@ def busy_core() -> Iterator[None]:
     finally:
         spinner.kill()
         spinner.wait()
+
+
+def quick_or_child(description: str, child: Callable[[bool], None],
+                   quick_help: str = "fewer repeats") -> bool | None:
+    """Parse a benchmark's ``--quick`` and the hidden ``--child SETTING`` that
+    :func:`run_in_settings` passes: in a child, run ``child(quick)`` and return None; in the
+    parent, return whether ``--quick`` was given."""
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("--quick", action="store_true", help=quick_help)
+    parser.add_argument("--child", help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    if args.child:
+        child(args.quick)
+        return None
+    return bool(args.quick)
 
 
 def run_in_settings(script: str, arguments: list[str]) -> dict[str, list[dict]]:

@@ -13,14 +13,19 @@ Run: ``python benchmarks/bench_few_times.py [--quick]``.
 
 from __future__ import annotations
 
-import argparse
 import json
 
 import numpy as np
 
 import _reference as ref
 import pinframes.kinematics._one_time as one_time
-from _machine import describe_machine, interleaved, print_table, run_in_settings
+from _machine import (
+    describe_machine,
+    interleaved,
+    print_table,
+    quick_or_child,
+    run_in_settings,
+)
 from bench_robot import build_case
 from pinframes import FrameTree, Pose
 
@@ -68,16 +73,12 @@ def child(quick: bool) -> None:
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="fewer repeats")
-    parser.add_argument("--child", help=argparse.SUPPRESS)
-    args = parser.parse_args()
-    if args.child:
-        child(args.quick)
+    quick = quick_or_child(__doc__.splitlines()[0], child)
+    if quick is None:
         return
     print(describe_machine())
     print(f"FEW_TIMES = {one_time.FEW_TIMES}")
-    print_table(run_in_settings(__file__, ["--quick"] if args.quick else []),
+    print_table(run_in_settings(__file__, ["--quick"] if quick else []),
                 reference="batched kernels")
 
 

@@ -19,7 +19,6 @@ Run: ``python benchmarks/bench_queries.py [--quick]``.
 
 from __future__ import annotations
 
-import argparse
 import json
 import os
 import resource
@@ -36,6 +35,7 @@ from _machine import (
     interleaved,
     interleaved_per_call,
     print_table,
+    quick_or_child,
     row,
     run_in_settings,
 )
@@ -247,20 +247,16 @@ def child(quick: bool) -> None:
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="fewer repeats and sizes")
-    parser.add_argument("--child", help=argparse.SUPPRESS)
-    args = parser.parse_args()
-    if args.child:
-        child(args.quick)
+    quick = quick_or_child(__doc__.splitlines()[0], child, "fewer repeats and sizes")
+    if quick is None:
         return
     print(describe_machine())
     if TemporalTransformManager is None:
         print("pytransform3d is not installed: its rows are skipped (pip install pytransform3d)")
     if not os.environ.get("PINFRAMES_WELDX_PYTHON"):
         print("PINFRAMES_WELDX_PYTHON is not set: the weldx rows are skipped")
-    print_table(run_in_settings(__file__, ["--quick"] if args.quick else []))
-    if not args.quick:
+    print_table(run_in_settings(__file__, ["--quick"] if quick else []))
+    if not quick:
         build, query, grown_mb, total_mb = bench_scale(np.random.default_rng(7), 10_000, 1_000)
         print(f"\n(d) 10,000 static + 1,000 moving frames: build {build:.2f} s, "
               f"query between random frames at 100 times {query * 1e3:.2f} ms (mean of 200), "

@@ -12,7 +12,6 @@ Run: ``python benchmarks/bench_robot.py [--quick]``.
 
 from __future__ import annotations
 
-import argparse
 import json
 from importlib import metadata
 from pathlib import Path
@@ -26,6 +25,7 @@ from _machine import (
     interleaved,
     interleaved_per_call,
     print_table,
+    quick_or_child,
     run_in_settings,
 )
 from pinframes import FrameTree, Pose
@@ -136,15 +136,11 @@ def one_time_rows(tree, hand, chain, mount, times, positions, quick):
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="fewer repeats")
-    parser.add_argument("--child", help=argparse.SUPPRESS)
-    args = parser.parse_args()
-    if args.child:
-        child(args.quick)
+    quick = quick_or_child(__doc__.splitlines()[0], child)
+    if quick is None:
         return
     print(describe_machine())
-    print_table(run_in_settings(__file__, ["--quick"] if args.quick else []))
+    print_table(run_in_settings(__file__, ["--quick"] if quick else []))
 
 
 if __name__ == "__main__":
