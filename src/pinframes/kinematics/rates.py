@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ..values._interpolation import Keyframes
+from ..values._interpolation import Keyframes, segment_indices
 from ..values.joint_trajectory import JointTrajectory
 
 __all__ = ["keyframe_rates", "segment_rates", "track_rates"]
@@ -29,11 +29,9 @@ def segment_rates(
 ) -> tuple[NDArray[np.intp], FloatArray]:
     """Per time: its segment (the one starting at a keyframe; the last one at the last
     keyframe) and ``1 / duration`` of that segment in 1/s, 0 where the value is held."""
-    count = keyframe_times.shape[0]
-    if count == 1:
+    if keyframe_times.shape[0] == 1:
         return np.zeros(times.shape, dtype=np.intp), np.zeros(times.shape)
-    index = np.searchsorted(keyframe_times, times, side="right") - 1
-    np.minimum(np.maximum(index, 0, out=index), count - 2, out=index)
+    index = segment_indices(keyframe_times, times)
     # the spans of the segments used, not of all of them: a query in chunks must not pay
     # for every keyframe in every chunk
     inverse = _NS_PER_S / (keyframe_times[index + 1] - keyframe_times[index]).astype(float)

@@ -100,7 +100,7 @@ def _velocity_in_root(tree: TreeDescription, evaluation: Evaluation, path: Sampl
                       ) -> tuple[FloatArray, FloatArray]:
     """``(v, w)`` of the frame relative to the reference frame, in the root's axes."""
     twists: dict[int, Twist] = {}
-    segments: dict[tuple[int, int], tuple[NDArray[np.intp], FloatArray]] = {}
+    segments: dict[tuple[str, int], tuple[NDArray[np.intp], FloatArray]] = {}
     for position, joint in enumerate(path.model.joints):
         keyframes = evaluation.placed_keyframes[position]
         if position not in path.signs:
@@ -124,12 +124,12 @@ def _velocity_in_root(tree: TreeDescription, evaluation: Evaluation, path: Sampl
 
 def joint_rates(
     tree: TreeDescription, joint: Joint, times: NDArray[np.int64], shifts: dict[str, int],
-    segments: dict[tuple[int, int], tuple[NDArray[np.intp], FloatArray]] | None = None,
+    segments: dict[tuple[str, int], tuple[NDArray[np.intp], FloatArray]] | None = None,
 ) -> FloatArray | None:
     """Velocities (N,) of ``joint`` at ``times`` (timeline basis), rad/s or m/s: its
     trajectory's, or its mimic primary's times the product of the multipliers; None when
     no trajectory drives it. ``segments`` keeps the segment lookups of one set of times
-    for the trajectories that share their sample times."""
+    for the joints of one time group (:meth:`TreeDescription.time_group`)."""
     primary, multiplier = mimic_primary(joint, tree.joints_by_name)
     track = tree.joint_trajectories.get(primary.name)
     if track is None:
@@ -137,7 +137,7 @@ def joint_rates(
     own_times = times - shifts[primary.name]
     found = None
     if segments is not None:
-        key = (id(track.times), shifts[primary.name])
+        key = (tree.time_group(primary.name), shifts[primary.name])
         found = segments.get(key)
         if found is None:
             found = segments[key] = segment_rates(track.times, own_times)

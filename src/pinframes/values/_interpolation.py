@@ -16,9 +16,21 @@ from ._se3 import Transform, to_stacks
 from ._trigonometry import cos_sin
 from .rotations import matrix_rows_from_quaternion, quaternion_from_matrix
 
-__all__ = ["Keyframes", "rotation_steps", "segment_position", "segment_positions"]
+__all__ = ["Keyframes", "rotation_steps", "segment_indices", "segment_position",
+           "segment_positions"]
 
 _SMALL_ANGLE = 1e-12
+
+
+def segment_indices(
+    keyframe_times: NDArray[np.int64], times: NDArray[np.int64]
+) -> NDArray[np.intp]:
+    """Per time, the segment it falls in (the one starting at or before it), clamped to the
+    first and last segment; at least two keyframes."""
+    index = np.searchsorted(keyframe_times, times, side="right") - 1
+    # np.minimum/np.maximum: np.clip costs several microseconds more on short arrays.
+    np.minimum(np.maximum(index, 0, out=index), keyframe_times.shape[0] - 2, out=index)
+    return index
 
 
 def segment_positions(
@@ -30,12 +42,9 @@ def segment_positions(
     ``(1 - fraction[i]) * v[index[i]] + fraction[i] * v[index[i] + 1]``.
     For a single keyframe, the index is 0 and the fraction 0.
     """
-    count = keyframe_times.shape[0]
-    if count == 1:
+    if keyframe_times.shape[0] == 1:
         return np.zeros(times.shape, dtype=np.intp), np.zeros(times.shape)
-    index = np.searchsorted(keyframe_times, times, side="right") - 1
-    # np.minimum/np.maximum: np.clip costs several microseconds more on short arrays.
-    np.minimum(np.maximum(index, 0, out=index), count - 2, out=index)
+    index = segment_indices(keyframe_times, times)
     start = keyframe_times[index]
     span = (keyframe_times[index + 1] - start).astype(float)
     fraction = (times - start).astype(float) / span
