@@ -7,7 +7,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from pinframes import FrameTree, Pose, UnsupportedFeatureError, read_asdf, write_asdf
+from pinframes import (
+    FileFormatError,
+    FrameTree,
+    Pose,
+    UnsupportedFeatureError,
+    read_asdf,
+    write_asdf,
+)
 from pinframes.formats.asdf._depth import MAX_GRAPH_DEPTH
 from weldx_asdf.weldx_env import weldx_pose
 
@@ -90,3 +97,15 @@ def test_weldx_reads_a_chain_as_deep_as_it_handles(tmp_path):
     expected = tip_in_root_by_numpy(depth)
     np.testing.assert_allclose(answer["translation"][0], expected[:3, 3], rtol=0, atol=1e-9)
     np.testing.assert_allclose(answer["rotation"][0], expected[:3, :3], rtol=0, atol=1e-9)
+
+
+def test_yaml_nested_past_the_parser_is_refused_with_its_problem(tmp_path):
+    """Nesting that is no weldx graph: the parser's problem, not its context, is reported
+    (libyaml stops at 1,000 levels, the pure-Python parser at the recursion limit)."""
+    path = tmp_path / "nested.asdf"
+    path.write_text("#ASDF 1.0.0\n#ASDF_STANDARD 1.5.0\n%YAML 1.1\n"
+                    "%TAG ! tag:stsci.edu:asdf/\n--- !core/asdf-1.1.0\n"
+                    f"deep: {'[' * 1500}{']' * 1500}\n...\n")
+    with pytest.raises(FileFormatError, match="nesting depth") as error:
+        read_asdf(path)
+    assert str(path) in str(error.value)

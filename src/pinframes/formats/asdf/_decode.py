@@ -16,6 +16,7 @@ from collections.abc import Iterator
 from typing import Any
 
 import numpy as np
+import yaml
 from numpy.typing import NDArray
 
 from ...errors import FileFormatError, PinframesError, ReadError
@@ -82,8 +83,8 @@ def open_raw_tree(path: str | os.PathLike[str]) -> Iterator[dict[str, Any]]:
         try:
             with recursion_room(MAX_GRAPH_DEPTH):
                 opened = asdf.open(path, lazy_tree=False, memmap=False)
-        except RecursionError:
-            raise too_deep(*deepest_frame_in_yaml(path), path) from None
+        except (RecursionError, yaml.YAMLError) as exc:
+            raise _unparsed_yaml(path, exc) from None
         except OSError as exc:
             raise ReadError(f"cannot read the file: {exc}", file=path) from None
         except Exception as exc:  # asdf and yaml raise many kinds for a non-ASDF file
@@ -91,6 +92,24 @@ def open_raw_tree(path: str | os.PathLike[str]) -> Iterator[dict[str, Any]]:
                                   file=path) from None
         with opened as asdf_file:
             yield asdf_file.tree
+
+
+def _unparsed_yaml(path: str | os.PathLike[str], exc: BaseException) -> PinframesError:
+    """The error for YAML that asdf could not parse: a weldx graph nested deeper than
+    MAX_GRAPH_DEPTH frames (libyaml stops at 1,000 levels since PyYAML 6.0.4, the pure-Python
+    parser at Python's recursion limit), else a :class:`FileFormatError` with the parser's
+    problem and line."""
+    deepest, depth = deepest_frame_in_yaml(path)
+    if depth > MAX_GRAPH_DEPTH:
+        return too_deep(deepest, depth, path)
+    if isinstance(exc, RecursionError):
+        problem = "exceeded maximum nesting depth (Python's recursion limit)"
+    elif isinstance(exc, yaml.MarkedYAMLError) and exc.problem:
+        where = f" at line {exc.problem_mark.line + 1}" if exc.problem_mark else ""
+        problem = f"{exc.problem}{where}"
+    else:
+        problem = first_line(exc)
+    return FileFormatError(f"not a readable ASDF file: {problem}", file=path)
 
 
 def weldx_tag(node: Any) -> tuple[str, str] | None:
