@@ -24,6 +24,7 @@ from ._registry import (
     write,
 )
 from .frames_yaml import read_frames_yaml, write_frames_yaml
+from .rosbag import read_rosbag
 from .scene import SCENE_FORMAT_KEY, read_scene, write_scene
 from .trajectory_files import (
     JOINT_TRAJECTORY,
@@ -91,4 +92,8 @@ register_format(FileFormat("csv", "CSV", (".csv",), read_csv_trajectory,
                            kind=JOINT_TRAJECTORY))
 register_format(FileFormat("npz", "NPZ", (".npz",), read_npz_trajectory,
                            kind=JOINT_TRAJECTORY))
+# ROS bags: files told by their magic bytes (formats/_content.py), ROS 2 bag folders by
+# their metadata.yaml; read with rosbags (the [ros] extra), never written
+register_format(FileFormat("rosbag", "ROS bag", (".bag", ".mcap", ".db3"), read_rosbag,
+                           folders=True))
 register_robot_format("urdf", mount_urdf)
