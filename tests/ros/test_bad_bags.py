@@ -88,8 +88,11 @@ def test_unknown_storage_and_missing_metadata_and_files(tmp_path):
         pinframes.read(bag)
     metadata.unlink()
     with pytest.raises(FileFormatError, match=r"without metadata\.yaml") as caught:
-        pinframes.read(bag)
+        pinframes.read_rosbag(bag)
     assert caught.value.file == str(bag)
+    with pytest.raises(ReadError, match=r"is a folder, not a file \(a ROS 2 bag folder holds "
+                       r"a metadata\.yaml\)"):
+        pinframes.read(bag)
 
 
 def test_no_tf_messages_names_the_topics_the_bag_has(tmp_path):

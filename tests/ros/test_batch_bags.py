@@ -7,6 +7,7 @@ import hashlib
 
 import numpy as np
 import pytest
+
 from ros.bag_writing import Transform, ros_version_of, tf_messages, write_bag
 
 pytest.importorskip("distributed")

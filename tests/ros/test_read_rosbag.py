@@ -153,3 +153,14 @@ def test_transforms_tf2_refuses_are_skipped_with_one_warning(tmp_path):
         tree = pinframes.read_rosbag(bag)
     assert len(caught) == 1
     assert len(tree.local_pose("a")) == 1 and len(tree.local_pose("b")) == 1
+
+
+def test_a_frame_on_both_a_static_and_a_dynamic_topic_is_refused(tmp_path):
+    messages = tf_messages(2, [Transform("world", "a", START)], topic="/tf_static")
+    messages += tf_messages(2, [Transform("world", "a", START + SECOND)])
+    bag = write_bag(tmp_path / "run", "mcap", messages)
+    with pytest.raises(TreeStructureError, match="both a static and a dynamic") as caught:
+        pinframes.read_rosbag(bag)
+    assert caught.value.frame == "a"
+    tree = pinframes.read_rosbag(bag, tf_topics=["/tf_static"])
+    assert not tree.is_moving("a")

@@ -76,8 +76,8 @@ class FileFormat:
     kind : str
         ``"tree"``, or another kind of file (``"joint trajectory"``).
     folders : bool
-        Whether ``read`` also takes a folder (a ROS 2 bag); folders are told apart by the
-        reader itself.
+        Whether ``read`` also takes a folder (a ROS 2 bag); ``recognise`` is then asked
+        whether a folder is one.
     """
 
     name: str
@@ -198,12 +198,15 @@ def formats_taking(option: str) -> list[FileFormat]:
 
 
 def _folder_format(path: Path, allowed: Sequence[FileFormat]) -> str:
-    """The format that reads the folder ``path`` (the first registered that reads folders:
-    its reader says whether the folder is one)."""
-    entry = next((entry for entry in allowed if entry.folders), None)
-    if entry is None:
-        raise ReadError("is a folder, not a file", file=path)
-    return entry.name
+    """The format that reads the folder ``path``: the first registered that reads folders
+    and whose ``recognise`` test takes this one."""
+    peek = Peek(path)
+    readers = [entry for entry in allowed if entry.folders]
+    for entry in readers:
+        if entry.recognise is None or entry.recognise(peek, False):
+            return entry.name
+    why = "; ".join(entry.unrecognised for entry in readers if entry.unrecognised)
+    raise ReadError("is a folder, not a file" + (f" ({why})" if why else ""), file=path)
 
 
 def _check_path(path: object) -> None:

@@ -155,23 +155,25 @@ def _check_one_parent(names: list[str], parents: NDArray[np.int64],
     """A frame has one parent and is either static or not; else an error naming it."""
     if parents.shape[0] == 0:
         return
-    pairs = np.unique(np.column_stack([children, parents]), axis=0)
-    reparented = np.flatnonzero(pairs[1:, 0] == pairs[:-1, 0])
+    count = len(names)
+    pairs = np.unique(children * count + parents)  # one integer per (child, parent) pair
+    pair_children = pairs // count
+    reparented = np.flatnonzero(pair_children[1:] == pair_children[:-1])
     if reparented.size:
-        child = int(pairs[reparented[0], 0])
+        child = int(pair_children[reparented[0]])
         described = []
-        for parent in pairs[pairs[:, 0] == child, 1].tolist():
+        for parent in (pairs[pair_children == child] % count).tolist():
             mask = (children == child) & (parents == parent)
             described.append(f"{names[parent]!r} (first at {_iso(stamps[mask].min())})")
         raise TreeStructureError(
             "published under several parents: " + " and ".join(described)
             + "; tf2 re-parents a frame in time, a tree cannot (read the bag in parts, or "
             "leave out a tf topic)", file=file, frame=names[child])
-    kinds = np.unique(np.column_stack([children, static]), axis=0)
-    both = np.flatnonzero(kinds[1:, 0] == kinds[:-1, 0])
+    kinds = np.unique(children * 2 + static)
+    both = np.flatnonzero(kinds[1:] // 2 == kinds[:-1] // 2)
     if both.size:
         raise TreeStructureError("published on both a static and a dynamic tf topic",
-                                 file=file, frame=names[int(kinds[both[0], 0])])
+                                 file=file, frame=names[int(kinds[both[0]] // 2)])
 
 
 def _iso(stamp_ns: int) -> str:
