@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import FileFormatError
-from ._reading import read_bytes
+from .reading import read_bytes
 from .rosbag import bag_kind_of_head
 
 __all__ = ["format_by_content"]
