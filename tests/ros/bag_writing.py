@@ -17,7 +17,7 @@ import pytest
 rosbags = pytest.importorskip("rosbags")
 
 from rosbags.rosbag1 import Writer as Ros1Writer  # noqa: E402
-from rosbags.rosbag2 import StoragePlugin  # noqa: E402
+from rosbags.rosbag2 import CompressionFormat, CompressionMode, StoragePlugin  # noqa: E402
 from rosbags.rosbag2 import Writer as Ros2Writer  # noqa: E402
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore  # noqa: E402
 
@@ -114,17 +114,25 @@ def ros_version_of(storage: str) -> int:
     return 1 if storage == "ros1" else 2
 
 
-def write_bag(path: Path, storage: str, messages: Iterable[Message]) -> Path:
-    """Write ``messages`` with rosbags' writer for ``storage``; the bag's path."""
+def write_bag(path: Path, storage: str, messages: Iterable[Message],
+              compression: str | None = None) -> Path:
+    """Write ``messages`` with rosbags' writer for ``storage``; the bag's path.
+    ``compression``: ROS 1 ``"bz2"`` or ``"lz4"`` chunks; ROS 2 zstd by ``"file"``,
+    ``"message"`` or (MCAP) ``"storage"``."""
     version = ros_version_of(storage)
     store = typestore(version)
     messages = list(messages)
     if storage == "ros1":
         path = path.with_suffix(".bag")
         writer: Any = Ros1Writer(path)
+        if compression:
+            writer.set_compression(Ros1Writer.CompressionFormat[compression.upper()])
     else:
         plugin = StoragePlugin.MCAP if storage == "mcap" else StoragePlugin.SQLITE3
         writer = Ros2Writer(path, version=9, storage_plugin=plugin)
+        if compression:
+            writer.set_compression(CompressionMode[compression.upper()],
+                                   CompressionFormat.ZSTD)
     with writer:
         connections: dict[str, Any] = {}
         for message in messages:

@@ -60,3 +60,17 @@ def test_pose_on_a_bag_and_a_bad_folder(tmp_path):
     assert result.returncode == 1
     assert result.stderr == (f"pinframes: error: {empty}: is a folder, not a file (a ROS 2 "
                              "bag folder holds a metadata.yaml)\n")
+
+
+def test_robot_description_option(tmp_path):
+    messages = tf_messages(2, [Transform("world", "base_link", START)])
+    messages.append(Message("/joint_states", JOINT_STATE, START,
+                            joint_state(2, START, ["joint_1"], [0.25])))
+    bag = write_bag(tmp_path / "run", "mcap", messages)
+    urdf = ROOT / "models" / "welding_robot" / "welding_robot.urdf"
+    described = json.loads(_run("info", bag, "--robot-description", urdf, "-f", "json").stdout)
+    joint_1 = next(frame for frame in described["frames"] if frame["name"] == "link_1")
+    assert joint_1["joint"]["name"] == "joint_1" and joint_1["samples"] == 1
+    result = _run("info", ROOT / "models" / "welding_cell" / "scene.yaml",
+                  "--robot-description", urdf)
+    assert result.returncode == 1 and "--robot-description is for ROS bags" in result.stderr

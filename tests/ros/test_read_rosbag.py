@@ -164,3 +164,14 @@ def test_a_frame_on_both_a_static_and_a_dynamic_topic_is_refused(tmp_path):
     assert caught.value.frame == "a"
     tree = pinframes.read_rosbag(bag, tf_topics=["/tf_static"])
     assert not tree.is_moving("a")
+
+
+@pytest.mark.parametrize(("storage", "compression"), [
+    ("ros1", "bz2"), ("ros1", "lz4"), ("sqlite3", "file"), ("sqlite3", "message"),
+    ("mcap", "message"), ("mcap", "storage")])
+def test_compressed_bags(tmp_path, storage, compression):
+    version = ros_version_of(storage)
+    transforms = [Transform("world", "tool", START + k * SECOND, (k, 0, 0)) for k in range(5)]
+    bag = write_bag(tmp_path / "run", storage, tf_messages(version, transforms), compression)
+    tree = pinframes.read(bag)
+    assert tree.local_pose("tool").translation[:, 0].tolist() == [0, 1, 2, 3, 4]

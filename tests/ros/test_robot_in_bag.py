@@ -121,3 +121,21 @@ def test_the_root_link_becomes_the_root_without_tf(tmp_path, rng):
         tree = pinframes.read_rosbag(bag)
     assert tree.root == "base_link"
     assert tree.joint_trajectory("joint_2").values.tolist() == [0.3]
+
+
+def test_nan_positions_and_repeated_stamps_of_joints(tmp_path):
+    version = 2
+    states = [(START, [0.1, np.nan]), (START + SECOND, [0.2, 0.5]), (START + SECOND, [0.3, 0.6])]
+    messages = [Message("/joint_states", JOINT_STATE, START + i,
+                        joint_state(version, stamp, ["joint_1", "joint_2"], values))
+                for i, (stamp, values) in enumerate(states)]
+    bag = write_bag(tmp_path / "robot", "mcap", messages)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        tree = pinframes.read_rosbag(bag, robot_description=URDF)
+    texts = [str(w.message) for w in caught if issubclass(w.category, BagWarning)]
+    assert len(texts) == 2
+    assert "1 joint positions that are NaN or infinite (first: joint 'joint_2')" in texts[0]
+    assert "2 joints with two samples at one stamp" in texts[1]
+    assert tree.joint_trajectory("joint_1").values.tolist() == [0.1, 0.3]
+    assert tree.joint_trajectory("joint_2").values.tolist() == [0.6]

@@ -36,7 +36,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Print the description of the tree."""
-    tree = read_tree(args.file)
+    tree = read_tree(args.file, args.robot_description)
     if args.format == "json":
         sys.stdout.write(json.dumps(describe_json(tree), indent=1) + "\n")
     else:

@@ -48,7 +48,7 @@ def assemble_tree(name: str, tracks: dict[str, FrameTrack], robot: RobotDescript
             f"{file}: ignored the tf transforms of {len(republished)} links the robot "
             f"description has (robot_state_publisher republishes them; the URDF and the "
             f"joint states place them): {shown}" + (" ..." if len(republished) > 5 else "")),
-            stacklevel=3)
+            stacklevel=4)
     parent_of = {child: track.parent for child, track in tracks.items()
                  if child not in links or child == root_link}
     if robot is not None:
@@ -132,4 +132,4 @@ def _warn_unused(joints: dict[str, JointSamples], driven: set[str], file: Path) 
         warnings.warn(BagWarning(f"{file}: joint states of {len(unused)} joints the robot "
                                  f"description does not drive (fixed, mimic or not in it) are "
                                  f"not used: {shown}" + (" ..." if len(unused) > 5 else "")),
-                      stacklevel=3)
+                      stacklevel=5)

@@ -145,7 +145,7 @@ def _accepted_by_tf2(names: list[str], parents: NDArray[np.int64],
         refused |= mask
     if counts:
         warnings.warn(BagWarning(f"{file}: skipped transforms that tf2 refuses: "
-                                 + "; ".join(counts)), stacklevel=4)
+                                 + "; ".join(counts)), stacklevel=5)
     return ~refused
 
 
@@ -184,4 +184,4 @@ def _warn_once(frames: list[str], what: str, file: Path) -> None:
     if frames:
         shown = ", ".join(repr(frame) for frame in frames[:5])
         warnings.warn(BagWarning(f"{file}: {len(frames)} {what}: {shown}"
-                                 + (" ..." if len(frames) > 5 else "")), stacklevel=4)
+                                 + (" ..." if len(frames) > 5 else "")), stacklevel=5)
