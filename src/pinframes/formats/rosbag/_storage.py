@@ -192,6 +192,8 @@ class _TranslatedErrors:
         if isinstance(error, FileNotFoundError):
             raise ReadError(f"a file of the bag is missing: {error}", file=self.path) from None
         detail = str(error).strip() or type(error).__name__
+        if isinstance(error, MemoryError):
+            detail = "a record length larger than the memory (corrupt length?)"
         raise FileFormatError(f"{self.what} (truncated or corrupt bag?): {detail}",
                               file=self.path) from None
 
@@ -204,8 +206,9 @@ def _broken_bag_errors() -> tuple[type[BaseException], ...]:
 
     broken: list[type[BaseException]] = [
         Ros1ReaderError, Ros2ReaderError, OSError, EOFError, ValueError, KeyError, IndexError,
-        ArithmeticError, struct.error, zlib.error,
-        RuntimeError]  # lz4's decompression errors
+        ArithmeticError, TypeError, AttributeError, struct.error, zlib.error,
+        RuntimeError,  # lz4's decompression errors
+        MemoryError]  # rosbags reads a record whose corrupt length asks for terabytes
     for module, name in (("apsw", "Error"), ("backports.zstd", "ZstdError"),
                          ("compression.zstd", "ZstdError")):  # rosbags' SQLite and zstd
         try:
