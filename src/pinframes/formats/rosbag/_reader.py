@@ -95,7 +95,8 @@ def _read(bag: OpenBag, robot_description: str | os.PathLike[str] | None,
         check_type(bag, bag.topics[description_topic], DESCRIPTION_TYPES)
         uses[description_topic] = "robot description"
     raw = _raw_messages(bag, list(uses))
-    tf_raw = [(topic, received, data) for topic, received, data in raw if uses[topic][:2] == "tf"]
+    tf_raw = [(topic, received, data) for topic, received, data in raw
+              if uses[topic] in ("tf", "tf static")]
     columns = _decoded(bag, tf_raw)
     static_messages = np.array([uses[topic] == "tf static" for topic, _, _ in tf_raw], bool)
     tracks = frame_tracks(columns, static_messages[columns.message_index], bag.path)
