@@ -21,6 +21,7 @@ from ..values.joint import Joint
 from ..values.joint_trajectory import JointTrajectory
 from ..values.pose import Pose
 from ..values.se3 import IDENTITY, Transform, compose
+from ..values.timeline import TimedSource, source_reference
 
 __all__ = ["TreeDescription", "paths_to_common_ancestor"]
 
@@ -119,8 +120,21 @@ class TreeDescription:
             anchors[frame] = (anchor, compose(placement, (pose.rotation, pose.translation)))
         return anchors[name]
 
+    def frame_source(self, frame: str) -> TimedSource:
+        """The keyframe times of the moving frame ``frame`` and what they count from."""
+        pose = self.local_poses[frame]
+        return TimedSource(frame, pose.keyframes.times,
+                           source_reference(pose.reference_time, self.reference_time))
+
+    def joint_source(self, joint_name: str) -> TimedSource:
+        """The sample times of the driven joint ``joint_name`` and what they count from."""
+        trajectory = self.joint_trajectories[joint_name]
+        return TimedSource(joint_name, trajectory.times,
+                           source_reference(trajectory.reference, self.reference_time))
+
     def time_group(self, joint_name: str) -> str:
-        """The first driven joint whose trajectory has the same times as ``joint_name``'s.
+        """The first driven joint whose trajectory has the same times, counted from the
+        same reference time, as ``joint_name``'s.
 
         Joints driven together (one ``set_joint_trajectory`` call, a robot's trajectory
         file) hold equal times arrays; a query searches their segments once per group.
@@ -128,15 +142,18 @@ class TreeDescription:
         groups = self._time_groups
         if groups is None:
             groups = {}
-            leaders: list[tuple[str, np.ndarray]] = []
-            for name, trajectory in self.joint_trajectories.items():
-                times = trajectory.times
+            leaders: list[tuple[str, TimedSource]] = []
+            for name in self.joint_trajectories:
+                source = self.joint_source(name)
+                times = source.times
                 groups[name] = next(
                     (leader for leader, known in leaders
-                     if known is times or (known.shape == times.shape
-                                           and np.array_equal(known, times))), name)
+                     if known.reference == source.reference
+                     and (known.times is times or (known.times.shape == times.shape
+                                                   and np.array_equal(known.times, times)))),
+                    name)
                 if groups[name] == name:
-                    leaders.append((name, times))
+                    leaders.append((name, source))
             object.__setattr__(self, "_time_groups", groups)  # whole, for concurrent queries
         return groups[joint_name]
 

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 from ..values.interpolation import Keyframes
 from ..values.joint import Joint, mimic_chain
-from ..values.se3 import IDENTITY, Transform, compose, inverse
+from ..values.se3 import Transform, compose, inverse
 from ..values.timeline import TimedSource
 from ._description import TreeDescription, paths_to_common_ancestor
 from ._model import CompiledModel, compile_model
@@ -28,7 +28,8 @@ class PreparedPath:
 
     Either ``static`` (the pose of the frame in the reference frame, when nothing between
     them can move) or ``model`` with, per joint, the moving frame's keyframes with the
-    joint placement folded in (None for robot joints), and the moving things it samples.
+    joint placement folded in (:meth:`Keyframes.placed`; None for robot joints), and the
+    moving things it samples.
     """
 
     frame: str
@@ -54,8 +55,8 @@ def prepare_path(tree: TreeDescription, frame: str, relative_to: str) -> Prepare
         up, _ = paths_to_common_ancestor(tree.parents, tree.depths, frame, relative_to)
         model = compile_model(tree, up[-1], [frame, relative_to])
         keyframes = tuple(
-            None if joint.joint is not None else _placed_keyframes(
-                tree.local_poses[joint.frame].keyframes, model.joint_placements[position])
+            None if joint.joint is not None
+            else tree.local_poses[joint.frame].keyframes.placed(model.joint_placements[position])
             for position, joint in enumerate(model.joints))
         path = PreparedPath(frame, relative_to, None, model, keyframes,
                             tuple(model_sources(tree, model)))
@@ -63,32 +64,16 @@ def prepare_path(tree: TreeDescription, frame: str, relative_to: str) -> Prepare
     return path
 
 
-def _placed_keyframes(keyframes: Keyframes, placement: Transform) -> Keyframes:
-    """Keyframes of ``placement @ pose``: a static factor on the left commutes with
-    linear interpolation and SLERP, so it can be applied to the keyframes once."""
-    if placement is IDENTITY:
-        return keyframes
-    rotation, translation = placement
-    return Keyframes(keyframes.times, rotation @ keyframes.rotations,
-                     keyframes.translations @ rotation.T + translation)
-
-
 def model_sources(tree: TreeDescription, model: CompiledModel) -> list[TimedSource]:
     """The moving frames and driven joints whose values a compiled model needs."""
     sources: dict[str, TimedSource] = {}
     for joint in model.joints:
         if joint.joint is None:
-            pose = tree.local_poses[joint.frame]
-            reference = pose.reference_time if pose.reference_time is not None else (
-                tree.reference_time)
-            sources[joint.frame] = TimedSource(joint.frame, pose.keyframes.times, reference)
+            sources[joint.frame] = tree.frame_source(joint.frame)
             continue
         for name in _driving_joints(tree, joint.joint):
-            trajectory = tree.joint_trajectories.get(name)
-            if trajectory is not None:
-                reference = trajectory.reference if trajectory.reference is not None else (
-                    tree.reference_time)
-                sources[name] = TimedSource(name, trajectory.times, reference)
+            if name in tree.joint_trajectories:
+                sources[name] = tree.joint_source(name)
     return list(sources.values())
 
 
