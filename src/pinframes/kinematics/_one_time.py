@@ -30,6 +30,7 @@ from ..values.se3 import Transform
 from ..values.timeline import QueryTimeline
 from ._description import TreeDescription
 from ._model import CompiledModel
+from ._path import PreparedPath
 
 __all__ = ["FEW_TIMES", "MAX_DEGREES_OF_FREEDOM", "OneTimePlan", "one_time_plan",
            "takes_few_times"]
@@ -176,15 +177,12 @@ class OneTimePlan:
         return q
 
 
-def one_time_plan(
-    tree: TreeDescription, model: CompiledModel, frame: str, relative_to: str
-) -> OneTimePlan:
-    """The :class:`OneTimePlan` of the query of ``frame`` in ``relative_to``, prepared once
-    per tree version."""
-    key = ("one time", frame, relative_to)
-    plan = tree.cached(key)
+def one_time_plan(tree: TreeDescription, path: PreparedPath) -> OneTimePlan:
+    """The :class:`OneTimePlan` of a moving ``path``, made once and kept with the path."""
+    plan = path.plans.get("one time")
     if plan is None:
-        plan = OneTimePlan(tree, model, frame, relative_to)
-        tree.store(key, plan)
+        assert path.model is not None, "a static path has no model to evaluate"
+        plan = path.plans["one time"] = OneTimePlan(tree, path.model, path.frame,
+                                                    path.relative_to)
     assert isinstance(plan, OneTimePlan)
     return plan

@@ -10,14 +10,15 @@ query depends on its path, not on the tree. Prepared once per tree version (cach
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import Any
 
 from ..values.interpolation import Keyframes
 from ..values.joint import Joint, mimic_chain
-from ..values.se3 import Transform, compose, inverse
+from ..values.se3 import Transform
 from ..values.timeline import TimedSource
-from ._description import TreeDescription, paths_to_common_ancestor
-from ._model import CompiledModel, compile_model
+from ._description import ModelLayout, TreeDescription
+from ._model import CompiledModel
 
 __all__ = ["PreparedPath", "model_sources", "prepare_path"]
 
@@ -29,7 +30,8 @@ class PreparedPath:
     Either ``static`` (the pose of the frame in the reference frame, when nothing between
     them can move) or ``model`` with, per joint, the moving frame's keyframes with the
     joint placement folded in (:meth:`Keyframes.placed`; None for robot joints), and the
-    moving things it samples.
+    moving things it samples. ``plans`` keeps what queries derive from the path once (the
+    one-time plan), so that it lives as long as the path.
     """
 
     frame: str
@@ -38,6 +40,7 @@ class PreparedPath:
     model: CompiledModel | None = None
     placed_keyframes: tuple[Keyframes | None, ...] = ()
     sources: tuple[TimedSource, ...] = ()
+    plans: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
 
 
 def prepare_path(tree: TreeDescription, frame: str, relative_to: str) -> PreparedPath:
@@ -46,20 +49,17 @@ def prepare_path(tree: TreeDescription, frame: str, relative_to: str) -> Prepare
     cached = tree.cached(key)
     if cached is not None:
         return cached
-    anchor, placement = tree.anchor(frame)
-    reference_anchor, reference_placement = tree.anchor(relative_to)
-    if anchor == reference_anchor:
-        path = PreparedPath(frame, relative_to, compose(inverse(reference_placement),
-                                                        placement))
-    else:
-        up, _ = paths_to_common_ancestor(tree.parents, tree.depths, frame, relative_to)
-        model = compile_model(tree, up[-1], [frame, relative_to])
+    layout = tree.path_layout(frame, relative_to)
+    if isinstance(layout, ModelLayout):
+        model = CompiledModel(layout)
         keyframes = tuple(
             None if joint.joint is not None
             else tree.local_poses[joint.frame].keyframes.placed(model.joint_placements[position])
             for position, joint in enumerate(model.joints))
         path = PreparedPath(frame, relative_to, None, model, keyframes,
                             tuple(model_sources(tree, model)))
+    else:
+        path = PreparedPath(frame, relative_to, layout)
     tree.store(key, path)
     return path
 

@@ -78,7 +78,8 @@ def evaluate_velocity(tree: TreeDescription, frame: str, relative_to: str, times
                 rotation_t = np.swapaxes(axes, -1, -2)
                 linear_c, angular_c = rotate(rotation_t, linear_c), rotate(rotation_t, angular_c)
             linear[part], angular[part] = linear_c, angular_c
-    if expressed_in not in (frame, relative_to):
+    # without times a static path has one velocity, zero in any axes
+    if expressed_in not in (frame, relative_to) and planned.offsets is not None:
         rotation_t = np.swapaxes(_orientation(tree, expressed_in, relative_to, planned), 1, 2)
         linear, angular = rotate(rotation_t, linear), rotate(rotation_t, angular)
     return Velocity(linear, angular, planned.times, planned.reference_time, frame,
@@ -88,12 +89,11 @@ def evaluate_velocity(tree: TreeDescription, frame: str, relative_to: str, times
 def _orientation(tree: TreeDescription, other: str, relative_to: str, planned: PlannedQuery
                  ) -> FloatArray:
     """Rotations ``(T, 3, 3)`` of ``other`` in ``relative_to`` at the result's times."""
-    offsets, reference = planned.offsets, planned.reference_time
-    if offsets is None:
-        static = evaluate_pose(tree, other, relative_to, None, None, "clamp")
-        return np.broadcast_to(static.rotation, (1, 3, 3))
-    return evaluate_pose(tree, other, relative_to, TimeAxis(offsets, reference).as_numpy(),
-                         reference, "clamp").rotation
+    assert planned.offsets is not None  # a query at times
+    reference = planned.reference_time
+    return evaluate_pose(tree, other, relative_to,
+                         TimeAxis(planned.offsets, reference).as_numpy(), reference,
+                         "clamp").rotation
 
 
 def _velocity_in_root(tree: TreeDescription, prepared: PreparedPath, path: SampledPath
