@@ -81,7 +81,6 @@ robots:
     shared = tmp_path / "shared"
     _touch(shared / "frames.yaml", "version: 1.0\nframes: {}\n")  # may use tile_maps.yaml
     inputs = run_inputs(scene)
-    assert inputs.is_scene
     assert inputs.files == [scene, shared / "frames.yaml", shared / "tile_maps.yaml",
                             tmp_path / "run" / "cell.asdf", shared / "robot.urdf",
                             tmp_path / "run" / "motion.csv"]

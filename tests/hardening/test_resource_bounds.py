@@ -8,30 +8,38 @@ the test, instead of taking the machine down. The child reports what the read ra
 
 from __future__ import annotations
 
+import json
 import os
 import resource
 import subprocess
 import sys
+import tracemalloc
 from pathlib import Path
 
 import numpy as np
 import pytest
+import yaml
 
 from hardening.readers import READERS
-from hardening.resource_cases import RESOURCE_CASES, ResourceCase, alias_bomb
-from pinframes import Limits, read_frames_yaml, read_joint_trajectory
-from pinframes.errors import FileFormatError, ReadError
+from hardening.resource_cases import RESOURCE_CASES, ResourceCase, alias_bomb, asdf_bytes
+from pinframes import Limits, read_frames_yaml, read_joint_trajectory, read_scene
+from pinframes.errors import FileFormatError, FrameExistsError, ReadError
+from pinframes.formats import InputFile
+from pinframes.formats.limits import using_limits
 
 MEMORY_CAP = 1024**3  # bytes of address space: pinframes with numpy, pinocchio, asdf uses ~250 MB
 CPU_SECONDS = 20
 TESTS = Path(__file__).resolve().parents[1]
 
 CHILD = """
+import json
 import sys
 from hardening.readers import READERS
+from pinframes import Limits
 from pinframes.errors import PinframesError
+options = {"limits": Limits(**json.loads(sys.argv[3]))} if len(sys.argv) > 3 else {}
 try:
-    READERS[sys.argv[1]].read(sys.argv[2])
+    READERS[sys.argv[1]].read(sys.argv[2], **options)
 except PinframesError as exc:
     print(type(exc).__name__, exc)
 except BaseException as exc:
@@ -46,12 +54,14 @@ def _capped() -> None:
     resource.setrlimit(resource.RLIMIT_CPU, (CPU_SECONDS, CPU_SECONDS))
 
 
-def read_in_capped_child(reader: str, path: Path) -> str:
-    """What reading ``path`` with ``reader`` printed in a child with capped resources."""
+def read_in_capped_child(reader: str, path: Path, limits: dict[str, int] | None = None) -> str:
+    """What reading ``path`` with ``reader`` (and ``limits``, the fields of a
+    :class:`pinframes.Limits`) printed in a child with capped resources."""
     paths = [str(TESTS), *sys.path]
     environment = {**os.environ, "PYTHONPATH": os.pathsep.join(paths),
                    "OPENBLAS_NUM_THREADS": "1"}
-    done = subprocess.run([sys.executable, "-c", CHILD, reader, str(path)], env=environment,
+    arguments = [reader, str(path)] + ([json.dumps(limits)] if limits is not None else [])
+    done = subprocess.run([sys.executable, "-c", CHILD, *arguments], env=environment,
                           preexec_fn=_capped, capture_output=True, text=True,
                           timeout=CPU_SECONDS * 6)
     assert done.returncode == 0, f"the child died ({done.returncode}): {done.stderr[-2000:]}"
@@ -66,6 +76,27 @@ def test_a_tiny_file_asking_for_huge_work_is_refused(case: ResourceCase, tmp_pat
     outcome = read_in_capped_child(case.reader, path)
     assert outcome.startswith(case.error + " "), outcome
     assert str(path) in outcome and case.message in outcome, outcome
+
+
+_FLAT_LINE = "  - [0, 1, 2, 3, 4, 5, 6, 7, 8, 9]\n"  # 12 nodes in 35 bytes
+_LARGE_DOCUMENTS = {
+    "scene": lambda lines: f"pinframes_scene: 1\nlarge:\n{lines}".encode(),
+    "frames.yaml": lambda lines: (f"version: 1.0\nlarge:\n{lines}"
+                                  "frames:\n  m: {relative_to: ~}\n").encode(),
+    "asdf": lambda lines: asdf_bytes(f"large:\n{lines}"),
+}
+
+
+@pytest.mark.parametrize("reader", sorted(_LARGE_DOCUMENTS))
+def test_a_large_yaml_document_is_refused_when_composing_reaches_the_node_limit(reader,
+                                                                                tmp_path):
+    # 9 MB of short lists, 3.2 million nodes and no alias: composed whole before the node
+    # count was checked, it took 50 s and 1.3 GB; composing must stop at the limit
+    path = tmp_path / READERS[reader].file_name
+    path.write_bytes(_LARGE_DOCUMENTS[reader](_FLAT_LINE * (9 * 2**20 // len(_FLAT_LINE))))
+    outcome = read_in_capped_child(reader, path, {"max_yaml_nodes": 20_000})
+    assert outcome.startswith("FileFormatError "), outcome
+    assert str(path) in outcome and "max_yaml_nodes=20,000" in outcome, outcome
 
 
 @pytest.mark.parametrize("reader", ["frames.yaml", "scene", "asdf", "npz", "csv", "urdf"])
@@ -152,3 +183,80 @@ def test_a_nul_character_in_a_text_path_is_an_argument_error():
     with pytest.raises(ArgumentTypeError, match="NUL"):
         read_frames_yaml("frames\0.yaml")
     assert issubclass(ReadError, OSError)
+
+
+_ARM = """<robot name="arm"><link name="base"/><link name="tip"/>
+  <joint name="turn" type="continuous"><parent link="base"/><child link="tip"/></joint>
+</robot>"""
+
+
+def test_a_scene_naming_one_trajectory_many_times_reads_it_once(tmp_path):
+    # a 163-byte scene of YAML aliases to one robot entry read its trajectory once per alias
+    # (12 times, 1.5 GB), before finding that the second robot clashes with the first
+    samples = 400_000
+    np.savez(tmp_path / "motion.npz", times=np.arange(samples) * 0.01,
+             positions=np.zeros((samples, 1)), joint_names=np.array(["turn"]))
+    (tmp_path / "arm.urdf").write_text(_ARM)
+    scene = tmp_path / "scene.yaml"
+    scene.write_text("pinframes_scene: 1\nrobots: [&r {urdf: arm.urdf, trajectory: "
+                     "motion.npz}" + ", *r" * 11 + "]\n")
+    tracemalloc.start()
+    try:
+        read_joint_trajectory(tmp_path / "motion.npz")
+        once = tracemalloc.get_traced_memory()[1]
+        tracemalloc.reset_peak()
+        with pytest.raises(FrameExistsError, match="robots\\[1\\]"):
+            read_scene(scene)
+        whole = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert whole < 3 * once, (whole, once)  # 12 reads held at once took 12 times as much
+
+
+def test_robots_sharing_one_urdf_and_trajectory_file_each_move_with_it(tmp_path):
+    # the files are read once for the three robots, which must not share anything else
+    np.savez(tmp_path / "motion.npz", times=np.array([0.0, 1.0]),
+             positions=np.array([[0.0], [1.0]]), joint_names=np.array(["turn"]))
+    (tmp_path / "arm.urdf").write_text(_ARM)
+    scene = tmp_path / "scene.yaml"
+    scene.write_text("pinframes_scene: 1\nrobots:\n" + "".join(
+        f"  - {{urdf: arm.urdf, trajectory: ./motion.npz, prefix: {prefix}/, xyz: [{x}, 0, 0]}}\n"
+        for x, prefix in enumerate("abc")))
+    tree = read_scene(scene)
+    tree.set_joint_trajectory([0.0, 1.0], [[0.0], [-1.0]], ["c/turn"])  # one robot only
+    for x, (prefix, turn) in enumerate([("a", 0.5), ("b", 0.5), ("c", -0.5)]):
+        pose = tree.pose(f"{prefix}/tip", "world", times=[0.5])  # turned about x, 0.5 rad
+        np.testing.assert_allclose(pose.translation[0], [x, 0, 0], atol=1e-12)
+        np.testing.assert_allclose(pose.rotation[0], [[1, 0, 0],
+                                                      [0, np.cos(turn), -np.sin(turn)],
+                                                      [0, np.sin(turn), np.cos(turn)]],
+                                   atol=1e-12)
+
+
+def _expanded(node: yaml.Node) -> tuple[int, int]:
+    """Nodes and levels of a node composed by PyYAML, each alias expanded (recursively)."""
+    if isinstance(node, yaml.ScalarNode):
+        return 1, 1
+    children = node.value if isinstance(node, yaml.SequenceNode) else [
+        part for pair in node.value for part in pair]
+    sizes = [_expanded(child) for child in children]
+    return 1 + sum(size for size, _ in sizes), 1 + max((depth for _, depth in sizes), default=0)
+
+
+@pytest.mark.parametrize("text", [
+    "a: &x [1, 2, [3, 4]]\nb: [*x, *x]\nc: {k: *x}\n", "- &a {p: [1, [2, [3]]]}\n- [*a, [*a]]\n",
+    "- &s 5\n- *s\n- [*s, *s]\n", "[[[[[]]]]]\n", alias_bomb(levels=3, width=3)])
+def test_the_yaml_limits_count_the_document_with_its_aliases_expanded(text, tmp_path):
+    # the composer counts as it goes; PyYAML's whole composed graph, expanded, is the yardstick
+    nodes, levels = _expanded(yaml.compose(text, Loader=yaml.SafeLoader))
+    path = tmp_path / "frames.yaml"
+    path.write_text(text)
+    for name, needed in (("max_yaml_nodes", nodes), ("max_depth", levels)):
+        with pytest.raises(FileFormatError, match=f"{name}={needed - 1:,}"):
+            _parse(path, **{name: needed - 1})
+        _parse(path, **{name: needed})  # at the limit: read
+
+
+def _parse(path: Path, **limits: int) -> object:
+    with using_limits(Limits(**limits)):
+        return InputFile(path).yaml()

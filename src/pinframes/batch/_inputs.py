@@ -1,10 +1,11 @@
 """The files a run reads, and their checksums: what decides whether a run is recomputed.
 
-A scene reads other files (``layers[].file``, ``robots[].urdf``, ``robots[].trajectory``,
-relative to the scene's folder; docs/scene-format.md), and a frames.yaml reads the
-``tile_maps.yaml`` beside it; a ROS 2 bag folder is its ``metadata.yaml`` and the storage
-files it names; every other format is one file. A file that cannot be found
-has the checksum ``"missing"``, so creating it later changes the run's checksums too.
+Which files a run reads is what its file's format says
+(:func:`pinframes.formats.files_read`: a scene its layers, robots and trajectories,
+docs/scene-format.md; a frames.yaml the ``tile_maps.yaml`` beside it; other formats one
+file). The run's file is read once for that and for the run's tree: :class:`RunInputs`
+keeps it as an :class:`~pinframes.formats.InputFile`. A file that cannot be found has the
+checksum ``"missing"``, so creating it later changes the run's checksums too.
 """
 
 from __future__ import annotations
@@ -13,101 +14,28 @@ import hashlib
 import os
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
-import yaml
-
-from ..errors import PinframesError
-from ..formats.limits import current_limits
-from ..formats.rosbag import bag_files
+from ..formats import InputFile, files_read
 
 __all__ = ["MISSING", "RunInputs", "checksums", "run_inputs"]
 
 MISSING = "missing"
-_SCENE_KEY = "pinframes_scene"
 _BLOCK_BYTES = 1 << 20
-# libyaml when PyYAML has it: a scene of a recorded run can hold thousands of keyframes
-_LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
-_OPENING = (yaml.SequenceStartEvent, yaml.MappingStartEvent)
-_CLOSING = (yaml.SequenceEndEvent, yaml.MappingEndEvent)
 
 
 @dataclass(frozen=True)
 class RunInputs:
-    """The files a run reads (absolute paths, the run's own file first), and whether the
-    run's file is a scene (so it is read as one without telling its format again)."""
+    """The files a run reads (absolute paths, the run's own file first), and the run's file
+    as it was read to find them (hand it to ``pinframes.read``: it is not read again)."""
 
     files: list[Path]
-    is_scene: bool
+    source: InputFile
 
 
 def run_inputs(path: Path) -> RunInputs:
-    """The inputs of the run whose file is ``path``, each once (layers that name each other
-    in a circle are left for the reader to refuse)."""
-    root = path.resolve()
-    if root.is_dir():
-        return RunInputs(_folder_files(root), False)
-    is_scene, pending = _named_files(root)
-    files = {root: None}
-    pending.reverse()  # (a file, whether to look into it for the files it names), last first
-    while pending:
-        file, look_inside = pending.pop()
-        if file in files:
-            continue
-        files[file] = None
-        if look_inside:
-            pending.extend(reversed(_named_files(file)[1]))
-    return RunInputs(list(files), is_scene)
-
-
-def _folder_files(folder: Path) -> list[Path]:
-    """The files of a bag folder (the folder itself if its metadata cannot be read: reading
-    the run will fail and say why)."""
-    try:
-        return bag_files(folder)
-    except PinframesError:
-        return [folder]
-
-
-def _named_files(file: Path) -> tuple[bool, list[tuple[Path, bool]]]:
-    """Whether ``file`` is a scene, and the files it names (with whether they are layers,
-    which may name more)."""
-    if file.suffix.lower() not in (".yaml", ".yml"):
-        return False, []
-    content = _load(file)
-    if not isinstance(content, dict):
-        return False, []  # reading the run will fail and say why
-    if _SCENE_KEY not in content:
-        return False, [(file.parent / "tile_maps.yaml", False)]
-    named = []
-    for section, keys in (("layers", ("file",)), ("robots", ("urdf", "trajectory"))):
-        entries = content.get(section)
-        for entry in entries if isinstance(entries, list) else []:
-            for key in keys:
-                value = entry.get(key) if isinstance(entry, dict) else None
-                if isinstance(value, str):
-                    named.append(((file.parent / value).resolve(), key == "file"))
-    return True, named
-
-
-def _load(file: Path) -> Any:
-    """The YAML document in ``file``, or None if it cannot be read, is not YAML, or nests
-    deeper than the limit ``max_depth``: libyaml's composer recurses in C, and a few hundred
-    kilobytes of ``[`` would crash the worker. The depth is measured on the parser's events
-    first, which come one at a time; aliases cost nothing here (they share their node)."""
-    try:
-        raw = file.read_bytes()
-        depth, deepest = 0, current_limits().max_depth
-        for event in yaml.parse(raw, Loader=_LOADER):
-            if isinstance(event, _OPENING):
-                depth += 1
-                if depth > deepest:
-                    return None
-            elif isinstance(event, _CLOSING):
-                depth -= 1
-        return yaml.load(raw, Loader=_LOADER)  # a safe loader
-    except (OSError, yaml.YAMLError):
-        return None
+    """The inputs of the run whose file is ``path``, each once."""
+    source = InputFile(path)
+    return RunInputs(files_read(source), source)
 
 
 def checksums(files: list[Path]) -> dict[str, str]:

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import FileFormatError, ReadError
+from ..formats import is_tree_folder
 from ..formats.reading import read_text
 
 __all__ = ["RUNS_LIST_SUFFIX", "Run", "find_runs"]
@@ -55,11 +56,10 @@ def find_runs(specs: Iterable[str | os.PathLike[str]]) -> list[Run]:
             matches = sorted(glob.glob(text, recursive=True))
             if not matches:
                 raise ReadError("this pattern matches no file", file=text)
-            found.extend(Path(match) for match in matches
-                         if Path(match).is_file() or _is_bag_folder(Path(match)))
+            found.extend(Path(match) for match in matches if _is_input(Path(match)))
         elif text.lower().endswith(RUNS_LIST_SUFFIX):
             listed.extend(_read_runs_list(Path(text)))
-        elif Path(text).is_file() or _is_bag_folder(Path(text)):
+        elif _is_input(Path(text)):
             found.append(Path(text))
         else:
             raise ReadError("is a folder, not a file" if Path(text).is_dir() else
@@ -69,9 +69,9 @@ def find_runs(specs: Iterable[str | os.PathLike[str]]) -> list[Run]:
     return runs
 
 
-def _is_bag_folder(path: Path) -> bool:
-    """A ROS 2 bag folder: read as one input, like a file."""
-    return path.is_dir() and (path / "metadata.yaml").is_file()
+def _is_input(path: Path) -> bool:
+    """A file, or a folder that a format reads as one input (a ROS 2 bag folder)."""
+    return path.is_file() or (path.is_dir() and is_tree_folder(path))
 
 
 def _named_by_path(paths: list[Path]) -> list[Run]:

@@ -77,8 +77,7 @@ def process_run(task: RunTask) -> RunResult:
         "samples": None, "error": None, "checksums": files, "options": task.options_digest,
         "limits": asdict(task.limits)}
     try:
-        tree = read(task.run.path, format="scene" if inputs.is_scene else None,
-                    limits=task.limits)
+        tree = read(inputs.source, limits=task.limits)
         record["samples"] = _write_poses(tree, task)
     except PinframesError as exc:
         record.update(status="error", error=_located(exc, task.run.path))

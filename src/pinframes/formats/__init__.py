@@ -14,32 +14,32 @@ from typing import Any
 from ..tree import FrameTree, register_robot_format
 from ._registry import (
     FileFormat,
-    Peek,
     detect_format,
     file_format,
+    files_read,
     formats_taking,
+    is_tree_folder,
     read,
     register_format,
     registered_formats,
     write,
 )
-from .frames_yaml import read_frames_yaml, write_frames_yaml
-from .rosbag import read_rosbag
-from .scene import SCENE_FORMAT_KEY, read_scene, write_scene
-from .trajectory_files import (
-    JOINT_TRAJECTORY,
-    read_csv_trajectory,
-    read_joint_trajectory,
-    read_npz_trajectory,
-)
-from .urdf import mount_urdf, read_urdf, write_urdf
+from .frames_yaml import FRAMES_YAML_FORMAT
+from .pose_files import POSE_FORMATS
+from .reading import InputFile
+from .rosbag import ROSBAG_FORMAT
+from .scene import SCENE_FORMAT
+from .trajectory_files import CSV_TRAJECTORY_FORMAT, NPZ_TRAJECTORY_FORMAT, read_joint_trajectory
+from .urdf import URDF_FORMAT, mount_urdf
 
 __all__ = [
     "FileFormat",
-    "Peek",
+    "InputFile",
     "detect_format",
     "file_format",
+    "files_read",
     "formats_taking",
+    "is_tree_folder",
     "read",
     "read_joint_trajectory",
     "register_format",
@@ -60,46 +60,23 @@ def _write_asdf(tree: FrameTree, path: str | os.PathLike[str], **options: Any) -
     write_asdf(tree, path, **options)
 
 
-def _named_frames(peek: Peek) -> bool:
-    return peek.path.name.lower().startswith("frames")
+def _is_asdf(source: InputFile) -> bool:
+    """ASDF's content test: the file starts with ``#ASDF`` (here, so that telling a file's
+    format does not import asdf)."""
+    return source.start().startswith(b"#ASDF")
 
 
-def _is_scene(peek: Peek, writing: bool) -> bool:
-    if writing:
-        return not _named_frames(peek)
-    content = peek.yaml()
-    return isinstance(content, dict) and SCENE_FORMAT_KEY in content
-
-
-def _is_frames_yaml(peek: Peek, writing: bool) -> bool:
-    if writing or _named_frames(peek):
-        return _named_frames(peek)
-    content = peek.yaml()
-    return isinstance(content, dict) and "frames" in content
-
-
-def _is_bag(peek: Peek, writing: bool) -> bool:
-    """A ROS 2 bag folder has its metadata.yaml (bag files are told by content)."""
-    return not peek.path.is_dir() or (peek.path / "metadata.yaml").is_file()
-
-
-register_format(FileFormat("asdf", "ASDF", (".asdf",), _read_asdf, _write_asdf,
-                           ("schema", "key")))
-register_format(FileFormat("urdf", "URDF", (".urdf",), read_urdf, write_urdf,
-                           ("time", "freeze_joints")))
-# .yaml: a scene when it has the scene key; else a frames.yaml ('frames' key or name)
-register_format(FileFormat("scene", "scene", (".yaml", ".yml"), read_scene, write_scene,
-                           ("time",), _is_scene, f"no '{SCENE_FORMAT_KEY}' key"))
-register_format(FileFormat("frames.yaml", "frames.yaml", (".yaml", ".yml"), read_frames_yaml,
-                           write_frames_yaml, ("time", "slash_replacement"), _is_frames_yaml,
-                           "no 'frames' key"))
-register_format(FileFormat("csv", "CSV", (".csv",), read_csv_trajectory,
-                           kind=JOINT_TRAJECTORY))
-register_format(FileFormat("npz", "NPZ", (".npz",), read_npz_trajectory,
-                           kind=JOINT_TRAJECTORY))
-# ROS bags: files told by their magic bytes (formats/_content.py), ROS 2 bag folders by
-# their metadata.yaml; read with rosbags (the [ros] extra), never written
-register_format(FileFormat("rosbag", "ROS bag", (".bag", ".mcap", ".db3"), read_rosbag,
-                           recognise=_is_bag, folders=True,
-                           unrecognised="a ROS 2 bag folder holds a metadata.yaml"))
+# Content tests are asked in this order: a pose file's before a joint trajectory's.
+for _format in (
+    FileFormat("asdf", "ASDF", (".asdf",), _read_asdf, _write_asdf, ("schema", "key"),
+               head_test=_is_asdf, looks_like="an ASDF file"),
+    URDF_FORMAT,
+    SCENE_FORMAT,
+    FRAMES_YAML_FORMAT,
+    ROSBAG_FORMAT,
+    *POSE_FORMATS,
+    CSV_TRAJECTORY_FORMAT,
+    NPZ_TRAJECTORY_FORMAT,
+):
+    register_format(_format)
 register_robot_format("urdf", mount_urdf)

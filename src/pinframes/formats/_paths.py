@@ -31,9 +31,9 @@ def path_argument(path: object, field: str = "path") -> str:
     return file
 
 
-def read_regular_file(path: object, size: int = -1) -> bytes:
-    """The bytes of the regular file at ``path`` (its first ``size`` bytes if
-    ``size >= 0``).
+def read_regular_file(path: object, *, start: int = 0, size: int = -1) -> bytes:
+    """The bytes of the regular file at ``path``: ``size`` of them (-1: all) from byte
+    ``start`` on.
 
     Raises
     ------
@@ -58,6 +58,8 @@ def read_regular_file(path: object, size: int = -1) -> bytes:
         _refuse_irregular(mode, file)
     with open(descriptor, "rb") as handle:
         try:
+            if start:
+                handle.seek(start)
             return handle.read(size)
         except OSError as exc:
             raise ReadError(f"cannot read: {exc.strerror or exc}", file=file) from None

@@ -3,7 +3,9 @@
 Every format registers a :class:`FileFormat` (``pinframes.formats`` does so on import);
 :func:`read` and :func:`write` (``pinframes.read`` / ``pinframes.write``) and every caller
 that must pick a format (the CLI, scene layers, joint trajectory files) go through
-:func:`detect_format`, the one place that tells formats apart.
+:func:`detect_format`, the one place that tells formats apart, with the content tests each
+format brings. A file is read once: detection reads it into an
+:class:`~pinframes.formats.reading.InputFile` and :func:`read` hands that to the reader.
 """
 
 from __future__ import annotations
@@ -14,18 +16,19 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..errors import FileFormatError, ReadError
-from ._content import format_by_content
+from ..errors import FileFormatError, PinframesError, ReadError
+from ._content import other_content
 from ._paths import check_regular_file, path_argument
-from ._yaml_loader import load_yaml
 from .limits import using_limits
+from .reading import InputFile
 
 __all__ = [
     "FileFormat",
-    "Peek",
     "detect_format",
     "file_format",
+    "files_read",
     "formats_taking",
+    "is_tree_folder",
     "read",
     "register_format",
     "registered_formats",
@@ -36,20 +39,6 @@ TREE = "tree"
 """Kind of the formats that hold a whole frame tree."""
 
 
-class Peek:
-    """The content of a file whose format is being detected, loaded at most once."""
-
-    def __init__(self, path: Path) -> None:
-        self.path = path
-        self._yaml: tuple[Any] | None = None
-
-    def yaml(self) -> Any:
-        """The file parsed as YAML (a :class:`FileFormatError` when it is not YAML)."""
-        if self._yaml is None:
-            self._yaml = (load_yaml(self.path),)
-        return self._yaml[0]
-
-
 @dataclass(frozen=True)
 class FileFormat:
     """A file format pinframes reads or writes.
@@ -57,27 +46,46 @@ class FileFormat:
     Attributes
     ----------
     name : str
-        What ``format=`` and the CLI's ``--to`` call it (``"asdf"``, ``"frames.yaml"``...).
+        What ``format=`` and the CLI's ``--to`` call it (``"asdf"``, ``"frames.yaml"``...);
+        unique within its ``kind``.
     title : str
         Its name in messages (``"ASDF"``).
     suffixes : tuple of str
         Lower-case file name suffixes, with the dot.
     read : callable or None
         ``read(path, **options)``: a tree (or, for other kinds, what the format holds).
+        ``path`` may be the :class:`~pinframes.formats.reading.InputFile` detection read;
+        ``InputFile.of(path)`` gives it back with what it holds.
     write : callable or None
         ``write(tree, path, **options)``, atomic.
     write_options : tuple of str
         The keyword options ``write`` takes.
-    recognise : callable or None
-        ``recognise(peek, writing) -> bool``, asked only when several formats share a
-        suffix, in registration order; None: the format takes every such file.
+    head_test : callable or None
+        ``head_test(source) -> bool``: whether the file is in this format, told from its
+        first bytes (``source.head()``, ``source.start()``) and name alone. Asked, for a
+        file that exists, of every format of every kind, in registration order.
+    document_test : callable or None
+        ``document_test(source) -> bool``: whether a text file is in this format, told
+        from its YAML document (``source.yaml()``) and name; asked when no ``head_test``
+        claimed the file, and among formats that share a suffix.
+    looks_like : str
+        How a file this format's ``head_test`` claims is named in messages
+        (``"an ASDF file"``), when the caller wanted another format.
     unrecognised : str
         Why a file is not this format, for the message when no format recognises it.
+    write_name_test : callable or None
+        ``write_name_test(path) -> bool``, for formats that share a suffix: whether a file
+        to be written at ``path`` takes this format; a name no format's test claims goes
+        to the first format without one.
+    files_read : callable or None
+        ``files_read(source) -> list of Path``: the other files reading ``source`` opens
+        (and those they open in turn), whether they exist or not; None: no other file.
     kind : str
-        ``"tree"``, or another kind of file (``"joint trajectory"``).
-    folders : bool
-        Whether ``read`` also takes a folder (a ROS 2 bag); ``recognise`` is then asked
-        whether a folder is one.
+        ``"tree"``, or another kind of file (``"joint trajectory"``, ``"poses"``).
+    folder_test : callable or None
+        For a format whose ``read`` also takes a folder (a ROS 2 bag):
+        ``folder_test(path) -> bool``, whether the folder at ``path`` is one. None: the
+        format reads files only.
     """
 
     name: str
@@ -86,29 +94,33 @@ class FileFormat:
     read: Callable[..., Any] | None = None
     write: Callable[..., None] | None = None
     write_options: tuple[str, ...] = ()
-    recognise: Callable[[Peek, bool], bool] | None = None
+    head_test: Callable[[InputFile], bool] | None = None
+    document_test: Callable[[InputFile], bool] | None = None
+    looks_like: str = ""
     unrecognised: str = ""
+    write_name_test: Callable[[Path], bool] | None = None
+    files_read: Callable[[InputFile], list[Path]] | None = None
     kind: str = TREE
-    folders: bool = False
+    folder_test: Callable[[Path], bool] | None = None
 
 
-_FORMATS: dict[str, FileFormat] = {}
+_FORMATS: dict[tuple[str, str], FileFormat] = {}
 
 
 def register_format(file_format: FileFormat) -> None:
-    """Add ``file_format`` to the table (replacing a format of the same name)."""
-    _FORMATS[file_format.name] = file_format
+    """Add ``file_format`` to the table (replacing a format of the same kind and name)."""
+    _FORMATS[file_format.kind, file_format.name] = file_format
 
 
 def registered_formats(kind: str = TREE) -> tuple[str, ...]:
     """Names of the registered formats of ``kind``, in registration order."""
-    return tuple(name for name, entry in _FORMATS.items() if entry.kind == kind)
+    return tuple(entry.name for entry in _FORMATS.values() if entry.kind == kind)
 
 
 def file_format(name: str, kind: str = TREE) -> FileFormat:
     """The registered format ``name``; a :class:`FileFormatError` for an unknown one."""
-    entry = _FORMATS.get(name) if isinstance(name, str) else None
-    if entry is None or entry.kind != kind:
+    entry = _FORMATS.get((kind, name)) if isinstance(name, str) else None
+    if entry is None:
         raise FileFormatError(f"unknown format {name!r}; expected one of "
                               f"{', '.join(registered_formats(kind))}", field="format")
     return entry
@@ -119,23 +131,22 @@ def detect_format(
     among: Sequence[str] | None = None,
 ) -> str:
     """The format of ``path``: a tree file that exists is told by its content, whatever its
-    name (:func:`~pinframes.formats._content.format_by_content`); a file to be written (if
+    name (the formats' ``head_test`` and ``document_test``); a file to be written (if
     ``writing``) and other kinds of files by the suffix.
 
     Formats that share a suffix (``.yaml``: scene or frames.yaml) are told apart by their
-    ``recognise`` test. ``among`` restricts the candidates to those format names.
+    ``document_test`` (``write_name_test`` for a file to be written). ``among`` restricts
+    the candidates to those format names. ``path`` may be an
+    :class:`~pinframes.formats.reading.InputFile`: what detection reads stays in it.
     """
-    path = Path(path)
-    suffix = path.suffix.lower()
+    source = InputFile.of(path)
+    suffix = source.path.suffix.lower()
     allowed = [entry for entry in _FORMATS.values() if entry.kind == kind
                and (among is None or entry.name in among)]
-    if kind == TREE and not writing and path.is_dir():
-        return _folder_format(path, allowed)
-    if kind == TREE and not writing and path.is_file():
-        peek = Peek(path)
-        return format_by_content(path, allowed, lambda yaml_formats: next(
-            (entry.name for entry in yaml_formats
-             if entry.recognise is None or entry.recognise(peek, False)), None))
+    if kind == TREE and not writing and source.path.is_dir():
+        return _folder_format(source.path, allowed)
+    if kind == TREE and not writing and source.path.is_file():
+        return _format_by_content(source, allowed)
     candidates = [entry for entry in allowed if suffix in entry.suffixes]
     if not candidates:
         suffixes = list(dict.fromkeys(s for entry in allowed for s in entry.suffixes))
@@ -143,31 +154,83 @@ def detect_format(
                                else suffixes)
         what = "file type" if kind == TREE else f"{kind} file type"
         raise FileFormatError(f"unknown {what} {suffix or '(none)'!r}; expected {expected}",
-                              file=path)
+                              file=source)
     if len(candidates) == 1:
         return candidates[0].name
-    peek = Peek(path)
+    if writing:  # the format whose name test claims the name, else the first without one
+        named = [entry for entry in candidates if entry.write_name_test is not None
+                 and entry.write_name_test(source.path)]
+        unnamed = [entry for entry in candidates if entry.write_name_test is None]
+        if named or unnamed:
+            return (named or unnamed)[0].name
     for entry in candidates:
-        if entry.recognise is None or entry.recognise(peek, writing):
+        if not writing and (entry.document_test is None or entry.document_test(source)):
             return entry.name
     raise FileFormatError("neither " + " nor ".join(
-        f"a {entry.title} ({entry.unrecognised})" for entry in candidates), file=path)
+        f"a {entry.title} ({entry.unrecognised})" for entry in candidates), file=source)
+
+
+def _format_by_content(source: InputFile, allowed: list[FileFormat]) -> str:
+    """The format among ``allowed`` that the file holds: the first format of any kind whose
+    ``head_test`` claims it, else (for text) the first whose ``document_test`` does; a file
+    no allowed format claims is a :class:`FileFormatError` saying what it looks like."""
+    for entry in _FORMATS.values():
+        if entry.head_test is not None and entry.head_test(source):
+            if entry in allowed:
+                return entry.name
+            raise _not_a_tree(source, entry.looks_like, allowed)
+    other = other_content(source)
+    if other is not None:
+        raise _not_a_tree(source, other, allowed)
+    for entry in allowed:
+        if entry.document_test is not None and entry.document_test(source):
+            return entry.name
+    reasons = " nor ".join(f"a {entry.title} ({entry.unrecognised})" for entry in allowed
+                           if entry.unrecognised)
+    raise _not_a_tree(source, f"YAML or text, but neither {reasons}" if reasons else "text",
+                      allowed)
+
+
+def _not_a_tree(source: InputFile, kind: str, allowed: list[FileFormat]) -> FileFormatError:
+    titles = [entry.title for entry in allowed]
+    known = ", ".join(titles[:-1]) + " and " + titles[-1] if len(titles) > 1 else titles[0]
+    return FileFormatError(f"this looks like {kind}; pinframes reads trees from {known} "
+                           "files", file=source)
+
+
+def files_read(path: str | os.PathLike[str], *, among: Sequence[str] | None = None
+               ) -> list[Path]:
+    """Every file reading the tree file ``path`` opens, resolved, each once: ``path``
+    first (unless it is a folder that names its files), then what its format's
+    ``files_read`` names. A file whose format (``among`` those names, if given) cannot be
+    told, or that cannot be read, names no other file (reading it will say why)."""
+    source = InputFile.of(path)
+    try:
+        entry = file_format(detect_format(source, among=among))
+        named = entry.files_read(source) if entry.files_read is not None else []
+    except PinframesError:
+        named = []
+    itself = [] if named and source.path.is_dir() else [source.path]  # a bag folder: its files
+    return list(dict.fromkeys(file.resolve() for file in [*itself, *named]))
 
 
 def read(path: str | os.PathLike[str], format: str | None = None, **options: Any) -> Any:
-    """Read the tree in ``path``, in ``format`` (default: told from the file).
+    """Read the tree in ``path``, in ``format`` (default: told from the file), reading
+    the file once (``path`` may be an :class:`~pinframes.formats.reading.InputFile`).
 
     ``options`` go to the format's reader (``key=`` for ASDF); ``limits=`` (a
     :class:`pinframes.Limits`) bounds the read, for every format.
     """
     with using_limits(options.pop("limits", None)):
         entry = file_format(format) if format is not None else None
-        if not (entry is None or entry.folders) or not Path(path_argument(path)).is_dir():
+        folder_reader = entry is None or entry.folder_test is not None
+        if not (folder_reader and Path(path_argument(path)).is_dir()):
             check_regular_file(path)
-        entry = entry or file_format(detect_format(path))
+        source = InputFile.of(path)
+        entry = entry or file_format(detect_format(source))
         if entry.read is None:
             raise FileFormatError(f"pinframes does not read {entry.title} files", file=path)
-        return entry.read(path, **options)
+        return entry.read(source, **options)
 
 
 def write(tree: Any, path: str | os.PathLike[str], format: str | None = None,
@@ -198,15 +261,21 @@ def formats_taking(option: str) -> list[FileFormat]:
 
 
 def _folder_format(path: Path, allowed: Sequence[FileFormat]) -> str:
-    """The format that reads the folder ``path``: the first registered that reads folders
-    and whose ``recognise`` test takes this one."""
-    peek = Peek(path)
-    readers = [entry for entry in allowed if entry.folders]
+    """The format that reads the folder ``path``: the first registered whose
+    ``folder_test`` takes it."""
+    readers = [entry for entry in allowed if entry.folder_test is not None]
     for entry in readers:
-        if entry.recognise is None or entry.recognise(peek, False):
+        if entry.folder_test is not None and entry.folder_test(path):
             return entry.name
     why = "; ".join(entry.unrecognised for entry in readers if entry.unrecognised)
     raise ReadError("is a folder, not a file" + (f" ({why})" if why else ""), file=path)
+
+
+def is_tree_folder(path: str | os.PathLike[str]) -> bool:
+    """Whether a format reads the folder ``path`` as one tree (a ROS 2 bag folder)."""
+    folder = Path(path)
+    return folder.is_dir() and any(entry.folder_test(folder) for entry in _FORMATS.values()
+                                   if entry.folder_test is not None and entry.kind == TREE)
 
 
 def _check_path(path: object) -> None:

@@ -1,14 +1,13 @@
 """Strict YAML reading: plain data only, every duplicate key and custom tag reported.
 
 PyYAML's ``safe_load`` keeps the last of two equal keys in a mapping without a word, so a
-mis-indented line can silently replace a value. :func:`load_yaml` reports such keys, YAML
+mis-indented line can silently replace a value. :func:`parse_yaml` reports such keys, YAML
 syntax errors (with their line) and tags it has no constructor for (``!include``), each as a
 :class:`~pinframes.errors.FileFormatError` naming the file.
 """
 
 from __future__ import annotations
 
-import os
 import re
 from collections.abc import Callable, Hashable
 from typing import Any
@@ -16,10 +15,9 @@ from typing import Any
 import yaml
 
 from ..errors import FileFormatError
-from ._yaml_size import check_yaml_size
-from .reading import read_text
+from ._yaml_size import BoundedLoader
 
-__all__ = ["KeyPath", "Locate", "load_yaml"]
+__all__ = ["KeyPath", "Locate", "parse_yaml"]
 
 KeyPath = tuple[Hashable, ...]
 """Keys from the document's top down to a node (list items count by index)."""
@@ -35,33 +33,36 @@ def _dotted(path: KeyPath) -> tuple[str | None, str | None]:
     return None, ".".join(str(part) for part in path) or None
 
 
-def load_yaml(path: str | os.PathLike[str], locate: Locate = _dotted) -> Any:
-    """Read one YAML document of plain data (mappings, lists, scalars) from ``path``.
+def parse_yaml(text: str, file: str, locate: Locate | None = None) -> Any:
+    """The one YAML document of plain data (mappings, lists, scalars) in ``text``.
+
+    Read files through :meth:`pinframes.formats.reading.InputFile.yaml`, which parses each
+    file once.
 
     Parameters
     ----------
-    path : str or path-like
-        The file to read (UTF-8).
-    locate : callable
-        Maps the key path of a bad node to the ``frame`` and ``field`` of the error.
+    text : str
+        The YAML.
+    file : str
+        The file it comes from, named in errors.
+    locate : callable or None
+        Maps the key path of a bad node to the ``frame`` and ``field`` of the error (None:
+        no frame, the keys joined by dots as the field).
 
     Raises
     ------
-    ReadError
-        The file is missing, a folder, unreadable or not UTF-8 text.
     FileFormatError
-        On a YAML syntax error, a mapping with two equal keys, or a tag other than the
-        YAML core tags; the message gives the line.
+        On a YAML syntax error, a mapping with two equal keys, a tag other than the YAML
+        core tags (the message gives the line), or a document over the reader limits
+        ``max_yaml_nodes`` or ``max_depth`` (found while composing it).
     """
-    text = read_text(path)
-    file = os.fspath(path)
     loader = None
     try:
-        loader = _StrictLoader(text, file, locate)  # refuses unprintable characters
-        node = loader.get_single_node()
+        # the loader refuses unprintable characters
+        loader = _StrictLoader(text, file, locate or _dotted)
+        node = loader.get_single_node()  # within max_yaml_nodes and max_depth (_yaml_size)
         if node is None:
             return None
-        check_yaml_size(node, file)  # aliases: before anything expands them
         loader.check_tags_and_index(node, ())
         return loader.construct_document(node)
     except yaml.MarkedYAMLError as exc:
@@ -75,12 +76,12 @@ def load_yaml(path: str | os.PathLike[str], locate: Locate = _dotted) -> Any:
             loader.dispose()
 
 
-class _StrictLoader(yaml.SafeLoader):
-    """A SafeLoader that refuses duplicate keys and unknown tags, naming where they are."""
+class _StrictLoader(BoundedLoader):
+    """A bounded SafeLoader that refuses duplicate keys and unknown tags, naming where they
+    are."""
 
     def __init__(self, text: str, file: str, locate: Locate) -> None:
-        super().__init__(text)
-        self._file = file
+        super().__init__(text, file)
         self._locate = locate
         self._paths: dict[int, KeyPath] = {}
 
@@ -98,7 +99,7 @@ class _StrictLoader(yaml.SafeLoader):
                 raise FileFormatError(
                     f"unsupported YAML tag {current.tag!r} at line {current.start_mark.line + 1}"
                     ": this file must hold plain data (a main.yaml that includes layers with "
-                    "!include is not a layer file)", file=self._file, frame=frame, field=field)
+                    "!include is not a layer file)", file=self.file, frame=frame, field=field)
             if isinstance(current, yaml.MappingNode):
                 self._paths[id(current)] = where
                 for key_node, value_node in current.value:
@@ -120,7 +121,7 @@ class _StrictLoader(yaml.SafeLoader):
                 raise FileFormatError(
                     f"duplicate key {key!r} at line {line} (first at line {first_lines[key]}); "
                     "YAML readers would silently keep only the last one",
-                    file=self._file, frame=frame, field=field)
+                    file=self.file, frame=frame, field=field)
             if isinstance(key, Hashable):
                 first_lines[key] = line
         return super().construct_mapping(node, deep=deep)
@@ -139,7 +140,7 @@ def _unambiguous(construct: Callable[[yaml.SafeLoader, yaml.ScalarNode], Any]
             raise FileFormatError(
                 f"the number {node.value!r} at line {node.start_mark.line + 1} is read as "
                 f"{construct(loader, node)!r} by YAML 1.1 (octal or base 60) and differently "
-                "by YAML 1.2 readers: quote it, or write it in decimal", file=loader._file)
+                "by YAML 1.2 readers: quote it, or write it in decimal", file=loader.file)
         return construct(loader, node)
     return strict
 

@@ -14,6 +14,9 @@ JSON
 NPZ
     ``numpy.savez`` arrays ``time_s`` (T,), ``translation`` (T, 3) metres, ``quaternion``
     (T, 4), and the strings ``frame``, ``relative_to`` and ``reference_time`` ("" if none).
+
+pinframes reads no pose file; the three formats are registered (kind :data:`POSES`,
+:data:`POSE_FORMATS`) with their content tests, so that a reader given one says so.
 """
 
 from __future__ import annotations
@@ -29,14 +32,21 @@ from ..errors import ArgumentTypeError, FileFormatError
 from ..kinematics import Velocity
 from ..values.pose import Pose
 from ..values.timeconv import format_timestamp_iso
+from ._registry import FileFormat
 from .atomic import atomic_write
+from .reading import InputFile
 
-__all__ = ["COLUMNS", "POSE_FILE_FORMATS", "VELOCITY_COLUMNS", "pose_file_format", "poses_text",
-           "write_poses"]
+__all__ = ["COLUMNS", "POSES", "POSE_FILE_FORMATS", "POSE_FORMATS", "VELOCITY_COLUMNS",
+           "pose_file_format", "poses_text", "write_poses"]
 
 COLUMNS = ("time_s", "x_m", "y_m", "z_m", "qx", "qy", "qz", "qw")
+"""The columns of a pose: seconds, the origin in metres, the unit quaternion (x, y, z, w)."""
 VELOCITY_COLUMNS = ("vx_m_s", "vy_m_s", "vz_m_s", "wx_rad_s", "wy_rad_s", "wz_rad_s")
+"""The columns of a velocity: its origin's (m/s), then the angular velocity (rad/s)."""
 POSE_FILE_FORMATS = ("csv", "json", "npz")
+POSES = "poses"
+"""Registry kind of pose files."""
+_ZIP_MAGIC = b"PK\x03\x04"
 
 
 def pose_file_format(path: str | os.PathLike[str]) -> str | None:
@@ -111,7 +121,8 @@ def _json_text(pose: Pose, frame: str | None, relative_to: str | None,
         {COLUMNS[0]: None if np.isnan(time) else time, **dict(zip(names, row, strict=True))}
         for time, row in zip(seconds.tolist(), values.tolist(), strict=True)
     ]
-    units = {"time_s": "s", "x_m y_m z_m": "m", "qx qy qz qw": "unit quaternion"}
+    units = {COLUMNS[0]: "s", " ".join(COLUMNS[1:4]): "m",
+             " ".join(COLUMNS[4:]): "unit quaternion"}
     if velocity is not None:
         units.update({"v": "m/s", "w": "rad/s", "velocity_axes": velocity.expressed_in})
     document = {
@@ -138,3 +149,36 @@ def _write_npz(handle: IO[Any], pose: Pose, frame: str | None,
 def _reference_text(pose: Pose) -> str | None:
     reference = pose.reference_time
     return None if reference is None else format_timestamp_iso(reference)
+
+
+def _is_pose_csv(source: InputFile) -> bool:
+    """A CSV header of :data:`COLUMNS` (the time column may name its reference time)."""
+    header = source.start().split(b"\n", 1)[0].decode("utf-8", "replace").strip()
+    time, _, rest = header.partition(",")
+    return (time == COLUMNS[0] or time.startswith(f"{COLUMNS[0]}_after_")) and (
+        rest.split(",")[:len(COLUMNS) - 1] == list(COLUMNS[1:]))
+
+
+def _is_pose_json(source: InputFile) -> bool:
+    """A JSON object with the keys :func:`poses_text` writes first and last."""
+    return source.start().startswith(b"{") and all(
+        f'"{key}":'.encode() in source.head() for key in ("frame", "relative_to", "poses"))
+
+
+def _is_pose_npz(source: InputFile) -> bool:
+    """A ZIP archive whose first member is ``time_s.npy``, as :func:`write_poses` writes
+    (the member's name starts at byte 30 of the archive, its length at byte 26)."""
+    head = source.head()
+    length = int.from_bytes(head[26:28], "little")
+    return head.startswith(_ZIP_MAGIC) and head[30:30 + length] == f"{COLUMNS[0]}.npy".encode()
+
+
+POSE_FORMATS = (
+    FileFormat("csv", "CSV", (".csv",), kind=POSES, head_test=_is_pose_csv,
+               looks_like="a CSV table of poses (pinframes pose writes those)"),
+    FileFormat("json", "JSON", (".json",), kind=POSES, head_test=_is_pose_json,
+               looks_like="a JSON file of poses (pinframes pose -f json writes those)"),
+    FileFormat("npz", "NPZ", (".npz",), kind=POSES, head_test=_is_pose_npz,
+               looks_like="a ZIP archive of poses in NPZ (pinframes pose writes those)"),
+)
+"""The pose file formats, as the registry holds them (:data:`POSE_FILE_FORMATS` by name)."""

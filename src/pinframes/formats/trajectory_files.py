@@ -27,12 +27,14 @@ from numpy.typing import NDArray
 from ..errors import FileFormatError, InvalidTimeError, PinframesError
 from ..values.timeconv import parse_time_axis
 from ._paths import path_argument
-from ._registry import detect_format, file_format
+from ._registry import FileFormat, detect_format, file_format
 from .limits import Limits, current_limits, exceeded, reader_with_limits
-from .reading import read_bytes, read_text
+from .reading import InputFile, read_bytes, read_text
 
 __all__ = [
+    "CSV_TRAJECTORY_FORMAT",
     "JOINT_TRAJECTORY",
+    "NPZ_TRAJECTORY_FORMAT",
     "read_csv_trajectory",
     "read_joint_trajectory",
     "read_npz_trajectory",
@@ -42,6 +44,7 @@ JOINT_TRAJECTORY = "joint trajectory"
 """Registry kind of joint trajectory files (``.csv``, ``.npz``)."""
 
 _TIME_COLUMNS = ("time_s", "time")
+_ZIP_MAGIC = b"PK\x03\x04"
 # What a broken NPZ raises from numpy and zipfile: a bad header, a short file, a bad CRC or
 # deflate stream, a compression method (NotImplementedError, a RuntimeError) or encryption
 # that zipfile does not support.
@@ -259,3 +262,30 @@ def _check_times(times: np.ndarray, path: str | os.PathLike[str]) -> None:
         sample = int(np.argmax(steps <= steps.dtype.type(0))) + 2
         raise FileFormatError(f"times must be strictly increasing; sample {sample} is not "
                               "after sample " f"{sample - 1}", file=path, field="times")
+
+
+def is_csv_trajectory(source: InputFile) -> bool:
+    """Whether ``source`` looks like a CSV joint trajectory (its content test): the first
+    line that is not a comment is a header whose first column is the time."""
+    for line in source.start().splitlines():
+        if line.strip() and not line.lstrip().startswith(b"#"):
+            cells = [cell.strip() for cell in line.split(b",")]
+            return len(cells) > 1 and cells[0].decode("utf-8", "replace") in _TIME_COLUMNS
+    return False
+
+
+def is_npz(source: InputFile) -> bool:
+    """Whether ``source`` is a ZIP archive, as ``numpy.savez`` writes (its content test)."""
+    return source.start().startswith(_ZIP_MAGIC)
+
+
+CSV_TRAJECTORY_FORMAT = FileFormat(
+    "csv", "CSV", (".csv",), read_csv_trajectory, kind=JOINT_TRAJECTORY,
+    head_test=is_csv_trajectory, looks_like="a CSV table of joint values (a joint "
+    "trajectory .csv goes in a scene's robots[].trajectory)")
+"""Joint trajectories in CSV (see the module docstring)."""
+NPZ_TRAJECTORY_FORMAT = FileFormat(
+    "npz", "NPZ", (".npz",), read_npz_trajectory, kind=JOINT_TRAJECTORY, head_test=is_npz,
+    looks_like="a ZIP archive such as an NPZ file (a joint trajectory .npz goes in a scene's "
+    "robots[].trajectory)")
+"""Joint trajectories in NPZ (see the module docstring)."""

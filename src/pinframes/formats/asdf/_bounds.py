@@ -3,15 +3,16 @@
 asdf builds, walks and validates the whole YAML tree, expanding every alias as it goes:
 a YAML alias bomb of a few hundred bytes, or a node that contains itself, would cost it
 minutes and gigabytes (or end in a bare ``RecursionError``). :func:`check_asdf_yaml`
-composes the YAML part (up to the document end marker or the first binary block) without
-constructing anything and hands it to :func:`~pinframes._yaml_size.check_yaml_size`.
+composes the YAML part (up to the document end marker or the first binary block) with
+:class:`~pinframes.formats._yaml_size.BoundedLoader`, which stops at ``max_yaml_nodes``,
+without constructing anything.
 """
 
 from __future__ import annotations
 
 import yaml
 
-from .._yaml_size import check_yaml_size
+from .._yaml_size import BoundedLoader
 from ._depth import MAX_GRAPH_DEPTH, recursion_room
 
 __all__ = ["check_asdf_yaml"]
@@ -25,17 +26,15 @@ def check_asdf_yaml(file: str) -> None:
     itself; YAML that does not compose is left to asdf to report."""
     text = _yaml_part(file)
     try:
-        loader = yaml.SafeLoader(text)
+        # nesting depth is bounded by MAX_GRAPH_DEPTH (weldx 0.1.0 nests frames deeply)
+        loader = BoundedLoader(text, file, depth=False)
         try:
             with recursion_room(MAX_GRAPH_DEPTH):
-                node = loader.get_single_node()
+                loader.get_single_node()
         finally:
             loader.dispose()
     except (yaml.YAMLError, RecursionError, UnicodeDecodeError):
         return  # asdf reports broken YAML, and too_deep a graph nested too deeply
-    if node is not None:
-        # nesting depth is bounded by MAX_GRAPH_DEPTH (weldx 0.1.0 nests frames deeply)
-        check_yaml_size(node, file, depth=False)
 
 
 def _yaml_part(file: str) -> bytes:

@@ -25,9 +25,9 @@ from collections.abc import Callable
 from ...errors import FileFormatError, PinframesError
 from ...tree import FrameTree
 from ...values.pose import Pose
-from .._paths import is_regular_file, path_argument
-from .._yaml_loader import load_yaml
+from .._paths import is_regular_file
 from ..limits import Limits, current_limits, exceeded, reader_with_limits
+from ..reading import InputFile
 from ._schema import (
     Entry,
     TileSize,
@@ -81,8 +81,9 @@ def read_frames_yaml(path: str | os.PathLike[str], root: str = "world", *,
     FramesYamlWarning
         For unknown fields (kept, not used) and undeclared ``relative_to`` targets.
     """
-    file = path_argument(path)
-    top_level, entries = parse_layer(load_yaml(file, locate_in("frames")), file)
+    source = InputFile.of(path)
+    file = os.fspath(source)
+    top_level, entries = parse_layer(source.yaml(locate_in("frames")), file)
     _check_key_depths(entries, file)
     declared = {entry.key: entry for entry in entries}
     tile_sizes = _tile_sizes(entries, file)

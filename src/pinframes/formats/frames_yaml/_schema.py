@@ -19,7 +19,8 @@ from types import FrameType
 from typing import Any
 
 from ...errors import FileFormatError, FramesYamlWarning
-from .._yaml_loader import KeyPath, load_yaml
+from .._yaml_loader import KeyPath
+from ..reading import InputFile
 
 __all__ = [
     "POSE_FIELDS",
@@ -28,6 +29,8 @@ __all__ = [
     "FramesYamlWarning",
     "TileSize",
     "finite_number",
+    "is_frames_yaml",
+    "is_frames_yaml_name",
     "key_ancestors",
     "key_parent",
     "load_tile_maps",
@@ -82,6 +85,21 @@ def key_parent(key: str) -> str | None:
     """The key of the parent (``a/b`` for ``a/b/c``), None at the top level."""
     head, _, _ = key.rpartition("/")
     return head or None
+
+
+def is_frames_yaml_name(path: Path) -> bool:
+    """Whether the file name says frames.yaml: it starts with ``frames``
+    (``frames.yaml``, ``frames_map.yaml``), whatever the case."""
+    return path.name.lower().startswith("frames")
+
+
+def is_frames_yaml(source: InputFile) -> bool:
+    """Whether ``source`` is a frames.yaml layer (the format's content test): its name says
+    so (:func:`is_frames_yaml_name`), or it is a YAML mapping with a ``frames`` key."""
+    if is_frames_yaml_name(source.path):
+        return True
+    document = source.yaml()
+    return isinstance(document, dict) and "frames" in document
 
 
 def key_ancestors(key: str) -> list[str]:
@@ -196,7 +214,7 @@ def finite_number(value: Any, file: str, frame: str | None, field: str) -> float
 def load_tile_maps(path: str | os.PathLike[str]) -> dict[str, TileSize]:
     """Tile sizes in metres by map key, from a ``tile_maps.yaml`` file."""
     file = os.fspath(path)
-    document = load_yaml(file, locate_in("tile_maps"))
+    document = InputFile(file).yaml(locate_in("tile_maps"))
     maps = document.get("tile_maps") if isinstance(document, dict) else None
     if not isinstance(maps, dict):
         raise FileFormatError("expected a 'tile_maps' mapping of map keys to tile sizes",

@@ -21,7 +21,7 @@ from typing import Any
 
 from ...errors import FileFormatError, ReadError, UnsupportedFeatureError
 from .._paths import path_argument
-from .._yaml_loader import load_yaml
+from ..reading import InputFile
 
 __all__ = ["BAG_KINDS", "BagTopic", "OpenBag", "bag_files", "bag_kind", "bag_kind_of_head",
            "rosbags_missing"]
@@ -221,7 +221,7 @@ def _broken_bag_errors() -> tuple[type[BaseException], ...]:
 def _folder_metadata(folder: Path) -> dict[str, Any]:
     """The ``rosbag2_bagfile_information`` of a bag folder, read with pinframes' own YAML
     reader (its limits apply)."""
-    content = load_yaml(folder / METADATA_FILE)
+    content = InputFile(folder / METADATA_FILE).yaml()
     information = (content.get("rosbag2_bagfile_information")
                    if isinstance(content, dict) else None)
     if not isinstance(information, dict):

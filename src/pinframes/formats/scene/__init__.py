@@ -1,6 +1,21 @@
 """pinframes scene files: a welding cell (frames, layers, robots, tools) in one YAML file."""
 
-from ._reader import SCENE_FORMAT_KEY, SCENE_FORMAT_VERSION, read_scene
+from .._registry import FileFormat
+from ._reader import (
+    SCENE_FORMAT_KEY,
+    SCENE_FORMAT_VERSION,
+    is_scene,
+    read_scene,
+    scene_files_read,
+)
 from ._writer import write_scene
 
-__all__ = ["SCENE_FORMAT_KEY", "SCENE_FORMAT_VERSION", "read_scene", "write_scene"]
+__all__ = ["SCENE_FORMAT", "SCENE_FORMAT_KEY", "SCENE_FORMAT_VERSION", "read_scene",
+           "write_scene"]
+
+SCENE_FORMAT = FileFormat(
+    "scene", "scene", (".yaml", ".yml"), read_scene, write_scene, ("time",),
+    document_test=is_scene, unrecognised=f"no '{SCENE_FORMAT_KEY}' key",
+    files_read=scene_files_read)
+"""The scene format: a ``.yaml`` file with the scene key (to be written: a ``.yaml`` name
+that frames.yaml does not claim)."""

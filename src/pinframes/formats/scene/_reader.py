@@ -28,13 +28,15 @@ from ...errors import FileFormatError, PinframesError, UnsupportedFeatureError
 from ...tree import FrameTree
 from ...values.pose import Pose
 from ...values.timeconv import parse_timestamp
-from .._paths import is_regular_file, path_argument
-from .._registry import detect_format, read
-from .._yaml_loader import load_yaml
+from .._paths import is_regular_file
+from .._registry import detect_format, files_read, read
 from ..limits import Limits, reader_with_limits
+from ..reading import InputFile
 from ..trajectory_files import read_joint_trajectory
+from ..urdf import RobotDescription, mount_robot, parse_urdf
 
-__all__ = ["SCENE_FORMAT_KEY", "SCENE_FORMAT_VERSION", "read_scene"]
+__all__ = ["SCENE_FORMAT_KEY", "SCENE_FORMAT_VERSION", "is_scene", "read_scene",
+           "scene_files_read"]
 
 SCENE_FORMAT_KEY = "pinframes_scene"
 """The top-level key that marks a scene file; its value is the format version."""
@@ -53,6 +55,8 @@ _ENTRY_KEYS = {
     "robots": {"name", "urdf", "parent", "prefix", "trajectory"} | _POSE_KEYS,
     "tools": {"name", "parent"} | _POSE_KEYS,
 }
+_FILE_KEYS = {"layers": ("file",), "robots": ("urdf", "trajectory")}
+"""The keys of entries that name files (relative to the scene's folder)."""
 _KEYFRAME_KEYS = {"time"} | _POSE_KEYS
 
 
@@ -86,16 +90,47 @@ def read_scene(path: str | os.PathLike[str], *, limits: Limits | None = None) ->
     ReadError
         The scene file (or a file it names) is missing, a folder, unreadable or not text.
     """
-    scene = _Scene(Path(path_argument(path)))
+    scene = _Scene(InputFile.of(path))
     return scene.build()
 
 
-class _Scene:
-    """The parsed content of one scene file, and how to build its tree."""
+def is_scene(source: InputFile) -> bool:
+    """Whether ``source`` holds a scene: a YAML mapping with the :data:`SCENE_FORMAT_KEY`
+    key (the content test of the scene format)."""
+    content = source.yaml()
+    return isinstance(content, dict) and SCENE_FORMAT_KEY in content
 
-    def __init__(self, path: Path) -> None:
+
+def scene_files_read(source: InputFile) -> list[Path]:
+    """The files reading the scene ``source`` opens: the files its entries name (those that
+    exist or not, in the scene's order), with what a layer file reads in turn. Names that
+    are not strings are left for the reader to refuse."""
+    content = source.yaml()
+    named = []
+    for section, keys in _FILE_KEYS.items():
+        entries = content.get(section) if isinstance(content, dict) else None
+        for entry in entries if isinstance(entries, list) else []:
+            for key in keys:
+                value = entry.get(key) if isinstance(entry, dict) else None
+                if isinstance(value, str):
+                    path = source.path.parent / value
+                    named += files_read(path, among=_LAYER_FORMATS) if section == "layers" \
+                        else [path]
+    return named
+
+
+class _Scene:
+    """The parsed content of one scene file, and how to build its tree.
+
+    Each file the scene names is read once, however many entries name it (through YAML
+    aliases, say): a trajectory, a URDF, a layer (with its key).
+    """
+
+    def __init__(self, source: InputFile) -> None:
+        path = source.path
         self.path = path
-        content = load_yaml(path)
+        self._read: dict[tuple[str, Path, str], Any] = {}
+        content = source.yaml()
         if not isinstance(content, dict) or SCENE_FORMAT_KEY not in content:
             raise FileFormatError(f"not a pinframes scene: the file must start with "
                                   f"'{SCENE_FORMAT_KEY}: {SCENE_FORMAT_VERSION}'", file=path)
@@ -161,9 +196,22 @@ class _Scene:
                        lambda tree: _graft(tree, layer, mount, prefix))
         return entry, layer
 
+    def _once(self, kind: str, file: Path, key: Any, read_file: Callable[[], Any]) -> Any:
+        """What ``read_file()`` gives for ``file`` (and ``key``), read the first time only."""
+        where = (kind, file.resolve(), repr(key))
+        if where not in self._read:
+            self._read[where] = read_file()
+        return self._read[where]
+
     def _read_layer(self, file: Path, key: Any, field: str) -> FrameTree:
+        layer: FrameTree = self._once("layer", file, key,
+                                      lambda: self._read_new_layer(file, key, field))
+        return layer
+
+    def _read_new_layer(self, file: Path, key: Any, field: str) -> FrameTree:
+        source = InputFile(file)  # read once, for telling its format and by the reader
         try:
-            layer_format = detect_format(file, among=_LAYER_FORMATS)
+            layer_format = detect_format(source, among=_LAYER_FORMATS)
         except FileFormatError:
             raise FileFormatError(f"a layer must be a frames.yaml (.yaml) or ASDF (.asdf) "
                                   f"file, got {file.name!r}", file=self.path,
@@ -172,7 +220,8 @@ class _Scene:
             raise FileFormatError("'key' is only for ASDF layers", file=self.path,
                                   field=f"{field}.key")
         try:
-            tree: FrameTree = read(file, layer_format, **({} if key is None else {"key": key}))
+            tree: FrameTree = read(source, layer_format,
+                                   **({} if key is None else {"key": key}))
         except PinframesError as exc:
             raise self._referenced(exc, f"{field}.file") from None
         return tree
@@ -181,7 +230,8 @@ class _Scene:
         field = f"frames[{index}]"
         name, parent = self._frame_names(item, "frames", field)
         static = self._pose_parts(item, name, field)
-        pose = Pose(static[0], static[1])
+        rotation, translation = static
+        pose = Pose(translation, rotation)
         if "keyframes" in item:
             pose = self._keyframes(item, static, name, field)
         elif "reference_time" in item:
@@ -193,7 +243,7 @@ class _Scene:
     def _tool(self, index: int, item: Any) -> _Entry:
         field = f"tools[{index}]"
         name, parent = self._frame_names(item, "tools", field)
-        translation, rotation = self._pose_parts(item, name, field)
+        rotation, translation = self._pose_parts(item, name, field)
         pose = Pose(translation, rotation)
         return _Entry(field, name, parent, f"{field}.parent",
                       lambda tree: tree.add(name, parent, pose))
@@ -205,18 +255,22 @@ class _Scene:
         urdf = self._file(item, "urdf", label, field)
         parent = self._name(item.get("parent", self.root), label, f"{field}.parent")
         prefix = self._prefix(item, label, field)
-        pose = Pose(*self._pose_parts(item, label, field))
+        rotation, translation = self._pose_parts(item, label, field)
+        pose = Pose(translation, rotation)
         trajectory, path = None, urdf
         if "trajectory" in item:
             path = self._file(item, "trajectory", label, field)
             try:
-                trajectory = read_joint_trajectory(path)
+                trajectory = self._once("trajectory", path, None,
+                                        lambda: read_joint_trajectory(path))
             except PinframesError as exc:
                 raise self._referenced(exc, f"{field}.trajectory") from None
 
         def attach(tree: FrameTree) -> None:
             try:
-                tree.attach_urdf(str(urdf), parent, pose=pose, prefix=prefix)
+                robot: RobotDescription = self._once("urdf", urdf, None,
+                                                     lambda: parse_urdf(str(urdf)))
+                mount_robot(tree, robot, parent, pose, prefix)  # FrameTree.attach_urdf
             except PinframesError as exc:
                 if exc.file is None:
                     raise  # a clash with the scene, located at this entry by _apply
@@ -243,8 +297,8 @@ class _Scene:
 
     # -- poses -----------------------------------------------------------------------------
     def _pose_parts(self, item: dict, frame: str | None, field: str
-                    ) -> tuple[np.ndarray, np.ndarray | None]:
-        """Translation (3,) metres and rotation (quaternion (4,) or matrix) or None."""
+                    ) -> tuple[np.ndarray | None, np.ndarray]:
+        """Rotation (a (3, 3) matrix, or None) and translation (3,) metres."""
         translation = self._numbers(item.get("xyz", (0.0, 0.0, 0.0)), 3, frame, f"{field}.xyz")
         if "rpy" in item and "quaternion" in item:
             raise FileFormatError("give either rpy or quaternion, not both", file=self.path,
@@ -260,9 +314,9 @@ class _Scene:
             except PinframesError as exc:
                 raise FileFormatError(exc.message, file=self.path, frame=frame,
                                       field=f"{field}.quaternion") from None
-        return translation, rotation
+        return rotation, translation
 
-    def _keyframes(self, item: dict, static: tuple[np.ndarray, np.ndarray | None],
+    def _keyframes(self, item: dict, static: tuple[np.ndarray | None, np.ndarray],
                    frame: str, field: str) -> Pose:
         keyframes = item["keyframes"]
         if not isinstance(keyframes, list) or not keyframes:
@@ -276,11 +330,11 @@ class _Scene:
                 raise FileFormatError("missing", file=self.path, frame=frame,
                                       field=f"{where}.time")
             times.append(keyframe["time"])
-            translation, rotation = self._pose_parts(
-                {"xyz": static[0], **keyframe}, frame, where)
+            rotation, translation = self._pose_parts(
+                {"xyz": static[1], **keyframe}, frame, where)
             translations.append(translation)
             if rotation is None:
-                rotation = np.eye(3) if static[1] is None else static[1]
+                rotation = np.eye(3) if static[0] is None else static[0]
             rotations.append(rotation)
         reference = None
         if "reference_time" in item:

@@ -12,11 +12,12 @@ import numpy as np
 
 from ...errors import BrokenMimicWarning, FileFormatError
 from ...values.pose import Pose
+from .._content import xml_root
 from ..limits import Limits, current_limits, exceeded, reader_with_limits
-from ..reading import read_text
+from ..reading import InputFile, read_text
 from ._bounded_xml import parse_bounded_xml
 
-__all__ = ["URDF_JOINT_TYPES", "JointDescription", "RobotDescription", "parse_urdf"]
+__all__ = ["URDF_JOINT_TYPES", "JointDescription", "RobotDescription", "is_urdf", "parse_urdf"]
 
 URDF_JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 _DRIVEN_TYPES = ("revolute", "continuous", "prismatic")
@@ -56,6 +57,12 @@ class RobotDescription:
     links: dict[str, tuple[str, ...]]
     joints: tuple[JointDescription, ...]
     extra_xml: tuple[str, ...] = field(default=())
+
+
+def is_urdf(source: InputFile) -> bool:
+    """Whether ``source`` is a URDF (the format's content test): XML whose root element is
+    ``<robot>``."""
+    return xml_root(source) == "robot"
 
 
 @reader_with_limits
