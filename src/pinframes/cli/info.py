@@ -63,9 +63,9 @@ def describe_json(tree: FrameTree) -> dict[str, Any]:
             entry["joint"] = {"name": joint.name, "type": joint.kind, "axis": list(joint.axis),
                               "lower": joint.lower, "upper": joint.upper,
                               "mimics": None if joint.mimic is None else joint.mimic.joint}
-            track = tree.joint_track(joint.name)
-            if track is not None:
-                times, reference = track.times, track.reference
+            trajectory = tree.joint_trajectory(joint.name)
+            if trajectory is not None:
+                times, reference = trajectory.times, trajectory.reference
         elif tree.local_pose(name).is_time_dependent:
             pose = tree.local_pose(name)
             entry["kind"] = "moving"

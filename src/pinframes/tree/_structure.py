@@ -321,6 +321,40 @@ class TreeStructure:
         self._local[name] = pose
         self._invalidate()
 
+    # -- data attached to frames (weldx assign_data / get_data) -----------------------------
+    @property
+    def data_names(self) -> list[str]:
+        """Names of the data attached to frames, in the order they were assigned."""
+        return list(self._data)
+
+    def assign_data(self, name: str, data: SpatialData | Any, frame: str) -> None:
+        """Attach ``data`` (a :class:`SpatialData`, or ``(M, 3)`` points in metres) to ``frame``
+        under ``name``; its coordinates are given in ``frame``."""
+        if not isinstance(name, str) or not name:
+            raise ArgumentTypeError("data names are non-empty strings", field="name")
+        if name in self._data:
+            raise FrameExistsError(f"the tree already has data named {name!r}", field="name")
+        self._require(frame, "frame")
+        self._data[name] = (frame, data if isinstance(data, SpatialData) else SpatialData(data))
+
+    def data_frame(self, name: str) -> str:
+        """The frame data ``name`` is attached to."""
+        if name not in self._data:
+            raise FrameNotFoundError(f"no data named {name!r}", field="name")
+        return self._data[name][0]
+
+    def get_data(self, name: str) -> SpatialData:
+        """Data ``name`` as stored: its points in the frame it is attached to
+        (:meth:`pinframes.FrameTree.get_data` gives them in any frame)."""
+        self.data_frame(name)
+        return self._data[name][1]
+
+    def delete_data(self, name: str) -> None:
+        """Detach and forget data ``name``."""
+        self.data_frame(name)
+        del self._data[name]
+        self._forget_data([name])
+
     # -- helpers ---------------------------------------------------------------------------
     def _forget_data(self, names: list[str]) -> None:
         """Take data ``names`` off the subsystems' data lists (weldx ``delete_data``)."""

@@ -1,9 +1,10 @@
 """`FrameTree`: a tree of named coordinate frames whose poses may move in time.
 
-The class is built in three steps, one idea a module: :mod:`._structure` holds the frames
-and every edit of them, :mod:`._queries` the pose, velocity and Jacobian queries handed to the
-kinematics; here come the data attached to frames, robots mounted from files and the
-whole-tree operations, whose work is done in :mod:`.grafting` and :mod:`.tree_times`.
+The class is built in three steps, one idea a module: :mod:`._structure` holds the frames,
+the data attached to them and every edit, :mod:`._queries` the pose, velocity and Jacobian
+queries handed to the kinematics; here come attached data in any frame, robots mounted
+from files and the whole-tree operations, whose work is done in :mod:`.grafting` and
+:mod:`.tree_times`.
 """
 
 from __future__ import annotations
@@ -14,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ArgumentTypeError, FrameExistsError, FrameNotFoundError, InvalidTimeError
+from ..errors import InvalidTimeError
 from ..values.pose import Pose
 from ..values.spatial_data import SpatialData, apply_pose
 from ..values.subsystem import Subsystem
@@ -131,35 +132,7 @@ class FrameTree(TreeQueries):
         """
         return tree_times.resampled(self, times, time_ref)
 
-    # -- data attached to frames (weldx assign_data / get_data) -----------------------------
-    @property
-    def data_names(self) -> list[str]:
-        """Names of the data attached to frames, in the order they were assigned."""
-        return list(self._data)
-
-    def assign_data(self, name: str, data: SpatialData | Any, frame: str) -> None:
-        """Attach ``data`` (a :class:`SpatialData`, or ``(M, 3)`` points in metres) to ``frame``
-        under ``name``; its coordinates are given in ``frame``."""
-        if not isinstance(name, str) or not name:
-            raise ArgumentTypeError("data names are non-empty strings", field="name")
-        if name in self._data:
-            raise FrameExistsError(f"the tree already has data named {name!r}", field="name")
-        self._require(frame, "frame")
-        self._data[name] = (frame, data if isinstance(data, SpatialData) else SpatialData(data))
-
-    def data_frame(self, name: str) -> str:
-        """The frame data ``name`` is attached to."""
-        if name not in self._data:
-            raise FrameNotFoundError(f"no data named {name!r}", field="name")
-        return self._data[name][0]
-
-    def delete_data(self, name: str) -> None:
-        """Detach and forget data ``name``."""
-        self.data_frame(name)
-        del self._data[name]
-        self._forget_data([name])
-
-
+    # -- data attached to frames, in any frame ---------------------------------------------
     def get_data(self, name: str, relative_to: str | None = None, times: Any = None,
                  time_ref: Any = None) -> SpatialData:
         """Data ``name`` with its points in ``relative_to`` (default: as stored).
@@ -170,7 +143,7 @@ class FrameTree(TreeQueries):
         come back ``(T, M, 3)`` with the pose's times and reference time.
         """
         frame = self.data_frame(name)
-        data = self._data[name][1]
+        data = super().get_data(name)
         if (relative_to is None or relative_to == frame) and times is None:
             return data
         target = frame if relative_to is None else relative_to

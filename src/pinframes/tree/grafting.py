@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import copy
 from collections.abc import Callable
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 
@@ -24,9 +24,12 @@ from ..values.pose import Pose
 from ..values.spatial_data import SpatialData
 from ..values.subsystem import Subsystem
 from ..values.timeline import source_reference
-from ._tree_like import Tree, TreeLike
+from ._structure import TreeStructure
 
-__all__ = ["copy_tree", "graft", "subtree"]
+__all__ = ["Tree", "copy_tree", "graft", "subtree"]
+
+Tree = TypeVar("Tree", bound=TreeStructure)
+"""A tree of one class throughout a call: ``subtree(tree)`` returns a tree of ``type(tree)``."""
 
 
 def graft(tree: Tree, other: Tree, at: str | None = None, prefix: str = "",
@@ -100,11 +103,11 @@ def copy_tree(tree: Tree) -> Tree:
     return copied
 
 
-def _copy_frames(source: TreeLike, target: TreeLike, renamed: Callable[[str], str],
+def _copy_frames(source: TreeStructure, target: TreeStructure, renamed: Callable[[str], str],
                  prefix: str, reference: np.datetime64 | None, top: str | None = None) -> None:
     """Add every frame below ``top`` (default: the root) of ``source`` to ``target``.
 
-    Keyframes, joint tracks and data that count from ``reference`` (the source's reference
+    Keyframes, joint trajectories and data that count from ``reference`` (the source's reference
     time, when it changes tree) get it as their own, so they keep their absolute times.
     """
     top = source.root if top is None else top
@@ -128,11 +131,11 @@ def _copy_frames(source: TreeLike, target: TreeLike, renamed: Callable[[str], st
             copy.deepcopy(source.frame_metadata(frame)))
     for frame in frames:
         joint = source.joint_of(frame)
-        track = None if joint is None else source.joint_trajectory(joint.name)
-        if joint is not None and track is not None:
+        trajectory = None if joint is None else source.joint_trajectory(joint.name)
+        if joint is not None and trajectory is not None:
             target.replace_joint_trajectory(prefix + joint.name, JointTrajectory(
-                track.times, source_reference(track.reference, reference), track.values,
-                track.interpolation))
+                trajectory.times, source_reference(trajectory.reference, reference),
+                trajectory.values, trajectory.interpolation))
     for data_name in source.data_names:
         if source.data_frame(data_name) in below:
             target.assign_data(prefix + data_name,
@@ -153,7 +156,7 @@ def _anchored_data(data: SpatialData, reference: np.datetime64 | None) -> Spatia
     return data.with_points(data.points, times.astype(np.int64), reference)
 
 
-def _refuse_clashes(tree: TreeLike, other: TreeLike, renamed: Callable[[str], str],
+def _refuse_clashes(tree: TreeStructure, other: TreeStructure, renamed: Callable[[str], str],
                     prefix: str, subsystem_names: list[str], metadata_keys: list[Any]) -> None:
     """A :class:`FrameExistsError` for any name the graft would take twice; nothing changed."""
     clashes = [
@@ -172,7 +175,7 @@ def _refuse_clashes(tree: TreeLike, other: TreeLike, renamed: Callable[[str], st
                 frame=names[0] if kind == "frames" else None, field=kind)
 
 
-def _renamed_metadata(other: TreeLike, prefix: str) -> dict[Any, Any]:
+def _renamed_metadata(other: TreeStructure, prefix: str) -> dict[Any, Any]:
     """``other.metadata`` deep-copied, with ``prefix`` before every key; with a prefix, a key
     that is not a string is an :class:`ArgumentTypeError` (raised before the tree changes)."""
     if prefix:
@@ -184,7 +187,7 @@ def _renamed_metadata(other: TreeLike, prefix: str) -> dict[Any, Any]:
             for key, value in copy.deepcopy(other.metadata).items()}
 
 
-def _renamed_subsystems(other: TreeLike, renamed: Callable[[str], str], prefix: str,
+def _renamed_subsystems(other: TreeStructure, renamed: Callable[[str], str], prefix: str,
                         record: str | None) -> list[Subsystem]:
     """The grafted tree's subsystems: names prefixed, top-level ones nested in ``record``."""
     nesting = {inner: s.name for s in other.subsystems for inner in s.subsystems}
@@ -195,7 +198,7 @@ def _renamed_subsystems(other: TreeLike, renamed: Callable[[str], str], prefix: 
             for s in other.subsystems]
 
 
-def _below(tree: TreeLike, frame: str) -> set[str]:
+def _below(tree: TreeStructure, frame: str) -> set[str]:
     """``frame`` and every frame below it."""
     below, stack = set(), [frame]
     while stack:

@@ -18,14 +18,15 @@ from ..values.joint_trajectory import JointTrajectory
 from ..values.pose import Pose
 from ..values.timeconv import TimeAxis, parse_time_axis, parse_timestamp, shift_ns, timestamp_ns
 from ..values.timeline import TimedSource, plan_query_timeline, source_reference
-from ._tree_like import Tree, TreeLike
+from ._structure import TreeStructure
+from .grafting import Tree, copy_tree
 
 __all__ = ["resampled", "time_union"]
 
 _Samples = tuple[NDArray[np.int64], "np.datetime64 | None"]
 
 
-def time_union(tree: TreeLike, frames: Iterable[str] | None = None) -> TimeAxis | None:
+def time_union(tree: TreeStructure, frames: Iterable[str] | None = None) -> TimeAxis | None:
     """Every keyframe and joint sample time of ``frames`` (default: all); see
     :meth:`pinframes.FrameTree.time_union`."""
     if isinstance(frames, str):
@@ -55,15 +56,15 @@ def resampled(tree: Tree, times: Any, time_ref: Any = None) -> Tree:
         parse_timestamp(time_ref, field="time_ref") if time_ref is not None
         else tree.reference_time)
     instants = None if basis is None else shift_ns(axis.offsets, timestamp_ns(basis))
-    copy = tree.copy()
+    copy = copy_tree(tree)
     for frame in copy.frames[1:]:
         joint = copy.joint_of(frame)
         if joint is not None:
-            track = copy.joint_trajectory(joint.name)
-            if track is not None:
-                own = _own_basis(axis, instants, track.reference, tree, frame)
+            trajectory = copy.joint_trajectory(joint.name)
+            if trajectory is not None:
+                own = _own_basis(axis, instants, trajectory.reference, tree, frame)
                 copy.replace_joint_trajectory(joint.name, JointTrajectory(
-                    own, track.reference, track.sample(own), track.interpolation))
+                    own, trajectory.reference, trajectory.sample(own), trajectory.interpolation))
             continue
         pose = copy.local_pose(frame)
         if pose.is_time_dependent:
@@ -75,20 +76,20 @@ def resampled(tree: Tree, times: Any, time_ref: Any = None) -> Tree:
     return copy
 
 
-def _frame_samples(tree: TreeLike, frame: str) -> list[_Samples]:
+def _frame_samples(tree: TreeStructure, frame: str) -> list[_Samples]:
     joint = tree.joint_of(frame)
     if joint is None:
         pose = tree.local_pose(frame)
         times = pose.times
         return [] if times is None else [(times.astype(np.int64), pose.reference_time)]
     driver = mimic_chain(joint, tree.joints)[-1]
-    track = tree.joint_trajectory(driver.name)
-    return [] if track is None else [(track.times, track.reference)]
+    trajectory = tree.joint_trajectory(driver.name)
+    return [] if trajectory is None else [(trajectory.times, trajectory.reference)]
 
 
 def _own_basis(axis: TimeAxis, instants: NDArray[np.int64] | None,
-               own: np.datetime64 | None, tree: TreeLike, frame: str) -> NDArray[np.int64]:
-    """The requested times as ns on the basis of a pose or track (its own reference time,
+               own: np.datetime64 | None, tree: TreeStructure, frame: str) -> NDArray[np.int64]:
+    """The requested times as ns on the basis of a pose or trajectory (its own reference time,
     else the tree's, else plain offsets)."""
     reference = source_reference(own, tree.reference_time)
     if instants is None:
