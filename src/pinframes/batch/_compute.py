@@ -18,21 +18,19 @@ import pyarrow as pa  # type: ignore[import-untyped]
 
 from .. import FrameTree, Pose, TimeAxis, Velocity
 from ..errors import FrameNotFoundError, InvalidTimeError
+from ..formats.pose_files import COLUMNS, VELOCITY_COLUMNS
 from ._options import BatchOptions
 
 __all__ = ["POSE_SCHEMA", "VELOCITY_SCHEMA", "output_schema", "pose_chunks"]
 
+# the columns of pose files (pinframes pose), with the run id and the absolute time
 POSE_SCHEMA = pa.schema([
     ("run", pa.string()),
-    ("time_s", pa.float64()),
+    (COLUMNS[0], pa.float64()),
     ("timestamp", pa.timestamp("ns")),
-    ("x_m", pa.float64()), ("y_m", pa.float64()), ("z_m", pa.float64()),
-    ("qx", pa.float64()), ("qy", pa.float64()), ("qz", pa.float64()), ("qw", pa.float64()),
+    *((name, pa.float64()) for name in COLUMNS[1:]),
 ])
-VELOCITY_SCHEMA = pa.schema([
-    ("vx_m_s", pa.float64()), ("vy_m_s", pa.float64()), ("vz_m_s", pa.float64()),
-    ("wx_rad_s", pa.float64()), ("wy_rad_s", pa.float64()), ("wz_rad_s", pa.float64()),
-])
+VELOCITY_SCHEMA = pa.schema([(name, pa.float64()) for name in VELOCITY_COLUMNS])
 
 
 def output_schema(options: BatchOptions) -> pa.Schema:
