@@ -24,6 +24,7 @@ __all__ = [
     "FrameExistsError",
     "FrameNotFoundError",
     "FramesYamlWarning",
+    "GeometryWarning",
     "InvalidDataError",
     "InvalidPoseError",
     "InvalidTimeError",
@@ -188,6 +189,10 @@ class BagWarning(UserWarning):
 class BrokenMimicWarning(UserWarning):
     """A URDF mimic joint that names a joint the file does not have: it is loaded as an
     independent joint (``strict=True`` refuses the file instead)."""
+
+
+class GeometryWarning(UserWarning):
+    """A link drawn without one of its geometries: a mesh missing, unreadable or empty."""
 
 
 class JointWithoutSamplesWarning(UserWarning):

@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import UnsupportedFeatureError
+from ..errors import GeometryWarning, UnsupportedFeatureError
 from ..formats.urdf import URDF_METADATA_KEY
 from ..tree import FrameTree
 from ._mesh_files import HOW_TO_SEARCH, MeshFiles, package_search_dirs
@@ -25,10 +25,6 @@ from ._mesh_files import HOW_TO_SEARCH, MeshFiles, package_search_dirs
 __all__ = ["GeometryWarning", "LinkGeometry", "load_geometry"]
 
 _DEFAULT_RGBA = (0.7, 0.7, 0.72, 1.0)
-
-
-class GeometryWarning(UserWarning):
-    """A link drawn without one of its geometries: a mesh missing, unreadable or empty."""
 
 
 @dataclass(frozen=True)
