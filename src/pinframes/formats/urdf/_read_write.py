@@ -122,7 +122,7 @@ def _joint(tree: FrameTree, frame: str, instant: Snapshot, freeze: bool, used: s
     joint = ET.Element("joint", name=name, type=joint_type)
     ET.SubElement(joint, "parent", link=parent)
     ET.SubElement(joint, "child", link=frame)
-    translation, rotation = _origin(tree, frame, parent, instant, freeze)
+    rotation, translation = _origin(tree, frame, parent, instant, freeze)
     ET.SubElement(joint, "origin", xyz=_numbers(translation),
                   rpy=_numbers(rpy_from_matrix(rotation)))
     if driven is not None and not freeze:
@@ -136,17 +136,17 @@ def _joint(tree: FrameTree, frame: str, instant: Snapshot, freeze: bool, used: s
 
 def _origin(tree: FrameTree, frame: str, parent: str, instant: Snapshot, freeze: bool
             ) -> tuple[np.ndarray, np.ndarray]:
-    """The joint origin: the stored pose, or for a moving frame (and a frozen robot joint)
-    its pose in the parent at the snapshot's instant."""
+    """The joint origin, ``(rotation, translation)``: the stored pose, or for a moving
+    frame (and a frozen robot joint) its pose in the parent at the snapshot's instant."""
     local = tree.local_pose(frame)
     sampled = local.is_time_dependent or (freeze and tree.joint_of(frame) is not None)
     if not sampled:
-        return local.translation, local.rotation
+        return local.rotation, local.translation
     if instant.time is None:  # nothing moves: a robot joint at its value (0 or its mimic's)
         frozen = tree.pose(frame, parent)
-        return frozen.translation, frozen.rotation
+        return frozen.rotation, frozen.translation
     frozen = tree.pose(frame, parent, times=[instant.time])
-    return frozen.translation[0], frozen.rotation[0]
+    return frozen.rotation[0], frozen.translation[0]
 
 
 def _driven_elements(element: ET.Element, joint: Joint, joints: dict[str, Joint]) -> None:
