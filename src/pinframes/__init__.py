@@ -17,6 +17,7 @@ from .errors import (
     PinframesError,
     ReadError,
     ReferenceTimeError,
+    TargetNotReachedError,
     TreeStructureError,
     UnsupportedFeatureError,
     WriteError,
@@ -27,7 +28,7 @@ from .formats.limits import Limits
 from .formats.pose_files import write_poses
 from .formats.scene import read_scene, write_scene
 from .formats.urdf import read_urdf, write_urdf
-from .kinematics import FrameJacobian, PinocchioTree, Snapshot, Velocity
+from .kinematics import FrameJacobian, JointSolution, PinocchioTree, Snapshot, Velocity
 from .tree import FrameTree
 from .values.joint import Joint, Mimic
 from .values.joint_trajectory import JointTrack, JointTrajectory
@@ -55,6 +56,7 @@ __all__ = [
     "Joint",
     "JointError",
     "JointLimitWarning",
+    "JointSolution",
     "JointTrack",
     "JointTrajectory",
     "JointWithoutSamplesWarning",
@@ -69,6 +71,7 @@ __all__ = [
     "Snapshot",
     "SpatialData",
     "Subsystem",
+    "TargetNotReachedError",
     "TimeAxis",
     "TreeStructureError",
     "UnsupportedFeatureError",
