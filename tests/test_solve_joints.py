@@ -246,6 +246,23 @@ def test_the_default_times_are_the_target_path_s_not_the_solved_joints():
     np.testing.assert_array_equal(solution.positions[0], HOME)
 
 
+def test_a_target_with_a_reference_time_gives_absolute_times():
+    trajectory = swinging(HOME, SWING, 50)
+    targets = frame_poses(welding_robot(), "flange", trajectory)
+    start = np.datetime64("2024-03-01T08:00:00", "ns")
+    target = Pose(np.array([p.translation for p in targets]),
+                  np.array([p.rotation for p in targets]),
+                  times=np.arange(50) / RATE_HZ, reference_time=start)
+    tree = robot_tree()
+    solution = tree.solve_joints("robot/flange", target, seed=trajectory[0])
+    assert solution.reference_time == start
+    assert solution.absolute_times[1] == start + np.timedelta64(10, "ms")
+    tree.set_joint_trajectory(solution.absolute_times, solution.positions,
+                              joint_names=solution.joint_names)
+    np.testing.assert_allclose(tree.joint_trajectory("robot/joint_1").values, trajectory[:, 0],
+                               atol=1e-5)
+
+
 def test_a_static_target_is_one_sample():
     tool = frame_poses(welding_robot(), "flange", HOME[None])[0]
     tree = robot_tree()

@@ -54,9 +54,7 @@ class JointLimits:
             map(operator.le, values, self._upper))
 
     def clipped(self, theta: FloatArray) -> FloatArray:
-        """``theta`` moved onto the limits where it lies outside them (else itself)."""
-        if self.contain(theta.tolist()):
-            return theta
+        """``theta`` moved onto the limits where it lies outside them (a new array)."""
         return np.minimum(np.maximum(theta, self.lower), self.upper)
 
 

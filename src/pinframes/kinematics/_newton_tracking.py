@@ -34,7 +34,7 @@ import numpy as np
 import pinocchio as pin
 from numpy.typing import NDArray
 
-from ._bounded_step import JointLimits, LeastSquares, bounded_step
+from ._bounded_step import LeastSquares, bounded_step
 from ._solved_joints import SolvedJoints
 from ._tool_error import AxisError, PoseError
 
@@ -110,6 +110,16 @@ class TrackingProblem:
     step_ratios: FloatArray
     solver: LeastSquares
 
+    @property
+    def position_region(self) -> float:
+        """:func:`quadratic_region` of the position tolerance (m)."""
+        return quadratic_region(self.position_tolerance)
+
+    @property
+    def orientation_region(self) -> float:
+        """:func:`quadratic_region` of the orientation tolerance (rad)."""
+        return quadratic_region(self.orientation_tolerance)
+
 
 @dataclass
 class Tracked:
@@ -125,34 +135,47 @@ class Tracked:
 
 
 class TrackingHistory:
-    """What the next sample starts from: the last two solutions, whether they reached their
-    targets, and the last one that did.
+    """What the next sample starts from: the seed, the last two solutions and whether they
+    reached their targets, and the last one that did.
 
     Parameters
     ----------
     seed : ndarray, shape (n,)
-        Where the first sample starts (taken as reached).
+        Where the first sample starts.
     """
 
     def __init__(self, seed: FloatArray) -> None:
-        self.last, self.before = seed, seed
-        self.last_reached, self.before_reached = True, False
+        self.seed = seed
         self.last_on_target = seed
+        self._recent: list[tuple[FloatArray, bool]] = []  # up to two, the latest last
 
-    def start(self, limits: JointLimits, ratio: float) -> FloatArray:
+    @property
+    def last(self) -> FloatArray:
+        """The latest solution (the seed before the first)."""
+        return self._recent[-1][0] if self._recent else self.seed
+
+    @property
+    def after_a_miss(self) -> bool:
+        """Whether the latest sample did not reach its target."""
+        return bool(self._recent) and not self._recent[-1][1]
+
+    def start(self, ratio: float) -> FloatArray:
         """The last solution carried on by the last step times ``ratio`` (the ratio of the
-        time steps), when both reached their targets; else the last solution."""
-        if not (self.last_reached and self.before_reached):
+        time steps), when both reached their targets; else the last solution (either may
+        lie a little outside the limits: the solver starts from the nearest values
+        within)."""
+        if len(self._recent) < 2 or not (self._recent[0][1] and self._recent[1][1]):
             return self.last
-        step = self.last - self.before
+        last = self._recent[1][0]
+        step = last - self._recent[0][0]
         if ratio != 1.0:
             step *= ratio
-        return limits.clipped(self.last + step)
+        step += last
+        return step
 
     def add(self, theta: FloatArray, reached: bool) -> None:
         """Record the solution of the sample just solved."""
-        self.before, self.before_reached = self.last, self.last_reached
-        self.last, self.last_reached = theta, reached
+        self._recent = [*self._recent[-1:], (theta, reached)]
         if reached:
             self.last_on_target = theta
 
@@ -166,31 +189,25 @@ def track_targets(problem: TrackingProblem, history: TrackingHistory,
     configuration before it; the better of the two counts. With ``stop_when_unreached`` the
     loop ends after the first sample that is not reached (the results stop there).
     """
-    count = problem.configurations.shape[0]
-    positions = np.empty((count, len(problem.joints.names)))
-    position_error = np.empty(count)
-    orientation_error = np.empty(count)
-    reached = np.zeros(count, dtype=bool)
-    limits = problem.joints.limits
-    for index in range(count):
-        if history.last_reached:
-            solved = _solve_sample(problem, index, history.start(
-                limits, float(problem.step_ratios[index])), trust_newton=True)
+    ratios = problem.step_ratios.tolist()
+    solutions: list[tuple[FloatArray, float, float, bool]] = []
+    for index, ratio in enumerate(ratios):
+        if not history.after_a_miss:
+            solved = _solve_sample(problem, index, history.start(ratio), trust_newton=True)
         else:
             solved = _solve_sample(problem, index, history.last_on_target, trust_newton=True)
             if not solved[3]:
                 closer = _solve_sample(problem, index, history.last, trust_newton=True)
                 if closer[3] or _cost(problem, closer) < _cost(problem, solved):
                     solved = closer
-        theta, position_error[index], orientation_error[index], reached[index] = solved
-        positions[index] = theta
-        history.add(theta, bool(reached[index]))
-        if stop_when_unreached and not reached[index]:
-            count = index + 1
+        solutions.append(solved)
+        history.add(solved[0], solved[3])
+        if stop_when_unreached and not solved[3]:
             break
-    measured = ~np.isnan(position_error[:count])
-    return Tracked(positions[:count], position_error[:count], orientation_error[:count],
-                   reached[:count], measured)
+    thetas, position_error, orientation_error, reached = zip(*solutions, strict=True)
+    errors = np.array(position_error)
+    return Tracked(np.array(thetas), errors, np.array(orientation_error),
+                   np.array(reached, dtype=bool), ~np.isnan(errors))
 
 
 def _cost(problem: TrackingProblem, solved: tuple[FloatArray, float, float, bool]) -> float:
@@ -218,8 +235,11 @@ def _solve_sample(problem: TrackingProblem, index: int, theta: FloatArray, trust
     target = None if problem.targets is None else pin.XYZQUATToSE3(problem.targets[index])
     position_tolerance = problem.position_tolerance
     orientation_tolerance = problem.orientation_tolerance
-    position_region = quadratic_region(position_tolerance) if trust_newton else -1.0
-    orientation_region = quadratic_region(orientation_tolerance)
+    position_region = problem.position_region if trust_newton else -1.0
+    orientation_region = problem.orientation_region
+    limits = joints.limits
+    if not limits.contain(theta.tolist()):  # a prediction past a limit
+        theta = limits.clipped(theta)
     best = theta
     best_cost = best_position = best_orientation = math.inf
     rows = residual = theta  # set on the first iteration
@@ -246,8 +266,8 @@ def _solve_sample(problem: TrackingProblem, index: int, theta: FloatArray, trust
             damping = max(10.0 * damping, FIRST_DAMPING)
             if damping > MAX_DAMPING:
                 break
-        theta, full = bounded_step(problem.solver, rows, residual, best, joints.limits,
-                                   damping, LONGEST_STEP)
+        theta, full = bounded_step(problem.solver, rows, residual, best, limits, damping,
+                                   LONGEST_STEP)
         if (full and damping == 0.0 and best_position <= position_region
                 and best_orientation <= orientation_region):
             return theta, math.nan, math.nan, True

@@ -64,7 +64,7 @@ def evaluate_solve_joints(
         raise JointError(f"no robot joint moves {frame!r} relative to {reference!r}",
                          frame=frame, field="joints")
     model = path.model
-    solved = solved_joints(model, tree.joints_by_name, joints, frame, reference)
+    solved = _solved_joints(tree, model, joints, frame, reference)
     held = {name: 0.0 for name in solved.names}
     sources = [source for source in path.sources if source.name not in held]
     if target_pose is not None and target_pose.is_time_dependent:
@@ -105,6 +105,22 @@ def evaluate_solve_joints(
         np.concatenate([part.position_error for part in parts]),
         np.concatenate([part.orientation_error for part in parts]),
         np.concatenate([part.reached for part in parts]))
+
+
+def _solved_joints(tree: TreeDescription, model: CompiledModel, joints: Any, frame: str,
+                   reference: str) -> SolvedJoints:
+    """:func:`solved_joints`, prepared once per tree version and request."""
+    if joints is None or (isinstance(joints, (list, tuple))
+                          and all(isinstance(name, str) for name in joints)):
+        key = ("solve_joints", frame, reference,
+               *(("every joint",) if joints is None else ("named", *joints)))
+        cached = tree.cached(key)
+        if cached is None:
+            cached = solved_joints(model, tree.joints_by_name, joints, frame, reference)
+            tree.store(key, cached)
+        assert isinstance(cached, SolvedJoints)
+        return cached
+    return solved_joints(model, tree.joints_by_name, joints, frame, reference)
 
 
 def _reference(tree: TreeDescription, frame: str, target: str | Pose, relative_to: str | None
