@@ -30,6 +30,12 @@ _LARGEST_STEP = 1e6
 """A step longer than this (radians or metres) comes from a singular system: it is taken
 again with damping."""
 
+DRIFT_RATE = 1e-3
+"""How far a redundant arm's step moves towards the middle of the joint ranges, per
+iteration (a fraction of the way): without it the smallest steps let such an arm wander
+along its self-motion over a long path into its limits (the Panda of bench_ik.py did after
+a few hundred seconds at 100 Hz)."""
+
 _SINGULAR_DAMPING = 1e-9
 """The damping of a step whose undamped system is singular (error units squared)."""
 
@@ -46,12 +52,19 @@ class JointLimits:
     def __init__(self, lower: FloatArray, upper: FloatArray) -> None:
         self.lower, self.upper = lower, upper
         self._lower, self._upper = lower.tolist(), upper.tolist()
+        self._bounded = np.isfinite(lower) & np.isfinite(upper)
+        self._middle = np.where(self._bounded, (lower + upper) / 2, 0.0)
 
     def contain(self, values: list[float]) -> bool:
         """Whether every value lies within its joint's limits (NaN does not); Python floats,
         whose comparisons cost a fraction of numpy's per call for a handful of joints."""
         return all(map(operator.le, self._lower, values)) and all(
             map(operator.le, values, self._upper))
+
+    def drift(self, theta: FloatArray) -> FloatArray:
+        """A small move of ``theta`` towards the middle of each bounded joint's range:
+        :data:`DRIFT_RATE` of the way (continuous joints keep still)."""
+        return DRIFT_RATE * (self._middle - theta) * self._bounded
 
     def clipped(self, theta: FloatArray) -> FloatArray:
         """``theta`` moved onto the limits where it lies outside them (a new array)."""
@@ -104,8 +117,16 @@ def bounded_step(solver: LeastSquares, rows: FloatArray, error: FloatArray, thet
     """The joint values after a least-squares Newton step from ``theta``: at most
     ``longest_step`` (radians or metres) per joint, within the ``limits`` (joints that would
     cross one are fixed on it); and whether that was the full step (not shortened, not
-    limited, its system not singular)."""
-    correction = solver.correction(rows, error, damping)
+    limited, its system not singular).
+
+    With more joints than rows, the step is the one closest to ``limits.drift(theta)``
+    (a small move towards the middle of the ranges) instead of the shortest."""
+    count, joints = rows.shape
+    if joints > count:
+        drift = limits.drift(theta)
+        correction = solver.correction(rows, error + rows @ drift, damping) - drift
+    else:
+        correction = solver.correction(rows, error, damping)
     values = correction.tolist()
     longest = max(max(values), -min(values)) if values else 0.0
     if longest <= longest_step:  # False for NaN too
