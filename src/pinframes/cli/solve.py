@@ -12,7 +12,7 @@ from ..formats.trajectory_files import joint_trajectory_csv
 from ..formats.urdf import URDF_METADATA_KEY
 from ..kinematics import JointSolution
 from ..tree import FrameTree
-from ._evaluate import add_time_arguments, requested_times, time_values
+from ._evaluate import add_time_arguments, requested_times
 from ._files import read_tree, require_frames
 from ._output import write_text
 
@@ -63,7 +63,7 @@ def run(args: argparse.Namespace) -> int:
     require_frames(tree, args.file, args.frame, args.target)
     times = requested_times(args, tree, args.frame, args.target)
     solution = tree.solve_joints(
-        args.frame, args.target, times=None if times is None else time_values(times),
+        args.frame, args.target, times=None if times is None else times.as_numpy(),
         time_ref=args.time_ref, joints=args.joints,
         free_axis=args.free_axis, position_tolerance=args.position_tolerance,
         orientation_tolerance=args.orientation_tolerance, strict=args.strict)

@@ -7,10 +7,11 @@ The queries, one public module each: :mod:`.pose` (``FrameTree.pose``, ``sample_
 steps are the ``_`` modules: the frozen tree (``_description``), its compiled path
 (``_model``), path preparation (``_path``), the query's times (``_times``), joint sampling
 (``_sampling``), the one-time path (``_one_time``), for velocities and Jacobians the
-sampled path (``_sampled_path``), exact rates (``_rates``) and joint twists (``_twists``),
-and for ``solve_joints`` the solved joints (``_solved_joints``), the tool's error
-(``_tool_error``), the step within limits (``_bounded_step``) and the solver loop
-(``_newton_tracking``).
+sampled path (``_sampled_path``) and joint twists (``_twists``) (the exact rates of what
+moves are its interpolation scheme's, :mod:`pinframes.values.interpolation`), and for
+``solve_joints`` the solved joints (``_solved_joints``), the tool's error (``_tool_error``),
+the step within limits (``_bounded_step``), the solver loop (``_newton_tracking``) and the
+batched check of its samples (``_batch_check``).
 """
 
 from ._description import TreeDescription, paths_to_common_ancestor
