@@ -285,4 +285,4 @@ def _tool_jacobian(problem: TrackingProblem, q: FloatArray, tool_in_reference: p
     pin.computeJointJacobians(model, data, q)
     tool = pin.getFrameJacobian(model, data, problem.frame_id, local)
     reference = pin.getFrameJacobian(model, data, problem.reference_id, local)
-    return tool - tool_in_reference.inverse().action @ reference
+    return tool - tool_in_reference.inverse().action.dot(reference)

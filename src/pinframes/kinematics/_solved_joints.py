@@ -90,7 +90,7 @@ class SolvedJoints:
         """The Jacobian (6, n) in ``theta`` from one in the model's velocity (6, nv)."""
         if self._velocity_slice is not None:
             return model_jacobian[:, self._velocity_slice]
-        return model_jacobian @ self.tangent
+        return model_jacobian.dot(self.tangent)
 
 
 def _driver(joint: Joint, joints: Mapping[str, Joint], column_of: Mapping[str, int]

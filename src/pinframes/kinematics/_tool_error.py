@@ -82,7 +82,7 @@ class AxisError:
         # angle, whose components across the tool axis are (behind, -ahead) / sine * angle
         scale = angle / sine if sine > 0.0 else 1.0
         error = np.empty(5)
-        error[:3] = rotation.T @ offset
+        error[:3] = rotation.T.dot(offset)
         error[3] = scale * behind
         error[4] = -scale * ahead
         return math.hypot(*offset.tolist()), angle, error
