@@ -20,7 +20,7 @@ import numpy as np
 from ..errors import UnsupportedFeatureError
 from ..formats.urdf import URDF_METADATA_KEY
 from ..tree import FrameTree
-from ._mesh_files import HOW_TO_SEARCH, MeshFiles, package_search_dirs
+from ..kinematics.mesh_files import HOW_TO_SEARCH, MeshFiles, package_search_dirs
 
 __all__ = ["GeometryWarning", "LinkGeometry", "load_geometry"]
 
