@@ -8,6 +8,7 @@ from .errors import (
     FrameExistsError,
     FrameNotFoundError,
     FramesYamlWarning,
+    GeometryError,
     InvalidDataError,
     InvalidPoseError,
     InvalidTimeError,
@@ -27,8 +28,9 @@ from .formats.limits import Limits
 from .formats.pose_files import write_poses
 from .formats.scene import read_scene, write_scene
 from .formats.urdf import read_urdf, write_urdf
-from .kinematics import FrameJacobian, PinocchioTree, Snapshot, Velocity
+from .kinematics import Clearance, FrameJacobian, PinocchioTree, Snapshot, Velocity
 from .tree import FrameTree
+from .values.geometry import FrameGeometry, Shape
 from .values.joint import Joint, Mimic
 from .values.joint_trajectory import JointTrack, JointTrajectory
 from .values.pose import Pose
@@ -42,13 +44,16 @@ __version__ = "0.1.0"
 __all__ = [
     "ArgumentTypeError",
     "BrokenMimicWarning",
+    "Clearance",
     "ExtrapolationError",
     "FileFormatError",
     "FrameExistsError",
+    "FrameGeometry",
     "FrameJacobian",
     "FrameNotFoundError",
     "FrameTree",
     "FramesYamlWarning",
+    "GeometryError",
     "InvalidDataError",
     "InvalidPoseError",
     "InvalidTimeError",
@@ -66,6 +71,7 @@ __all__ = [
     "PoseStack",
     "ReadError",
     "ReferenceTimeError",
+    "Shape",
     "Snapshot",
     "SpatialData",
     "Subsystem",

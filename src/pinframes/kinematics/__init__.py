@@ -11,17 +11,20 @@ from ._description import TreeDescription, paths_to_common_ancestor
 from ._evaluate import default_times, evaluate_pose
 from ._many import evaluate_poses
 from ._snapshot import Snapshot, snapshot
+from .clearance import Clearance, evaluate_clearance
 from .jacobian import FrameJacobian, evaluate_jacobian
 from .pinocchio_tree import PinocchioTree
 from .velocity import Velocity, evaluate_velocity
 
 __all__ = [
+    "Clearance",
     "FrameJacobian",
     "PinocchioTree",
     "Snapshot",
     "TreeDescription",
     "Velocity",
     "default_times",
+    "evaluate_clearance",
     "evaluate_jacobian",
     "evaluate_pose",
     "evaluate_poses",
