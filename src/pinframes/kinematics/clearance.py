@@ -26,9 +26,9 @@ from numpy.typing import NDArray
 from ..values.geometry import FrameGeometry
 from ._collision_objects import CollisionShape, ShapeLoader
 from ._description import TreeDescription
-from ._evaluate import plan_timeline
-from ._evaluate import prepare_evaluation as prepare_path
-from ._many import evaluate_poses
+from ._path import prepare_path
+from ._times import plan_timeline
+from .poses import evaluate_poses
 
 __all__ = ["Clearance", "evaluate_clearance"]
 

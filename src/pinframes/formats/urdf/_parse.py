@@ -13,8 +13,8 @@ import numpy as np
 from ...errors import BrokenMimicWarning, FileFormatError
 from ...values.geometry import FrameGeometry
 from ...values.pose import Pose
-from .._reading import read_text
 from ..limits import Limits, current_limits, exceeded, reader_with_limits
+from ..reading import read_text
 from ._bounded_xml import parse_bounded_xml
 from ._geometry import link_geometry, named_colours
 from ._numbers import numbers
