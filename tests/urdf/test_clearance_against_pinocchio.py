@@ -45,7 +45,7 @@ def cell(rng, samples: int):
     tree.attach_urdf(ur5_urdf(), "mount", prefix="ur5/")
     for name, (geometry, _, pose) in OBSTACLES.items():
         if name == "ball":
-            pose = Pose(translation=[pose.translation, pose.translation + [0.3, -0.2, 0]],
+            pose = Pose(translation=[pose.translation, pose.translation + np.array([0.3, -0.2, 0])],
                         rotation=[pose.quaternion] * 2, times=[0.0, 4.0])
         tree.add(name + "_at", "world", pose)
         tree.attach_urdf(f'<robot name="{name}"><link name="{name}"><collision><geometry>'

@@ -10,7 +10,7 @@ sampled path (``_sampled_path``), exact rates (``_rates``) and joint twists (``_
 """
 
 from ._description import TreeDescription, paths_to_common_ancestor
-from .clearance import Clearance, evaluate_clearance
+from .clearance import Clearance, clearance_times, evaluate_clearance
 from .jacobian import FrameJacobian, evaluate_jacobian
 from .pinocchio_tree import PinocchioTree
 from .pose import default_times, evaluate_pose
@@ -25,6 +25,7 @@ __all__ = [
     "Snapshot",
     "TreeDescription",
     "Velocity",
+    "clearance_times",
     "default_times",
     "evaluate_clearance",
     "evaluate_jacobian",

@@ -24,13 +24,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..values.geometry import FrameGeometry
+from ..values.timeconv import TimeAxis
 from ._collision_objects import CollisionShape, ShapeLoader
 from ._description import TreeDescription
 from ._path import prepare_path
 from ._times import plan_timeline
 from .poses import evaluate_poses
 
-__all__ = ["Clearance", "evaluate_clearance"]
+__all__ = ["Clearance", "clearance_times", "evaluate_clearance"]
 
 FloatArray = NDArray[np.float64]
 
@@ -176,21 +177,35 @@ def _shape_pairs(shapes: list[CollisionShape], side_a: set[str], side_b: set[str
     return np.array(pairs, dtype=np.intp).reshape(-1, 2)
 
 
+def clearance_times(tree: TreeDescription, frames: Sequence[str]) -> TimeAxis | None:
+    """The times a clearance between ``frames`` evaluates at when given none: every
+    keyframe and joint sample time on their paths from the root; None if nothing moves."""
+    offsets, reference = _timeline(tree, list(frames), None, None)
+    return None if offsets is None else TimeAxis(offsets, reference)
+
+
+def _timeline(tree: TreeDescription, frames: list[str], times: Any, time_ref: Any
+              ) -> tuple[NDArray[np.int64] | None, np.datetime64 | None]:
+    """The one timeline of every moving thing on the paths from the root to ``frames``
+    (the rules of ``pose()``): offsets (ns) and reference time."""
+    sources = {source.name: source for frame in frames
+               for source in prepare_path(tree, frame, tree.root).sources}
+    timeline = plan_timeline(tree, list(sources.values()), times, time_ref)
+    return timeline.result_offsets, timeline.reference
+
+
 def _frame_poses(tree: TreeDescription, frames: list[str], times: Any, time_ref: Any,
                  extrapolation: str) -> tuple[Any, NDArray[np.timedelta64] | None,
                                               np.datetime64 | None]:
     """Every frame's pose in the root, ``(F, T, 3, 3)`` and ``(F, T, 3)``, on the one
     timeline of all the moving things on their paths; with that timeline's times and
     reference time."""
-    sources = {source.name: source for frame in frames
-               for source in prepare_path(tree, frame, tree.root).sources}
-    timeline = plan_timeline(tree, list(sources.values()), times, time_ref)
-    offsets = timeline.result_offsets
+    offsets, reference = _timeline(tree, frames, times, time_ref)
     if offsets is None:
         poses = evaluate_poses(tree, frames, [tree.root] * len(frames), None, None,
                                extrapolation)
         return _with_sample_axis(poses), None, None
-    reference = timeline.reference  # the same timeline for every frame's path
+    # every frame's path on this one timeline: the same times and reference time
     sample_times = offsets.astype("timedelta64[ns]")
     poses = evaluate_poses(tree, frames, [tree.root] * len(frames), sample_times, reference,
                            extrapolation)

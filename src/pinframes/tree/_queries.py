@@ -31,6 +31,7 @@ from ..kinematics import (
     PinocchioTree,
     Snapshot,
     Velocity,
+    clearance_times,
     default_times,
     evaluate_clearance,
     evaluate_jacobian,
@@ -328,6 +329,16 @@ class TreeQueries(TreeStructure):
         recorded = {frame: self._recorded_geometry(frame) for frame in [*frames_a, *frames_b]}
         return evaluate_clearance(self._frozen(), recorded, frames_a, frames_b, excluded,
                                   geometry, package_dirs, times, time_ref, extrapolation)
+
+    def clearance_times(self, a: str | Sequence[str], b: str | Sequence[str], *,
+                        geometry: str = "collision") -> TimeAxis | None:
+        """The times :meth:`clearance` evaluates at when given none, without evaluating:
+        every keyframe and joint sample time on the paths from the root to the frames of
+        ``a`` and ``b`` (as a :class:`~pinframes.TimeAxis`); None when nothing on them moves.
+        """
+        frames = [*self._frames_with_geometry(a, geometry, "a"),
+                  *self._frames_with_geometry(b, geometry, "b")]
+        return clearance_times(self._frozen(), frames)
 
     # -- helpers ---------------------------------------------------------------------------
     def _recorded_geometry(self, frame: str) -> FrameGeometry | None:
