@@ -8,6 +8,7 @@ are not counted; the lines say which and why.
 from __future__ import annotations
 
 from ..tree import FrameTree
+from ..values.geometry import GEOMETRY_METADATA_KEY
 from .clearance import clearance_summary
 
 __all__ = ["CELL_SIDE", "EXCLUDED", "ROBOT_SIDE", "clearance_lines"]
@@ -22,8 +23,10 @@ EXCLUDED = {
 
 def clearance_lines(tree: FrameTree) -> str:
     """Two ``name  value`` lines for the demo's summary table; "" for a tree without the
-    cell's parts (another ``--scene``)."""
-    if not all(name in tree for name in ["torch", "robot/base_link", *CELL_SIDE]):
+    cell's parts and their geometry (another ``--scene``, a converted file)."""
+    parts = ["torch", "robot/base_link", *CELL_SIDE]
+    if not all(name in tree and GEOMETRY_METADATA_KEY in tree.frame_metadata(name)
+               for name in parts):
         return ""
     result = tree.clearance(ROBOT_SIDE, CELL_SIDE, exclude=list(EXCLUDED))
     at_seam = tree.clearance("torch", "pipe", times=result.times,
