@@ -22,7 +22,7 @@ from ..values.timeconv import (
 )
 
 __all__ = ["ProgressBar", "add_time_arguments", "evaluate_poses", "pose_velocity",
-           "requested_times", "terminal_stderr", "time_values", "times_from_options"]
+           "requested_times", "terminal_stderr", "times_from_options"]
 
 CHUNK_SIZE = 20_000
 """Times evaluated per call; the progress bar moves once per chunk."""
@@ -127,7 +127,7 @@ def evaluate_poses(tree: FrameTree, frame: str, relative_to: str, times: TimeAxi
         if times is None:
             return tree.pose(frame, relative_to=relative_to)
         time_ref = times.reference
-    values = time_values(times)
+    values = times.as_numpy()
     count = values.shape[0]
     bar = ProgressBar(progress, count) if progress is not None and count > CHUNK_SIZE else None
     parts = []
@@ -150,12 +150,6 @@ def pose_velocity(tree: FrameTree, pose: Pose, frame: str, relative_to: str,
         return tree.velocity(frame, relative_to, expressed_in=expressed_in)
     times = offsets if reference is None else reference + offsets
     return tree.velocity(frame, relative_to, times, expressed_in, time_ref=reference)
-
-
-def time_values(times: TimeAxis) -> np.ndarray:
-    """``times`` as ``timedelta64[ns]`` (relative) or ``datetime64[ns]`` (absolute) values."""
-    offsets = times.offsets.astype("timedelta64[ns]")
-    return offsets if times.reference is None else times.reference + offsets
 
 
 def _concatenate(parts: list[Pose]) -> Pose:

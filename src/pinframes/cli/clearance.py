@@ -20,7 +20,6 @@ from ._evaluate import (
     ProgressBar,
     add_time_arguments,
     terminal_stderr,
-    time_values,
     times_from_options,
 )
 from ._files import read_tree
@@ -114,7 +113,7 @@ def _in_chunks(tree: FrameTree, a: list[str], b: list[str], times: TimeAxis | No
         if times is None:
             return tree.clearance(a, b, **options)
         time_ref = times.reference
-    values = time_values(times)
+    values = times.as_numpy()
     count = values.shape[0]
     stream = terminal_stderr()
     bar = ProgressBar(stream, count) if stream is not None and count > CHUNK_SIZE else None
