@@ -192,6 +192,10 @@ def test_names_without_geometry_are_errors_naming_them():
         tree.clearance("robot/*", "near")
     with pytest.raises(GeometryError, match="expected one of collision, visual"):
         tree.clearance("arm/tip", "near", geometry="inertial")
+    with pytest.raises(GeometryError, match="no pair of two different frames"):
+        tree.clearance("arm/tip", "arm/*")
+    with pytest.raises(GeometryError, match="no pair of two different frames"):
+        tree.clearance("arm/tip", "near", exclude=[("near", "arm/tip")])
 
 
 def test_missing_unreadable_and_malformed_geometry_are_errors_naming_frame_and_file(tmp_path):

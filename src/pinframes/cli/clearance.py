@@ -25,7 +25,7 @@ from ._evaluate import (
 from ._files import read_tree
 from ._output import write_text
 
-__all__ = ["add_parser", "clearance_summary", "run"]
+__all__ = ["add_parser", "clearance_summary", "frame_names", "run"]
 
 CHUNK_SIZE = 2_000
 """Samples per call; the progress bar moves once per chunk (a sample costs 0.05-1 ms)."""
@@ -68,7 +68,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 def run(args: argparse.Namespace) -> int:
     """Evaluate, print the summary and write the table."""
     tree = read_tree(args.file)
-    a, b = _names(tree, args.a), _names(tree, args.b)
+    a, b = frame_names(tree, args.a), frame_names(tree, args.b)
     options = {"geometry": args.geometry, "package_dirs": args.package_dir,
                "exclude": [tuple(pair) for pair in args.exclude]}
     times = times_from_options(args, lambda: tree.clearance_times(a, b,
@@ -99,8 +99,8 @@ def clearance_summary(result: Clearance, counts: bool = True) -> str:
             f"{len(result.frames_b)} frames)")
 
 
-def _names(tree: FrameTree, text: str) -> list[str]:
-    """A frame named ``text``, else the comma-separated names and patterns in it."""
+def frame_names(tree: FrameTree, text: str) -> list[str]:
+    """The frame named ``text``, else the comma-separated names and patterns in it."""
     return [text] if text in tree else [name.strip() for name in text.split(",")]
 
 

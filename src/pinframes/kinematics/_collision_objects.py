@@ -112,9 +112,13 @@ class ShapeLoader:
         else:
             made = coal.Sphere(*shape.dimensions)
         made.computeLocalAABB()
+        centre = np.array(made.aabb_center)
+        radius = float(made.aabb_radius)  # the box's corners: a mesh's vertices fit tighter
+        if shape.kind == "mesh":
+            radius = float(np.linalg.norm(np.asarray(made.vertices()) - centre, axis=1).max())
         origin = shape.origin
         return CollisionShape(frame, field, shape, made, origin.rotation, origin.translation,
-                              np.array(made.aabb_center), float(made.aabb_radius), mesh_path)
+                              centre, radius, mesh_path)
 
     def _find(self, frame: str, field: str, name: str, geometry: FrameGeometry) -> str:
         mesh_files = MeshFiles(None if geometry.urdf is None else Path(geometry.urdf),

@@ -23,6 +23,7 @@ import coal
 import numpy as np
 from numpy.typing import NDArray
 
+from ..errors import GeometryError
 from ..values.geometry import FrameGeometry
 from ..values.timeconv import TimeAxis
 from ._collision_objects import CollisionShape, ShapeLoader
@@ -124,6 +125,9 @@ def evaluate_clearance(
     shapes = [shape for frame in frames for shape in loader.shapes(frame, geometry[frame])]
     skipped = {frozenset(pair) for pair in excluded}
     pairs = _shape_pairs(shapes, set(frames_a), set(frames_b), skipped)
+    if not len(pairs):
+        raise GeometryError("a and b leave no pair of two different frames to check (a frame "
+                            "is never checked against itself; see also exclude)", field="b")
     poses, timeline_times, reference = _frame_poses(tree, frames, times, time_ref,
                                                     extrapolation)
     count = poses.translation.shape[1]
