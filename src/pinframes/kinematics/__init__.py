@@ -15,6 +15,7 @@ batched check of its samples (``_batch_check``).
 """
 
 from ._description import TreeDescription, paths_to_common_ancestor
+from .clearance import Clearance, clearance_times, evaluate_clearance
 from .jacobian import FrameJacobian, evaluate_jacobian
 from .joint_solution import JointSolution
 from .pinocchio_tree import PinocchioTree
@@ -25,13 +26,16 @@ from .solve_joints import evaluate_solve_joints
 from .velocity import Velocity, evaluate_velocity
 
 __all__ = [
+    "Clearance",
     "FrameJacobian",
     "JointSolution",
     "PinocchioTree",
     "Snapshot",
     "TreeDescription",
     "Velocity",
+    "clearance_times",
     "default_times",
+    "evaluate_clearance",
     "evaluate_jacobian",
     "evaluate_pose",
     "evaluate_poses",
