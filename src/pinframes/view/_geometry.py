@@ -19,10 +19,10 @@ import numpy as np
 
 from ..errors import GeometryWarning, UnsupportedFeatureError
 from ..formats.urdf import URDF_METADATA_KEY
+from ..kinematics.mesh_files import HOW_TO_SEARCH, MeshFiles, package_search_dirs
 from ..tree import FrameTree
-from ._mesh_files import HOW_TO_SEARCH, MeshFiles, package_search_dirs
 
-__all__ = ["GeometryWarning", "LinkGeometry", "load_geometry"]
+__all__ = ["LinkGeometry", "load_geometry"]
 
 _DEFAULT_RGBA = (0.7, 0.7, 0.72, 1.0)
 
