@@ -22,8 +22,8 @@ import yaml
 
 from .. import FrameTree, Limits, read
 from ..errors import ReadError
-from ..formats._paths import read_regular_file
 from ..formats.limits import current_limits
+from ..formats.reading import read_bytes
 
 __all__ = ["IRREGULAR", "MISSING", "RunInputs", "checksums", "read_run", "run_inputs"]
 
@@ -96,7 +96,7 @@ def _load(file: Path) -> Any:
     kilobytes of ``[`` would crash the worker. The depth is measured on the parser's events
     first, which come one at a time; aliases cost nothing here (they share their node)."""
     try:
-        raw = read_regular_file(file)
+        raw = read_bytes(file)
         depth, deepest = 0, current_limits().max_depth
         for event in yaml.parse(raw, Loader=_LOADER):
             if isinstance(event, _OPENING):

@@ -24,7 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import ManifestWarning
-from ..formats._atomic import atomic_write
+from ..formats.atomic import atomic_write
 
 __all__ = ["MANIFEST_NAME", "Manifest"]
 

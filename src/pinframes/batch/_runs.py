@@ -26,8 +26,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import FileFormatError, ReadError
-from ..formats._paths import is_regular_file, regular_file_problem
-from ..formats._reading import read_text
+from ..formats.reading import is_regular_file, read_text, regular_file_problem
 
 __all__ = ["RUNS_LIST_SUFFIX", "Run", "find_runs", "keep_known_ids"]
 
