@@ -44,8 +44,9 @@ class Limits:
         YAML nodes of a document after expanding aliases (``*name`` counts the whole node
         it repeats, each time it is used); scalars, lists and mappings count one each.
     max_decompressed_bytes : int
-        Bytes of all arrays of one NPZ file, or of one array of an ASDF file, once
-        decompressed.
+        Bytes of all arrays of one NPZ file once decompressed, or of all that the arrays of
+        an ASDF file's hierarchy decode to: each binary block once, at its decompressed
+        size, and each array read from it.
     max_depth : int
         Nesting depth of a YAML document (lists and mappings inside each other), path
         segments of a frames.yaml key (``a/b/c`` has 3), and nesting depth of the XML
