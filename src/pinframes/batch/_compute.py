@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 import pyarrow as pa  # type: ignore[import-untyped]
 
-from .. import FrameTree, Pose, Velocity
+from .. import FrameTree, Pose, TimeAxis, Velocity
 from ..errors import FrameNotFoundError, InvalidTimeError, near_misses
 from ._options import BatchOptions
 
@@ -88,8 +88,7 @@ class _QueryTimes:
             offsets = self.offsets[start:stop]
         else:
             offsets = self.offsets[0] + self.step_ns * np.arange(start, stop, dtype=np.int64)
-        as_timedelta = offsets.astype("timedelta64[ns]")
-        return as_timedelta if self.reference is None else self.reference + as_timedelta
+        return TimeAxis(offsets, self.reference).as_numpy()
 
 
 def _query_times(tree: FrameTree, frame: str, relative_to: str, options: BatchOptions
