@@ -3,10 +3,11 @@ reading its tree.
 
 A scene reads other files (``layers[].file``, ``robots[].urdf``, ``robots[].trajectory``,
 relative to the scene's folder; docs/scene-format.md), and a frames.yaml reads the
-``tile_maps.yaml`` beside it; every other format is one file. A file that cannot be found
-has the checksum ``"missing"``, so creating it later changes the run's checksums too; one
-that is no regular file (``/dev/zero``, a FIFO) is never opened for reading and has the
-checksum ``"not a regular file"``: the reader then refuses it, naming it.
+``tile_maps.yaml`` beside it; a ROS 2 bag folder is its ``metadata.yaml`` and the storage
+files it names; every other format is one file. A file that cannot be found has the
+checksum ``"missing"``, so creating it later changes the run's checksums too; one that is
+no regular file (``/dev/zero``, a FIFO) is never opened for reading and has the checksum
+``"not a regular file"``: the reader then refuses it, naming it.
 """
 
 from __future__ import annotations
@@ -21,9 +22,10 @@ from typing import Any
 import yaml
 
 from .. import FrameTree, Limits, read
-from ..errors import ReadError
+from ..errors import PinframesError, ReadError
 from ..formats.limits import current_limits
 from ..formats.reading import read_bytes
+from ..formats.rosbag import bag_files
 
 __all__ = ["IRREGULAR", "MISSING", "RunInputs", "checksums", "read_run", "run_inputs"]
 
@@ -50,6 +52,8 @@ def run_inputs(path: Path) -> RunInputs:
     """The inputs of the run whose file is ``path``, each once (layers that name each other
     in a circle are left for the reader to refuse)."""
     root = path.resolve()
+    if root.is_dir():
+        return RunInputs(_folder_files(root), False)
     is_scene, pending = _named_files(root)
     files = {root: None}
     pending.reverse()  # (a file, whether to look into it for the files it names), last first
@@ -67,6 +71,15 @@ def read_run(path: Path, inputs: RunInputs, limits: Limits) -> FrameTree:
     """The tree of the run whose file is ``path`` and whose inputs are ``inputs``, read
     under ``limits``: the one place that knows how a run is read."""
     return read(path, format="scene" if inputs.is_scene else None, limits=limits)
+
+
+def _folder_files(folder: Path) -> list[Path]:
+    """The files of a bag folder (the folder itself if its metadata cannot be read: reading
+    the run will fail and say why)."""
+    try:
+        return bag_files(folder)
+    except PinframesError:
+        return [folder]
 
 
 def _named_files(file: Path) -> tuple[bool, list[tuple[Path, bool]]]:

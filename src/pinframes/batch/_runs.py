@@ -1,17 +1,18 @@
 """Which runs a batch computes: files, glob patterns, or a runs list (CSV).
 
 A run is one input file of any format pinframes reads (a scene with its trajectories, an
-ASDF file, ...) and a run id that names it in the output; one input file is one run. Which
-paths are runs is decided in :func:`_run_files` (the place for another kind of input).
+ASDF file, a ROS bag, ...) or a ROS 2 bag folder, and a run id that names it in the output;
+one input is one run. Which paths are runs is decided in :func:`_is_run_input` (the place
+for another kind of input).
 
 Run ids: a runs list (``.csv``) gives them itself: a header ``run,file`` and one line per
 run, files relative to the list's folder. A glob pattern names its matches relative to the
 folder where the pattern starts, without the suffix, and without the file name when the
 pattern ends in one (``campaign/*/scene.yaml`` gives ``r001``; ``runs/*.asdf`` gives
-``weld_1``): the id of a file does not depend on which other files match, so a growing
-campaign keeps its ids. Files named one by one (as a shell expands a pattern) are named
-relative to the folder they share, by their folders when they all have the same name. An
-output folder keeps the ids it gave: :func:`keep_known_ids`.
+``weld_1``): the id of a run does not depend on which other runs match, so a growing
+campaign keeps its ids. Runs named one by one (as a shell expands a pattern) are named
+relative to the folder they share, by their folders when their files all have the same
+name. An output folder keeps the ids it gave: :func:`keep_known_ids`.
 """
 
 from __future__ import annotations
@@ -78,12 +79,22 @@ def find_runs(specs: Iterable[str | os.PathLike[str]]) -> list[Run]:
     return runs
 
 
+def _is_run_input(path: Path) -> bool:
+    """Whether ``path`` is a run's input: a regular file, or a ROS 2 bag folder (read as
+    one input, like a file)."""
+    return is_regular_file(path) or _is_bag_folder(path)
+
+
+def _is_bag_folder(path: Path) -> bool:
+    return path.is_dir() and (path / "metadata.yaml").is_file()
+
+
 def _run_files(text: str) -> list[Path]:
-    """The run named by the argument ``text``: a file of a format pinframes reads."""
-    problem = regular_file_problem(text)
-    if problem is not None:
-        raise ReadError(problem, file=text)
-    return [Path(text)]
+    """The run named by the argument ``text`` (see :func:`_is_run_input`)."""
+    path = Path(text)
+    if _is_run_input(path):
+        return [path]
+    raise ReadError(regular_file_problem(text) or "not a run's input", file=text)
 
 
 def _matched(pattern: str) -> list[Run]:
@@ -96,7 +107,7 @@ def _matched(pattern: str) -> list[Run]:
     runs = []
     for match in sorted(glob.glob(pattern, recursive=True)):
         path = Path(match)
-        if not is_regular_file(path):
+        if not _is_run_input(path):
             continue
         relative = path.relative_to(base)
         named = relative.parent if drop_name and relative.parent.parts else (

@@ -15,8 +15,8 @@ from ._paths import is_regular_file, read_regular_file, regular_file_problem
 __all__ = ["is_regular_file", "read_bytes", "read_text", "regular_file_problem"]
 
 
-def read_bytes(path: str | os.PathLike[str]) -> bytes:
-    """The bytes of the file at ``path``.
+def read_bytes(path: str | os.PathLike[str], size: int = -1) -> bytes:
+    """The bytes of the file at ``path`` (its first ``size`` bytes if ``size >= 0``).
 
     Raises
     ------
@@ -26,7 +26,7 @@ def read_bytes(path: str | os.PathLike[str]) -> bytes:
     ArgumentTypeError
         ``path`` is not a text path (``str`` or ``os.PathLike``).
     """
-    return read_regular_file(path)
+    return read_regular_file(path, size)
 
 
 def read_text(path: str | os.PathLike[str]) -> str:
