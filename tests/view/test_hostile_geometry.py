@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from pinframes import FrameTree, Limits, Pose, read_urdf
-from pinframes.errors import InvalidTimeError
+from pinframes.errors import GeometryError, InvalidTimeError
 from pinframes.view import MAX_PAGE_POSES, GeometryWarning, load_geometry, view_html
 
 
@@ -150,3 +150,12 @@ def test_the_page_bounds_times_times_frames_before_computing_poses():
         view_html(tree, times=times)
     assert error.value.field == "times"
     page_data(view_html(tree, times=times, frames=["f0", "f1"]))  # fewer frames fit
+
+
+def test_the_clearance_query_does_not_open_compressed_meshes_either(tmp_path):
+    urdf = urdf_with_meshes(tmp_path, {"part.stl.bz2": compressed("bz2", stl_tetrahedron())})
+    tree = FrameTree("world")
+    tree.attach_urdf(urdf, "world")
+    with pytest.raises(GeometryError, match="compressed") as error:
+        tree.clearance("base", "extra", geometry="visual")
+    assert error.value.frame == "base" and error.value.file.endswith("part.stl.bz2")

@@ -20,8 +20,13 @@ import numpy as np
 from ..errors import UnsupportedFeatureError
 from ..formats.limits import Limits, current_limits, reader_with_limits
 from ..formats.urdf import URDF_METADATA_KEY
+from ..kinematics.mesh_files import (
+    HOW_TO_SEARCH,
+    MeshFiles,
+    mesh_file_problem,
+    package_search_dirs,
+)
 from ..tree import FrameTree
-from ._mesh_files import HOW_TO_SEARCH, MeshFiles, mesh_file_problem, package_search_dirs
 
 __all__ = ["GeometryWarning", "LinkGeometry", "load_geometry"]
 

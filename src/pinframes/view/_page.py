@@ -62,6 +62,8 @@ def view_html(
     geometry: Sequence[LinkGeometry] | None = None,
     title: str | None = None,
     limits: Limits | None = None,
+    clearance: tuple[Any, Any] | None = None,
+    clearance_exclude: Iterable[tuple[str, str]] = (),
 ) -> str:
     """An animated 3-D page of ``tree``: geometry, frames and paths over ``times``.
 
@@ -90,6 +92,12 @@ def view_html(
         The page's title (default: the tree's name).
     limits : Limits, optional
         Bounds on the mesh files read (see :func:`load_geometry`).
+    clearance : (a, b), optional
+        Mark the closest pair of :meth:`FrameTree.clearance` ``(a, b)`` (collision geometry,
+        at the page's times): a dot on each closest point, the segment between them, and
+        the distance and the two frames beside the time shown.
+    clearance_exclude : iterable of (str, str)
+        Pairs the clearance leaves out (``exclude=`` of :meth:`FrameTree.clearance`).
 
     Frames and geometry that are not finite or lie farther than
     :data:`~pinframes.view._drawable.MAX_DRAWN_DISTANCE_M` from ``relative_to`` are left out
@@ -134,6 +142,11 @@ def view_html(
         if frame in matrices and drawn_in in matrices:  # else the frames' warning says why
             scene.add_path(frame, drawn_in, _pose(tree, frame, drawn_in, values, time_ref)
                            .translation.reshape(-1, 3))
+    marked = None
+    if clearance is not None:
+        marked = _closest_pair(tree, clearance, clearance_exclude, package_dirs, relative_to,
+                               values, time_ref, seconds)
+        scene.add_closest_pair(*marked[:2], seconds, 0.006 * extent[2])
     commands = list(scene.commands)
     if (animation := scene.animation_command()) is not None:
         commands.append(animation)
@@ -142,7 +155,28 @@ def view_html(
     return _html(title or tree.name or "pinframes", commands, {
         "labels": labels, "start": start, "duration": float(seconds[-1]),
         "centre": extent[0].tolist(), "radius": float(extent[2]),
-        "drawnIn": relative_to})
+        "drawnIn": relative_to, "clearance": None if marked is None else marked[2]})
+
+
+def _closest_pair(tree: FrameTree, sides: tuple[Any, Any],
+                  exclude: Iterable[tuple[str, str]],
+                  package_dirs: Iterable[str | os.PathLike[str]], relative_to: str,
+                  values: Any, time_ref: Any, seconds: np.ndarray
+                  ) -> tuple[np.ndarray, np.ndarray, dict[str, Any]]:
+    """The clearance's closest points per page sample, in the drawing frame, and what the
+    page shows beside the time: per sample the distance (mm) and the pair."""
+    a, b = sides
+    result = tree.clearance(a, b, times=values, time_ref=time_ref, exclude=list(exclude),
+                            package_dirs=package_dirs)
+    root_in_drawing = _pose(tree, tree.root, relative_to, values, time_ref)
+    # (T, 3): one point per time through a moving pose, or each point through a static one
+    points = [root_in_drawing.transform_points(points)
+              for points in (result.point_a, result.point_b)]
+    names, pairs = np.unique(result.closest, return_inverse=True)
+    return points[0], points[1], {
+        "seconds": seconds.tolist(), "names": names.tolist(),
+        "pairs": pairs.reshape(-1, 2).tolist(),
+        "distanceMm": np.round(1000 * result.distance, 3).tolist()}
 
 
 def _check_page_size(values: Any, frames: int) -> None:

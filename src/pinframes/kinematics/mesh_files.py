@@ -9,13 +9,15 @@ against, in this order,
 3. the URDF's own folder and its ancestors.
 
 A search folder may be a package itself (its name is ``PKG``) or hold packages as its
-sub-folders (``folder/PKG``), as ``ROS_PACKAGE_PATH`` entries do. It serves yourdfpy as its
-``filename_handler``; names that cannot be found map to ``""``, which yourdfpy skips.
+sub-folders (``folder/PKG``), as ``ROS_PACKAGE_PATH`` entries do. The clearance query finds
+its meshes here, and so does the 3-D page (for which it also serves yourdfpy as its
+``filename_handler``: names that cannot be found map to ``""``, which yourdfpy skips).
 
 :func:`mesh_file_problem` tells why a found mesh file must not be opened: mesh readers inflate
 compressed files and archives without bound (trimesh opens ``.zip``, ``.tar.gz``, ``.bz2`` by
 their names, pycollada a ``.dae`` that is a zip archive by its content), so only
-uncompressed files of at most ``max_decompressed_bytes`` are read.
+uncompressed files of at most ``max_decompressed_bytes`` (given by the caller: the limits
+live in a higher layer) are read.
 """
 
 from __future__ import annotations
@@ -42,10 +44,10 @@ _COMPRESSED_MAGIC = {b"PK\x03\x04": "zip", b"\x1f\x8b": "gzip", b"BZh": "bzip2",
                      b"\x28\xb5\x2f\xfd": "zstd"}
 
 
-def mesh_file_problem(path: Path, max_bytes: int) -> str | None:
+def mesh_file_problem(path: Path, max_bytes: int | None) -> str | None:
     """Why the mesh file at ``path`` is not opened, or None to open it: a compressed file or
     an archive (by its name or its first bytes), no regular file, or a file of more than
-    ``max_bytes`` bytes (the limit ``max_decompressed_bytes``)."""
+    ``max_bytes`` bytes (the limit ``max_decompressed_bytes``; None: no bound on the size)."""
     if path.name.lower().endswith(_COMPRESSED_SUFFIXES):
         return ("is compressed or an archive: mesh files are read uncompressed only "
                 "(unpack it and name the mesh inside)")
@@ -57,7 +59,7 @@ def mesh_file_problem(path: Path, max_bytes: int) -> str | None:
             head = handle.read(8)
     except OSError as exc:
         return f"cannot be read ({exc.strerror or exc})"
-    if info.st_size > max_bytes:
+    if max_bytes is not None and info.st_size > max_bytes:
         return (f"takes {info.st_size:,} bytes, over the limit max_decompressed_bytes="
                 f"{max_bytes:,}; if the file is trusted, raise it "
                 "(limits=pinframes.Limits(max_decompressed_bytes=...) or "
