@@ -16,6 +16,7 @@ from ..plotting import new_figure, plot_frames, plotting_available, robot_frames
 from ..tree import FrameTree
 from ..values.pose import Pose
 from ..view import write_view
+from ._cell_clearance import clearance_lines
 from ._evaluate import evaluate_poses, pose_velocity, terminal_stderr
 from ._files import read_tree, require_frames
 from ._output import write_poses
@@ -138,6 +139,7 @@ def run(args: argparse.Namespace) -> int:
         missing.append(f"no 3-D page: {exc}")
     print(f"{args.tool} relative to {args.workpiece} ({scene.name})")
     sys.stdout.write(summary.table())
+    sys.stdout.write(clearance_lines(tree))
     print(f"pinframes: wrote {', '.join(map(str, written))}", file=sys.stderr)
     for line in missing:
         print(f"pinframes: {line}", file=sys.stderr)

@@ -11,6 +11,7 @@ moves are its interpolation scheme's (:mod:`pinframes.values.interpolation`).
 """
 
 from ._description import TreeDescription, paths_to_common_ancestor
+from .clearance import Clearance, clearance_times, evaluate_clearance
 from .jacobian import FrameJacobian, evaluate_jacobian
 from .pinocchio_tree import PinocchioTree
 from .pose import default_times, evaluate_pose
@@ -19,12 +20,15 @@ from .snapshot import Snapshot, snapshot
 from .velocity import Velocity, evaluate_velocity
 
 __all__ = [
+    "Clearance",
     "FrameJacobian",
     "PinocchioTree",
     "Snapshot",
     "TreeDescription",
     "Velocity",
+    "clearance_times",
     "default_times",
+    "evaluate_clearance",
     "evaluate_jacobian",
     "evaluate_pose",
     "evaluate_poses",
