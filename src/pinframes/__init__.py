@@ -9,6 +9,7 @@ from .errors import (
     FrameExistsError,
     FrameNotFoundError,
     FramesYamlWarning,
+    GeometryError,
     InvalidDataError,
     InvalidPoseError,
     InvalidTimeError,
@@ -18,6 +19,7 @@ from .errors import (
     PinframesError,
     ReadError,
     ReferenceTimeError,
+    TargetNotReachedError,
     TreeStructureError,
     UnsupportedFeatureError,
     WriteError,
@@ -29,8 +31,16 @@ from .formats.pose_files import write_poses
 from .formats.rosbag import read_rosbag
 from .formats.scene import read_scene, write_scene
 from .formats.urdf import read_urdf, write_urdf
-from .kinematics import FrameJacobian, PinocchioTree, Snapshot, Velocity
+from .kinematics import (
+    Clearance,
+    FrameJacobian,
+    JointSolution,
+    PinocchioTree,
+    Snapshot,
+    Velocity,
+)
 from .tree import FrameTree
+from .values.geometry import FrameGeometry, Shape
 from .values.joint import Joint, Mimic
 from .values.joint_trajectory import JointTrack, JointTrajectory
 from .values.pose import Pose
@@ -45,19 +55,23 @@ __all__ = [
     "ArgumentTypeError",
     "BagWarning",
     "BrokenMimicWarning",
+    "Clearance",
     "ExtrapolationError",
     "FileFormatError",
     "FrameExistsError",
+    "FrameGeometry",
     "FrameJacobian",
     "FrameNotFoundError",
     "FrameTree",
     "FramesYamlWarning",
+    "GeometryError",
     "InvalidDataError",
     "InvalidPoseError",
     "InvalidTimeError",
     "Joint",
     "JointError",
     "JointLimitWarning",
+    "JointSolution",
     "JointTrack",
     "JointTrajectory",
     "JointWithoutSamplesWarning",
@@ -69,9 +83,11 @@ __all__ = [
     "PoseStack",
     "ReadError",
     "ReferenceTimeError",
+    "Shape",
     "Snapshot",
     "SpatialData",
     "Subsystem",
+    "TargetNotReachedError",
     "TimeAxis",
     "TreeStructureError",
     "UnsupportedFeatureError",

@@ -24,6 +24,7 @@ __all__ = [
     "FrameExistsError",
     "FrameNotFoundError",
     "FramesYamlWarning",
+    "GeometryError",
     "InvalidDataError",
     "InvalidPoseError",
     "InvalidTimeError",
@@ -33,6 +34,7 @@ __all__ = [
     "PinframesError",
     "ReadError",
     "ReferenceTimeError",
+    "TargetNotReachedError",
     "TreeStructureError",
     "UnsupportedFeatureError",
     "WriteError",
@@ -134,12 +136,22 @@ class JointError(PinframesError, ValueError):
     """A robot joint that is unknown, mis-specified or driven with bad values."""
 
 
+class TargetNotReachedError(PinframesError, ValueError):
+    """A target that ``solve_joints(..., strict=True)`` could not reach within the joint
+    limits and tolerances (the message names the time and the residual errors)."""
+
+
 class FileFormatError(PinframesError, ValueError):
     """A file whose content does not follow its format."""
 
 
 class UnsupportedFeatureError(PinframesError, ValueError):
     """Valid input that pinframes deliberately does not handle (said in the message)."""
+
+
+class GeometryError(PinframesError, ValueError):
+    """Geometry a query needs and cannot have: a frame that is no URDF link, a link without
+    shapes of the kind asked for, a malformed shape, a mesh file missing or unreadable."""
 
 
 class WriteError(PinframesError, OSError):
