@@ -32,6 +32,7 @@ __all__ = [
     "JointError",
     "JointLimitWarning",
     "JointWithoutSamplesWarning",
+    "ManifestWarning",
     "PinframesError",
     "ReadError",
     "ReferenceTimeError",
@@ -204,9 +205,16 @@ class BrokenMimicWarning(UserWarning):
 
 
 class GeometryWarning(UserWarning):
-    """A link drawn without one of its geometries: a mesh missing, unreadable or empty."""
+    """Something left out of a drawing: a link's mesh that is missing, unreadable, empty,
+    compressed or too large, a point cloud; on the 3-D page also geometry or a frame that is
+    not finite or too far away to draw."""
 
 
 class JointWithoutSamplesWarning(UserWarning):
     """Robot joints evaluated without samples: they hold their rest value
     (:attr:`pinframes.Joint.rest_value`). Issued once until the tree changes."""
+
+
+class ManifestWarning(UserWarning):
+    """Lines of a batch's ``manifest.jsonl`` that are no run record (torn by an interrupted
+    write, or edited by hand): they are skipped, and their runs computed again."""

@@ -5,6 +5,10 @@ format looks at its first bytes (:meth:`InputFile.head`) and, for YAML formats, 
 document (:meth:`InputFile.yaml`); the reader that follows is handed the same
 ``InputFile`` and finds them there. It is an ``os.PathLike``, so every reader still takes a
 path. Every way reading can fail is a :class:`~pinframes.errors.ReadError` naming the file.
+
+Also the public door to the regular-file checks of ``_paths`` (only regular files are
+read: a device never ends, a FIFO blocks): :func:`is_regular_file`,
+:func:`regular_file_problem`.
 """
 
 from __future__ import annotations
@@ -15,10 +19,11 @@ from pathlib import Path
 from typing import Any, TypeVar
 
 from ..errors import ReadError
-from ._paths import path_argument, read_regular_file
+from ._paths import is_regular_file, path_argument, read_regular_file, regular_file_problem
 from ._yaml_loader import Locate, parse_yaml
 
-__all__ = ["HEAD_BYTES", "InputFile", "read_bytes", "read_text"]
+__all__ = ["HEAD_BYTES", "InputFile", "is_regular_file", "read_bytes", "read_text",
+           "regular_file_problem"]
 
 HEAD_BYTES = 4096
 """How many first bytes :meth:`InputFile.head` reads: what tells a file's format."""
