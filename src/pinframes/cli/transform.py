@@ -1,10 +1,11 @@
 """``pinframes transform FILE DATA FRAME -r OTHER``: measured points or vectors into a frame.
 
-``DATA`` is a CSV file with a header: three data columns (any names, such as ``x_m, y_m,
-z_m``) and optionally ``time_s``. With ``time_s`` every row is one point at its own time
-(seconds after the tree's reference time, or after ``--time-ref``); without it every point
-is taken at every time of the time options (default: every keyframe and joint sample on the
-path; a static path needs none).
+``DATA`` is a CSV file with a header: three data columns and optionally ``time_s``. The
+data columns name their unit (``x_mm``; see :mod:`._column_units`): points are converted
+to metres, moved, and written back in that unit. With ``time_s`` every row is one point at
+its own time (seconds after the tree's reference time, or after ``--time-ref``); without it
+every point is taken at every time of the time options (default: every keyframe and joint
+sample on the path; a static path needs none).
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ import numpy as np
 from ..errors import FileFormatError, InvalidDataError
 from ..formats._reading import read_text
 from ..values.timeconv import TimeAxis
+from ._column_units import LENGTH_UNITS, metres_per_unit
 from ._evaluate import add_time_arguments, requested_times
 from ._files import read_tree, require_frames
 from ._output import write_text
@@ -34,10 +36,12 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "transform", parents=parents, help="points or vectors measured in one frame, in another",
         description="Read points (or, with --vectors, directions) given in FRAME from the CSV "
         "file DATA and write them in --relative-to. DATA has a header row naming three data "
-        "columns (kept in the output, so units stay in the names, e.g. x_m,y_m,z_m) and "
-        f"optionally '{TIME_COLUMN}': then each row is one point at its own time (seconds "
-        "after the reference time). Without it every point is written at every time of the "
-        "time options, with columns time_s, point (its row number) and the data columns.")
+        "columns in one unit, LABEL_UNIT (points: "
+        f"{', '.join(LENGTH_UNITS)}, or no unit for metres; e.g. x_mm,y_mm,z_mm), kept in "
+        f"the output with the data in that unit, and optionally '{TIME_COLUMN}': then each "
+        "row is one point at its own time (seconds after the reference time). Without it "
+        "every point is written at every time of the time options, with columns time_s, "
+        "point (its row number) and the data columns.")
     parser.add_argument("file", metavar="FILE", help="scene, frames.yaml, ASDF or URDF file")
     parser.add_argument("data", metavar="DATA", help="CSV file of points or vectors")
     parser.add_argument("frame", metavar="FRAME", help="the frame the data are given in")
@@ -61,6 +65,8 @@ def run(args: argparse.Namespace) -> int:
         row = int(np.argwhere(~np.isfinite(data))[0][0])
         raise InvalidDataError(f"line {row + 2}: not a finite number", file=args.data,
                                field=names[int(np.argwhere(~np.isfinite(data[row]))[0][0])])
+    factor = metres_per_unit(names, not args.vectors, args.data)
+    data = data * factor
     method = tree.transform_vectors if args.vectors else tree.transform_points
     if times is not None:
         if args.times is not None or args.start or args.stop or args.step:
@@ -75,6 +81,8 @@ def run(args: argparse.Namespace) -> int:
             header, rows = names, method(data, args.frame, args.relative_to)
         else:
             header, rows = _every_point_at_every_time(method, args, axis, data, names)
+    rows = np.array(rows)
+    rows[..., -3:] /= factor
     _write(header, rows, args.output)
     return 0
 
