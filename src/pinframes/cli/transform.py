@@ -72,7 +72,8 @@ def run(args: argparse.Namespace) -> int:
         if args.times is not None or args.start or args.stop or args.step:
             raise FileFormatError(f"has a '{TIME_COLUMN}' column: leave out the time options",
                                   file=args.data, field=TIME_COLUMN)
-        out = method(data, args.frame, args.relative_to, times, time_ref=args.time_ref)
+        out = method(data, args.frame, args.relative_to, times, per_time=True,
+                     time_ref=args.time_ref)
         header, rows = [TIME_COLUMN, *names], np.column_stack([times, out])
     else:
         axis = (requested_times(args, tree, args.frame, args.relative_to)
@@ -95,7 +96,7 @@ def _every_point_at_every_time(
     offsets = axis.offsets.astype("timedelta64[ns]")
     times = offsets if axis.reference is None else axis.reference + offsets
     time_ref = args.time_ref if axis.reference is None else axis.reference
-    out = method(data[None], args.frame, args.relative_to, times, time_ref=time_ref)
+    out = method(data, args.frame, args.relative_to, times, time_ref=time_ref)
     count, points = out.shape[:2]
     seconds = np.repeat(axis.offsets / 1e9, points)
     index = np.tile(np.arange(points), count)

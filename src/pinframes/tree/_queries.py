@@ -11,6 +11,7 @@ operations added.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -141,31 +142,32 @@ class TreeQueries(TreeStructure):
 
     def transform_points(
         self, points: Any, frame: str, relative_to: str, times: Any = None, *,
-        time_ref: Any = None, extrapolation: str = "clamp",
+        per_time: bool = False, time_ref: Any = None, extrapolation: str = "clamp",
     ) -> np.ndarray:
         """Points given in ``frame`` (metres), returned in ``relative_to``, at ``times``.
 
         Times follow :meth:`pose` (None: every keyframe and joint sample on the path; a
         static path keeps the points' shape). Shapes follow :meth:`Pose.transform_points`:
-        with ``T`` times, ``(T, 3)`` is one point per time (row ``i`` at time ``i``),
-        ``(M, 3)`` (``M != T``) the same points at every time giving ``(T, M, 3)``,
-        ``(T, M, 3)`` a profile per time; ``(1, M, 3)`` forces the same points at every time
-        when ``M == T``. Bad data raise :class:`~pinframes.errors.InvalidDataError` naming
-        ``points`` and ``frame``.
+        with ``T`` times, ``(M, 3)`` is the same points at every time, giving
+        ``(T, M, 3)`` whatever ``M`` (as :meth:`get_data`), and ``(T, M, 3)`` a profile per
+        time. ``per_time=True`` pairs ``(T, 3)`` points with the times instead: row ``i`` at
+        time ``i``, giving ``(T, 3)`` (an :class:`~pinframes.errors.InvalidDataError` when
+        the counts differ). Bad data raise :class:`~pinframes.errors.InvalidDataError`
+        naming ``points`` and ``frame``.
         """
         pose = self.pose(frame, relative_to, times, time_ref, extrapolation=extrapolation)
-        return _located(pose.transform_points, points, frame)
+        return _located(partial(pose.transform_points, per_time=per_time), points, frame)
 
     def transform_vectors(
         self, vectors: Any, frame: str, relative_to: str, times: Any = None, *,
-        time_ref: Any = None, extrapolation: str = "clamp",
+        per_time: bool = False, time_ref: Any = None, extrapolation: str = "clamp",
     ) -> np.ndarray:
         """Directions given in ``frame``, returned in ``relative_to``: rotated, never moved.
 
-        Arguments, times and shapes as :meth:`transform_points`.
+        Arguments, times, shapes and ``per_time`` as :meth:`transform_points`.
         """
         pose = self.pose(frame, relative_to, times, time_ref, extrapolation=extrapolation)
-        return _located(pose.transform_vectors, vectors, frame)
+        return _located(partial(pose.transform_vectors, per_time=per_time), vectors, frame)
 
     def velocity(
         self, frame: str, relative_to: str | None = None, times: Any = None,

@@ -7,14 +7,14 @@ The shape rules, for a transform with ``T`` samples (``Pose.transform_points`` a
 data shape         result        meaning
 =================  ============  ===============================================
 ``(3,)``           ``(T, 3)``    one point, at every time
-``(T, 3)``         ``(T, 3)``    one point per time: row ``i`` at time ``i``
-``(M, 3)``         ``(T, M, 3)`` the same ``M`` points at every time (``M != T``)
+``(M, 3)``         ``(T, M, 3)`` the same ``M`` points at every time, whatever ``M``
 ``(T, M, 3)``      ``(T, M, 3)`` a profile of ``M`` points per time
-``(1, M, 3)``      ``(T, M, 3)`` the same ``M`` points at every time, also ``M == T``
+``(1, M, 3)``      ``(T, M, 3)`` the same ``M`` points at every time
+``(T, 3)``         ``(T, 3)``    with ``per_time=True`` only: row ``i`` at time ``i``
 =================  ============  ===============================================
 
-``(N, 3)`` with ``N == T`` is always read as one point per time; pass ``data[None]`` for the
-same points at every time. A static transform keeps the data's shape. Points move with the
+Pairing points with times is asked for explicitly (``per_time=True``), never guessed from a
+count that happens to match. A static transform keeps the data's shape. Points move with the
 whole transform (``R @ p + t``), directions only rotate (``R @ v``).
 """
 
@@ -31,19 +31,25 @@ FloatArray = NDArray[np.float64]
 
 
 def transform_data(
-    rotation: FloatArray, translation: FloatArray | None, data: ArrayLike, field: str
+    rotation: FloatArray, translation: FloatArray | None, data: ArrayLike, field: str,
+    per_time: bool = False,
 ) -> FloatArray:
     """``R @ x + t`` (or ``R @ x`` when ``translation`` is None) under the shape rules above.
 
     ``rotation`` is ``(3, 3)`` or ``(T, 3, 3)``, ``translation`` ``(3,)`` or ``(T, 3)``;
-    ``field`` names the argument in errors (:class:`~pinframes.errors.InvalidDataError`).
+    ``per_time`` pairs ``(T, 3)`` data row by row with the samples; ``field`` names the
+    argument in errors (:class:`~pinframes.errors.InvalidDataError`).
     """
     array = _checked(data, field)
     if rotation.ndim == 2:
         out = array @ rotation.T
         return out if translation is None else out + translation
     count = rotation.shape[0]
-    if array.ndim == 1 or (array.ndim == 2 and array.shape[0] == count):
+    if per_time and array.ndim == 2 and array.shape[0] != count:
+        raise InvalidDataError(
+            f"per_time=True pairs row i with time i, but {array.shape[0]} rows were given "
+            f"for {count} times", field=field)
+    if array.ndim == 1 or (per_time and array.ndim == 2):
         # one point per time: (T, 3) (a single point broadcast over the times)
         rows = np.broadcast_to(array, (count, 3))
         out = (rotation[:, :, 0] * rows[:, 0, None] + rotation[:, :, 1] * rows[:, 1, None]

@@ -310,25 +310,25 @@ class Pose:
         timed = left if left.is_time_dependent else right
         return Pose._trusted(rotation, translation, timed._times, timed._reference)
 
-    def transform_points(self, points: ArrayLike) -> FloatArray:
+    def transform_points(self, points: ArrayLike, *, per_time: bool = False) -> FloatArray:
         """Points given in frame A, returned in frame B (``R @ p + t``), metres.
 
-        ``points`` is ``(3,)``, ``(N, 3)`` or ``(T, M, 3)``. A static pose keeps the shape.
-        A pose with ``T`` samples gives ``(T, 3)`` for ``(3,)`` and for ``(T, 3)`` (row ``i``
-        at sample ``i``), ``(T, M, 3)`` for ``(M, 3)`` with ``M != T`` (every point at every
-        sample), for ``(T, M, 3)`` (a profile per sample) and for ``(1, M, 3)``. So
-        ``(N, 3)`` with ``N == T`` is one point per sample; pass ``points[None]`` for the
-        same points at every sample. Bad shapes and NaN are an
-        :class:`~pinframes.errors.InvalidDataError` naming ``points``.
+        ``points`` is ``(3,)``, ``(M, 3)`` or ``(T, M, 3)``. A static pose keeps the shape.
+        A pose with ``T`` samples gives ``(T, 3)`` for ``(3,)``, and ``(T, M, 3)`` for
+        ``(M, 3)`` (every point at every sample, whatever ``M``), for ``(T, M, 3)`` (a
+        profile per sample) and for ``(1, M, 3)``. ``per_time=True`` pairs ``(T, 3)`` points
+        with the samples instead (row ``i`` at sample ``i``, giving ``(T, 3)``). Bad shapes
+        and NaN are an :class:`~pinframes.errors.InvalidDataError` naming ``points``.
         """
-        return transform_data(self._rotation, self._translation, points, "points")
+        return transform_data(self._rotation, self._translation, points, "points", per_time)
 
-    def transform_vectors(self, vectors: ArrayLike) -> FloatArray:
+    def transform_vectors(self, vectors: ArrayLike, *, per_time: bool = False) -> FloatArray:
         """Directions given in frame A, returned in frame B (``R @ v``: rotation only).
 
-        Shapes as :meth:`transform_points`; the field named in errors is ``vectors``.
+        Shapes and ``per_time`` as :meth:`transform_points`; the field named in errors is
+        ``vectors``.
         """
-        return transform_data(self._rotation, None, vectors, "vectors")
+        return transform_data(self._rotation, None, vectors, "vectors", per_time)
 
     def at(self, times: Any, time_ref: Any = None) -> Pose:
         """This pose interpolated at ``times``: one pose per requested time.

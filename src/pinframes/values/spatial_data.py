@@ -122,9 +122,7 @@ def apply_pose(pose: Pose, points: FloatArray) -> FloatArray:
     A static pose maps ``(..., 3)`` points; a pose of T samples maps ``(M, 3)`` points to
     ``(T, M, 3)`` and ``(T, M, 3)`` points sample by sample.
     """
-    # (1, M, 3): the same points at every sample, also when M equals the sample count
-    every_time = points[None] if points.ndim == 2 and pose.is_time_dependent else points
-    return pose.transform_points(every_time)
+    return pose.transform_points(points)
 
 
 def _float_points(points: Any) -> FloatArray:
