@@ -191,7 +191,8 @@ class TreeStructure:
 
         Columns follow ``joint_names`` (default: every actuated joint of the tree, in the
         order the robots were mounted, URDF order within a robot). Values are radians or
-        metres, interpolated linearly between samples (continuous joints the short way
+        metres (a pint quantity is converted: degrees for revolute joints, millimetres for
+        prismatic ones), interpolated linearly between samples (continuous joints the short way
         round) and held outside them; the sample times join the default time union of
         :meth:`pose`. Values outside the URDF limits warn (``JointLimitWarning``).
         """

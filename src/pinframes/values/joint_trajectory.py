@@ -20,6 +20,7 @@ from ..errors import (
 from ._interpolation import segment_position, segment_positions
 from ._readonly import readonly_copy
 from .joint import Joint
+from .quantities import is_quantity, metres, radians
 from .timeconv import parse_time_axis
 
 __all__ = ["JointTrack", "JointTrajectory", "joint_trajectories_from_samples"]
@@ -118,7 +119,8 @@ def joint_trajectories_from_samples(
     count = axis.offsets.shape[0]
     if count > 1 and np.any(np.diff(axis.offsets) <= 0):
         raise InvalidTimeError("joint sample times must be strictly increasing", field="times")
-    values = _positions(positions, count, joint_names)
+    values = _positions(_in_joint_units(positions, [joints[name] for name in joint_names]),
+                        count, joint_names)
     shared_times = readonly_copy(axis.offsets)
     trajectories = {}
     for column, name in enumerate(joint_names):
@@ -130,6 +132,21 @@ def joint_trajectories_from_samples(
         trajectories[name] = JointTrajectory._on_shared_times(shared_times, axis.reference,
                                                               column_values)
     return trajectories
+
+
+def _in_joint_units(positions: Any, joints: list[Joint]) -> Any:
+    """A pint quantity of positions in radians (revolute and continuous joints) or metres
+    (prismatic joints); plain numbers unchanged. One quantity cannot drive both kinds."""
+    if not is_quantity(positions):
+        return positions
+    kinds = {"prismatic" if joint.kind == "prismatic" else "angular" for joint in joints}
+    if len(kinds) > 1:
+        raise JointError("one quantity cannot hold both angles and lengths: give radians for "
+                         "revolute and metres for prismatic joints as plain numbers",
+                         field="positions")
+    if kinds == {"prismatic"}:
+        return metres(positions, "positions", JointError)
+    return radians(positions, "positions", JointError)
 
 
 def _positions(positions: Any, count: int, joint_names: list[str]) -> np.ndarray:

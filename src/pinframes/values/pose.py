@@ -19,7 +19,7 @@ from ._se3 import compose, inverse, samples_first, samples_last
 from ._timeline import QueryTimeline, TimedSource, plan_query_timeline
 from ._transform_data import transform_data
 from .euler import euler_from_matrix, matrix_from_euler
-from .lengths import metres
+from .quantities import is_quantity, magnitude_in, metres, radians
 from .rotations import (
     ROTATION_TOLERANCE,
     matrix_from_axis_vectors,
@@ -78,7 +78,7 @@ class Pose:
         reference_time: Any = None,
     ) -> None:
         translation_array = _as_float_array(metres(translation, "translation"), "translation")
-        rotation_array = _rotation_matrices(rotation)
+        rotation_array = _rotation_matrices(magnitude_in(rotation, "dimensionless", "rotation"))
         axis = _time_axis(times, reference_time)
         count = None if axis is None else axis.offsets.shape[0]
         translation_array = _broadcast_part(translation_array, (3,), count, "translation")
@@ -141,7 +141,8 @@ class Pose:
         ``R = Rz(yaw) @ Ry(pitch) @ Rx(roll)``, as in URDF.
         """
         values = _as_float_array([metres(x, "x"), metres(y, "y"), metres(z, "z"),
-                                  roll, pitch, yaw], "xyz_rpy")
+                                  radians(roll, "roll"), radians(pitch, "pitch"),
+                                  radians(yaw, "yaw")], "xyz_rpy")
         return cls._trusted(matrix_from_rpy(values[3:]), values[:3].copy())
 
     @classmethod
@@ -154,12 +155,16 @@ class Pose:
         ``sequence`` is one to three axis letters, lower case for rotations about the fixed
         axes (extrinsic, ``"xyz"``: ``R = Rz(c) Ry(b) Rx(a)``), upper case about the turning
         axes (intrinsic, ``"XYZ"``: ``R = Rx(a) Ry(b) Rz(c)``). ``angles`` has one value per
-        letter, shape ``(n,)`` or ``(T, n)`` with T ``times``; radians unless ``degrees``.
+        letter, shape ``(n,)`` or ``(T, n)`` with T ``times``; radians unless ``degrees``,
+        or a pint quantity of angles in any unit (``degrees`` then does not apply).
         ``translation`` in metres (or a pint length), default the origin.
         """
-        theta = _as_float_array(angles, "angles")
-        if degrees:
-            theta = np.deg2rad(theta)
+        if is_quantity(angles):
+            theta = _as_float_array(radians(angles, "angles"), "angles")
+        else:
+            theta = _as_float_array(angles, "angles")
+            if degrees:
+                theta = np.deg2rad(theta)
         rotation = matrix_from_euler(sequence, theta)
         return cls((0.0, 0.0, 0.0) if translation is None else translation, rotation,
                    times, reference_time)

@@ -17,8 +17,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InvalidDataError
 from ._readonly import readonly, readonly_copy
-from .lengths import metres
 from .pose import Pose, _time_axis
+from .quantities import metres
 
 __all__ = ["SpatialData", "apply_pose"]
 
@@ -49,7 +49,7 @@ class SpatialData:
     def __init__(self, points: ArrayLike, triangles: ArrayLike | None = None,
                  attributes: Mapping[str, ArrayLike] | None = None, times: Any = None,
                  reference_time: Any = None) -> None:
-        array = _float_points(metres(points, "points"))
+        array = _float_points(metres(points, "points", InvalidDataError))
         axis = _time_axis(times, reference_time)
         timed = array.ndim == 3
         if timed != (axis is not None):

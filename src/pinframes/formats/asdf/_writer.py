@@ -21,7 +21,7 @@ from ...values.pose import Pose
 from ...values.subsystem import Subsystem
 from .._atomic import atomic_write
 from .._joint_steps import check_joint_steps
-from .._writable import check_writable_tree
+from .._writable import check_writable_tree, refuse_attached_data
 from ._asdf_config import temporary_asdf_config
 from ._data import encode_data
 from ._depth import MAX_GRAPH_DEPTH, deepest_frame, recursion_room, too_deep
@@ -79,10 +79,7 @@ def write_asdf(tree: FrameTree, path: str | os.PathLike[str], schema: str = "1.0
             file=str(path), field="schema")
     depth = 0
     if generation is LEGACY:
-        if tree.data_names:
-            raise UnsupportedFeatureError(
-                f"data is attached to frames ({', '.join(tree.data_names)}): pinframes writes "
-                "data in schema '0.1.0' only", file=str(path), field="schema")
+        refuse_attached_data(tree, path, "schema '1.0.0'", field="schema")
         hierarchy = _legacy_hierarchy(tree)
     else:
         deepest, depth = deepest_frame((name, tree.parent(name) or "") for name in tree.frames[1:])

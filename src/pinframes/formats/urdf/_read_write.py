@@ -16,7 +16,7 @@ from ...values.rotations import rpy_from_matrix
 from ...values.timeconv import format_timestamp_iso
 from .._atomic import atomic_write
 from .._snapshot import moving_parts, one_instant
-from .._writable import check_writable_tree
+from .._writable import check_writable_tree, refuse_attached_data
 from ..limits import Limits
 from ._mount import URDF_METADATA_KEY, mount_robot
 from ._parse import parse_urdf
@@ -53,9 +53,11 @@ def write_urdf(tree: FrameTree, path: str | os.PathLike[str], time: Any = None, 
     ``read_joint_trajectory`` reads it back), whenever a joint is driven. With
     ``freeze_joints`` every robot joint becomes a fixed joint at its value then instead,
     and no joint-state file is written. Link contents (visuals, inertials, ``package://``
-    URIs) and unread joint elements are written back as they were read.
+    URIs) and unread joint elements are written back as they were read. Data attached to
+    frames cannot go into a URDF: such a tree is an ``UnsupportedFeatureError`` naming it.
     """
     check_writable_tree(tree, path)
+    refuse_attached_data(tree, path, "a URDF")
     instant = one_instant(tree, time, path, "URDF")
     robot = ET.Element("robot", name=tree.name or tree.root)
     written: set[str] = set()
