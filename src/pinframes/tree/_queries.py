@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import PinframesError, TreeStructureError
+from ..errors import InvalidPoseError, PinframesError, TreeStructureError
 from ..kinematics import (
     FrameJacobian,
     PinocchioTree,
@@ -30,6 +30,7 @@ from ..kinematics import (
     paths_to_common_ancestor,
     snapshot,
 )
+from ..values.numbers import require_finite_result
 from ..values.pose import Pose
 from ..values.pose_stack import PoseStack
 from ..values.timeconv import TimeAxis
@@ -86,8 +87,11 @@ class TreeQueries(TreeStructure):
         self._require(frame, "frame")
         relative_to = self._default_reference(frame, relative_to)
         self._require(relative_to, "relative_to")
-        return evaluate_pose(self._frozen(), frame, relative_to, times, time_ref,
+        pose = evaluate_pose(self._frozen(), frame, relative_to, times, time_ref,
                              extrapolation)
+        _require_finite(pose.translation, "translation",
+                        f"the pose of {frame!r} in {relative_to!r}", frame)
+        return pose
 
     def poses(
         self,
@@ -137,8 +141,13 @@ class TreeQueries(TreeStructure):
             self._require(name, "relative_to")
         if not frames:
             return PoseStack(np.empty((0, 3, 3)), np.empty((0, 3)))
-        return evaluate_poses(self._frozen(), frames, references, times, time_ref,
-                              extrapolation)
+        stack = evaluate_poses(self._frozen(), frames, references, times, time_ref,
+                               extrapolation)
+        if not np.isfinite(stack.translation).all():  # name the first pair that overflowed
+            pair = int(np.argwhere(~np.isfinite(stack.translation))[0][0])
+            _require_finite(stack.translation[pair], "translation",
+                            f"the pose of {frames[pair]!r} in {references[pair]!r}", frames[pair])
+        return stack
 
     def transform_points(
         self, points: Any, frame: str, relative_to: str, times: Any = None, *,
@@ -202,8 +211,12 @@ class TreeQueries(TreeStructure):
         if expressed_in is None:
             expressed_in = relative_to
         self._require(expressed_in, "expressed_in")
-        return evaluate_velocity(self._frozen(), frame, relative_to, times, time_ref,
-                                 extrapolation, expressed_in)
+        velocity = evaluate_velocity(self._frozen(), frame, relative_to, times, time_ref,
+                                     extrapolation, expressed_in)
+        what = f"the velocity of {frame!r} relative to {relative_to!r}"
+        _require_finite(velocity.linear, "linear", what, frame)
+        _require_finite(velocity.angular, "angular", what, frame)
+        return velocity
 
     def jacobian(
         self, frame: str, relative_to: str | None = None, times: Any = None,
@@ -227,8 +240,11 @@ class TreeQueries(TreeStructure):
         self._require(frame, "frame")
         relative_to = self._default_reference(frame, relative_to)
         self._require(relative_to, "relative_to")
-        return evaluate_jacobian(self._frozen(), frame, relative_to, times, time_ref,
-                                 extrapolation, joints)
+        jacobian = evaluate_jacobian(self._frozen(), frame, relative_to, times, time_ref,
+                                     extrapolation, joints)
+        _require_finite(jacobian.matrix, "matrix",
+                        f"the Jacobian of {frame!r} relative to {relative_to!r}", frame)
+        return jacobian
 
     def sample_times(self, frame: str, relative_to: str | None = None) -> TimeAxis | None:
         """The times :meth:`pose` evaluates at when given none, without evaluating.
@@ -270,6 +286,11 @@ class TreeQueries(TreeStructure):
             raise TreeStructureError("the root frame has no parent; pass relative_to",
                                      frame=frame, field="relative_to")
         return parent
+
+
+def _require_finite(array: np.ndarray, field: str, what: str, frame: str) -> None:
+    """An :class:`InvalidPoseError` when a result computed from finite poses overflowed."""
+    require_finite_result(array, what, InvalidPoseError, frame=frame, field=field)
 
 
 def _located(transform: Callable[[Any], np.ndarray], data: Any, frame: str) -> np.ndarray:

@@ -24,6 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InvalidDataError
+from .numbers import float_array, require_finite_result
 
 __all__ = ["transform_data"]
 
@@ -38,9 +39,16 @@ def transform_data(
 
     ``rotation`` is ``(3, 3)`` or ``(T, 3, 3)``, ``translation`` ``(3,)`` or ``(T, 3)``;
     ``per_time`` pairs ``(T, 3)`` data row by row with the samples; ``field`` names the
-    argument in errors (:class:`~pinframes.errors.InvalidDataError`).
+    argument in errors (:class:`~pinframes.errors.InvalidDataError`), also when finite
+    data and poses overflow to infinity.
     """
-    array = _checked(data, field)
+    out = _transformed(rotation, translation, _checked(data, field), field, per_time)
+    require_finite_result(out, f"the transformed {field}", InvalidDataError, field=field)
+    return out
+
+
+def _transformed(rotation: FloatArray, translation: FloatArray | None, array: FloatArray,
+                 field: str, per_time: bool) -> FloatArray:
     if rotation.ndim == 2:
         out = array @ rotation.T
         return out if translation is None else out + translation
@@ -65,16 +73,8 @@ def transform_data(
 
 
 def _checked(data: ArrayLike, field: str) -> FloatArray:
-    try:
-        array = np.asarray(data, dtype=float)
-    except (TypeError, ValueError, OverflowError) as exc:
-        raise InvalidDataError(f"expected numbers: {exc}", field=field) from None
+    array = float_array(data, field, InvalidDataError)
     if array.ndim not in (1, 2, 3) or array.shape[-1] != 3:
         raise InvalidDataError(
             f"expected shape (3,), (N, 3) or (T, M, 3), got {array.shape}", field=field)
-    if not np.all(np.isfinite(array)):
-        where = np.argwhere(~np.isfinite(array.reshape(-1, 3)))[0][0]
-        raise InvalidDataError(
-            f"non-finite value (NaN or infinity) in row {where} of the flattened "
-            f"(N, 3) data", field=field)
     return array

@@ -20,6 +20,7 @@ from ..errors import (
 from ._interpolation import segment_position, segment_positions
 from ._readonly import readonly_copy
 from .joint import Joint
+from .numbers import float_array
 from .quantities import is_quantity, metres, radians
 from .timeconv import parse_time_axis
 
@@ -150,10 +151,8 @@ def _in_joint_units(positions: Any, joints: list[Joint]) -> Any:
 
 
 def _positions(positions: Any, count: int, joint_names: list[str]) -> np.ndarray:
-    try:
-        values = np.asarray(positions, dtype=float)  # each joint's column is copied later
-    except (TypeError, ValueError, OverflowError) as exc:
-        raise JointError(f"positions must be numbers: {exc}", field="positions") from None
+    # each joint's column is copied later
+    values = float_array(positions, "positions", JointError, finite=False)
     if values.ndim == 1 and len(joint_names) == 1:
         values = values[:, None]
     if values.shape != (count, len(joint_names)):

@@ -19,6 +19,7 @@ from ._se3 import compose, inverse, samples_first, samples_last
 from ._timeline import QueryTimeline, TimedSource, plan_query_timeline
 from ._transform_data import transform_data
 from .euler import euler_from_matrix, matrix_from_euler
+from .numbers import float_array, require_finite_result
 from .quantities import is_quantity, magnitude_in, metres, radians
 from .rotations import (
     ROTATION_TOLERANCE,
@@ -296,6 +297,8 @@ class Pose:
         """The inverse transform: the pose of B in A for a pose of A in B."""
         rotation, translation = samples_first(
             inverse(samples_last((self._rotation, self._translation))))
+        require_finite_result(translation, "the inverse pose's translation", InvalidPoseError,
+                              field="translation")
         return Pose._trusted(rotation, translation, self._times, self._reference)
 
     def __matmul__(self, other: Pose) -> Pose:
@@ -312,6 +315,8 @@ class Pose:
         rotation, translation = samples_first(compose(
             samples_last((left._rotation, left._translation)),
             samples_last((right._rotation, right._translation))))
+        require_finite_result(translation, "the composed translation", InvalidPoseError,
+                              field="translation")
         timed = left if left.is_time_dependent else right
         return Pose._trusted(rotation, translation, timed._times, timed._reference)
 
@@ -362,6 +367,8 @@ class Pose:
         if reference is not None and self._reference is not None:
             shift = timestamp_ns(reference) - timestamp_ns(self._reference)
         rotation, translation = self.keyframes.sample(shift_ns(times, shift))
+        require_finite_result(translation, "the interpolated translation", InvalidPoseError,
+                              field="translation")
         return Pose._trusted(rotation, translation, times, reference)
 
     def _sources(self) -> list[TimedSource]:
@@ -422,13 +429,7 @@ def _union_timeline(a: Pose, b: Pose) -> QueryTimeline:
 
 
 def _as_float_array(values: ArrayLike, field: str) -> FloatArray:
-    try:
-        array = np.array(values, dtype=float)
-    except (TypeError, ValueError, OverflowError) as exc:
-        raise InvalidPoseError(f"expected numbers: {exc}", field=field) from None
-    if not np.all(np.isfinite(array)):
-        raise InvalidPoseError("values must be finite (no NaN or infinity)", field=field)
-    return array
+    return float_array(values, field, InvalidPoseError, copy=True)
 
 
 def _rotation_matrices(rotation: ArrayLike | None) -> FloatArray:

@@ -17,6 +17,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InvalidDataError
 from ._readonly import readonly, readonly_copy
+from .numbers import float_array
 from .pose import Pose, _time_axis
 from .quantities import metres
 
@@ -126,15 +127,10 @@ def apply_pose(pose: Pose, points: FloatArray) -> FloatArray:
 
 
 def _float_points(points: Any) -> FloatArray:
-    try:
-        array = np.array(points, dtype=float)
-    except (TypeError, ValueError, OverflowError) as exc:
-        raise InvalidDataError(f"expected numbers: {exc}", field="points") from None
+    array = float_array(points, "points", InvalidDataError, copy=True)
     if array.ndim not in (2, 3) or array.shape[-1] != 3:
         raise InvalidDataError(f"expected shape (M, 3) or (T, M, 3), got {array.shape}",
                                field="points")
-    if not np.all(np.isfinite(array)):
-        raise InvalidDataError("values must be finite (no NaN or infinity)", field="points")
     return array
 
 

@@ -11,7 +11,8 @@ Relative times (offsets) are ``timedelta64[ns]``; absolute times are ``datetime6
   ``+01:00`` accepted);
 - pandas ``Timedelta``, ``TimedeltaIndex``, ``Timestamp``, ``DatetimeIndex`` and ``Series``
   (pandas is optional and never imported here);
-- pint quantities of time (``Q_([0, 500], "ms")``), in any time unit.
+- pint quantities of time (``Q_([0, 500], "ms")``), in any time unit;
+- a :class:`TimeAxis`, such as ``FrameTree.time_union()`` returns.
 """
 
 from __future__ import annotations
@@ -85,8 +86,11 @@ def parse_time_axis(values: Any, *, field: str = "times") -> TimeAxis:
     """Read one or many times into a :class:`TimeAxis`.
 
     Absolute input gets its first value as reference; relative input has no reference.
-    Mixing absolute and relative values is an error.
+    Mixing absolute and relative values is an error. A :class:`TimeAxis` (what
+    ``FrameTree.time_union`` returns) is taken as it is.
     """
+    if isinstance(values, TimeAxis):
+        return TimeAxis(np.array(values.offsets, dtype=np.int64).reshape(-1), values.reference)
     if isinstance(values, (float, int)) and not isinstance(values, bool) and abs(values) < 9e9:
         return TimeAxis(np.array([round(values * 1e9)], dtype=np.int64), None)
     array = _as_time_array(values, field)
