@@ -47,7 +47,7 @@ import numpy as np
 import pinocchio as pin
 import yaml
 
-from pinframes.formats._atomic import atomic_write
+from pinframes.formats.atomic import atomic_write
 
 HERE = Path(__file__).resolve().parent
 URDF_PATH = HERE.parent / "welding_robot" / "welding_robot.urdf"

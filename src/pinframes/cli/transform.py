@@ -18,7 +18,7 @@ from collections.abc import Callable
 import numpy as np
 
 from ..errors import FileFormatError, InvalidDataError
-from ..formats._reading import read_text
+from ..formats.reading import read_text
 from ..values.timeconv import TimeAxis
 from ._column_units import LENGTH_UNITS, metres_per_unit
 from ._evaluate import add_time_arguments, requested_times
