@@ -23,6 +23,7 @@ from pinframes.errors import (
     InvalidPoseError,
     InvalidTimeError,
     JointError,
+    JointNotFoundError,
     ReferenceTimeError,
     TreeStructureError,
 )
@@ -113,7 +114,7 @@ CALLS = [
          FileFormatError, "j1", "mimic.joint", "mimic cycle: j1 -> j1"),
     # FrameTree.set_joint_trajectory
     Call("trajectory-unknown-joint", lambda t: t.set_joint_trajectory([0.0], [[1.0]], ["ghost"]),
-         JointError, None, "joint_names", "no joint named 'ghost'"),
+         JointNotFoundError, None, "joint_names", "no joint named 'ghost'"),
     Call("trajectory-mimic-joint",
          lambda t: t.set_joint_trajectory([START], [[1.0]], ["arm/j2"]),
          JointError, None, "joint_names", "joint 'arm/j2' is a mimic joint"),

@@ -15,6 +15,7 @@ from ..errors import (
     InvalidTimeError,
     JointError,
     JointLimitWarning,
+    JointNotFoundError,
     near_misses,
 )
 from ._readonly import readonly_copy
@@ -108,7 +109,7 @@ def joint_trajectories_from_samples(
     joint_names = list(joint_names)
     for name in joint_names:
         if name not in joints:
-            raise JointError(f"no joint named {name!r} in the tree"
+            raise JointNotFoundError(f"no joint named {name!r} in the tree"
                              + near_misses(name, joints, "joint"), field="joint_names")
         mimic = joints[name].mimic
         if mimic is not None:
@@ -162,8 +163,8 @@ def _positions(positions: Any, count: int, joint_names: list[str]) -> np.ndarray
             field="positions")
     if not np.all(np.isfinite(values)):
         row, column = np.argwhere(~np.isfinite(values))[0]
-        raise JointError(f"non-finite value at sample {row}", frame=joint_names[column],
-                         field="positions")
+        raise JointError(f"non-finite value at sample {row} (counted from 0)",
+                         joint=joint_names[column], field="positions")
     return values
 
 
