@@ -14,7 +14,10 @@ from __future__ import annotations
 
 import difflib
 import os
+import sys
+import warnings
 from collections.abc import Iterable
+from types import FrameType
 
 __all__ = [
     "ArgumentTypeError",
@@ -40,6 +43,7 @@ __all__ = [
     "UnsupportedFeatureError",
     "WriteError",
     "near_misses",
+    "warn_at_caller",
 ]
 
 
@@ -195,6 +199,18 @@ def near_misses(name: object, known: Iterable[str], kind: str = "frame") -> str:
     if not matches:
         return ""
     return f"; did you mean {kind} " + " or ".join(repr(match) for match in matches) + "?"
+
+
+def warn_at_caller(message: str, category: type[Warning] = UserWarning) -> None:
+    """Warn about the line that called pinframes: the warning's file and line are those of
+    the first frame outside the ``pinframes`` package (however deep inside pinframes the
+    warning arises), so that Python shows the user's line and filters on it work."""
+    frame: FrameType | None = sys._getframe(1)  # the function that warns: stacklevel 2
+    level = 2
+    while frame is not None and frame.f_globals.get("__name__", "").partition(".")[0] == (
+            "pinframes"):
+        frame, level = frame.f_back, level + 1
+    warnings.warn(message, category, stacklevel=level)
 
 
 class JointLimitWarning(UserWarning):

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -17,6 +16,7 @@ from ..errors import (
     JointLimitWarning,
     JointNotFoundError,
     near_misses,
+    warn_at_caller,
 )
 from ._readonly import readonly_copy
 from .interpolation import segment_position, segment_positions
@@ -173,6 +173,6 @@ def _warn_outside_limits(name: str, lower: float | None, upper: float | None,
     below = lower is not None and values.min() < lower
     above = upper is not None and values.max() > upper
     if below or above:
-        warnings.warn(
+        warn_at_caller(
             f"joint {name!r}: values {values.min():.6g} to {values.max():.6g} leave its "
-            f"limits [{lower}, {upper}]", JointLimitWarning, stacklevel=4)
+            f"limits [{lower}, {upper}]", JointLimitWarning)

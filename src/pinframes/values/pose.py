@@ -387,21 +387,24 @@ class Pose:
         return self._keyframes
 
     def __repr__(self) -> str:
+        """The numbers of a static pose; the time span and the first and last samples'
+        numbers of a time-dependent one (quaternions with ``w >= 0``)."""
         if not self.is_time_dependent:
-            x, y, z = self._translation
-            qx, qy, qz, qw = self.quaternion
-            return (f"Pose(translation=({x:.6g}, {y:.6g}, {z:.6g}), "
-                    f"quaternion=({qx:.6g}, {qy:.6g}, {qz:.6g}, {qw:.6g}))")
+            quaternion = quaternion_from_matrix(self._rotation)
+            return f"Pose({_numbers_text(self._translation, quaternion)})"
         offsets = self.keyframes.times
         first, last = offsets[[0, -1]] / 1e9
         text = (f"Pose(1 sample at {first:.9g} s" if len(self) == 1 else
                 f"Pose({len(self)} samples from {first:.9g} s to {last:.9g} s")
-        if self._reference is None:
-            return text + ")"
-        stamps = [format_timestamp_iso(stamp) for stamp in
-                  self._reference + offsets[[0, -1]].astype("timedelta64[ns]")]
-        return (f"{text} after {format_timestamp_iso(self._reference)}, "
-                f"{' to '.join(stamps[:len(self)])})")
+        if self._reference is not None:
+            stamps = [format_timestamp_iso(stamp) for stamp in
+                      self._reference + offsets[[0, -1]].astype("timedelta64[ns]")]
+            text += (f" after {format_timestamp_iso(self._reference)}, "
+                     f"{' to '.join(stamps[:len(self)])}")
+        ends = [0] if len(self) == 1 else [0, -1]
+        numbers = _numbers_text(self._translation[ends],
+                                quaternion_from_matrix(self._rotation[ends]))
+        return f"{text}: {numbers})"
 
 
 def trusted_pose(
@@ -411,6 +414,16 @@ def trusted_pose(
     """A :class:`Pose` of arrays known to be valid (the evaluator's results): no checks or
     copies. ``times`` are int64 ns after ``reference``."""
     return Pose._trusted(rotation, translation, times, reference)
+
+
+def _numbers_text(translation: FloatArray, quaternion: FloatArray) -> str:
+    """``translation=(x, y, z), quaternion=(x, y, z, w)``, or for two samples each as
+    ``(first) to (last)``."""
+    def vector(values: FloatArray) -> str:
+        rows = np.atleast_2d(values)
+        return " to ".join("(" + ", ".join(f"{value:.6g}" for value in row) + ")"
+                           for row in rows)
+    return f"translation={vector(translation)}, quaternion={vector(quaternion)}"
 
 
 def _same_timeline(a: Pose, b: Pose) -> bool:

@@ -3,14 +3,13 @@
 from __future__ import annotations
 
 import os
-import warnings
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 
-from ...errors import BrokenMimicWarning, FileFormatError
+from ...errors import BrokenMimicWarning, FileFormatError, warn_at_caller
 from ...values.pose import Pose
 from ..limits import Limits, current_limits, exceeded, reader_with_limits
 from ..reading import read_text
@@ -80,7 +79,7 @@ def parse_urdf(urdf: str | os.PathLike[str], *, strict: bool = False,
     name = root.get("name")
     if not name:
         name = Path(source).stem if source != "<urdf string>" else "robot"
-        warnings.warn(f"{source}: <robot> has no name; using {name!r}", stacklevel=3)
+        warn_at_caller(f"{source}: <robot> has no name; using {name!r}")
     try:
         links, joints, extra = _elements(root, source)
     except RecursionError:
@@ -206,10 +205,10 @@ def _without_broken_mimics(joints: list[JointDescription], source: str, strict: 
             if strict:
                 raise FileFormatError(f"mimics unknown joint {joint.mimic[0]!r}", file=source,
                                       joint=joint.name, field="mimic.joint")
-            warnings.warn(
+            warn_at_caller(
                 f"{source}: joint {joint.name!r} mimics joint {joint.mimic[0]!r}, which the "
                 "file does not have; it is loaded as an independent joint (strict=True "
-                "refuses the file)", BrokenMimicWarning, stacklevel=4)
+                "refuses the file)", BrokenMimicWarning)
             joint = replace(joint, mimic=None)
         kept.append(joint)
     return kept
