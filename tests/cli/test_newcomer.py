@@ -54,7 +54,7 @@ def test_every_option_names_its_default(name, parser):
 
 def test_help_of_convert_names_the_default_schema(run_cli):
     text = " ".join(run_cli("convert", "--help").stdout.split())
-    assert "(default: 1.0.0)" in text
+    assert "(default: 0.1.0)" in text
 
 
 def test_tree_files_are_told_by_content_whatever_their_name(run_cli, tmp_path):

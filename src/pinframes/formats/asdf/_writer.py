@@ -35,7 +35,7 @@ DEFAULT_HIERARCHY_NAME = "pinframes"
 _ARRAY_INLINE_THRESHOLD = 64
 
 
-def write_asdf(tree: FrameTree, path: str | os.PathLike[str], schema: str = "1.0.0", *,
+def write_asdf(tree: FrameTree, path: str | os.PathLike[str], schema: str = "0.1.0", *,
                key: str = HIERARCHY_KEY) -> None:
     """Write ``tree`` as a weldx coordinate system hierarchy (atomically).
 
@@ -45,10 +45,12 @@ def write_asdf(tree: FrameTree, path: str | os.PathLike[str], schema: str = "1.0
         The tree to write; a tree holding only its root is fine.
     path : path-like
         The ``.asdf`` file to write.
-    schema : {"1.0.0", "0.1.0"}
-        ``"1.0.0"``: the legacy format (weldx up to 0.4; tags ``tag:weldx.bam.de:...``,
-        coordinates in millimetres without unit). ``"0.1.0"``: the format weldx 0.6 to 0.8.2
-        reads (``di_graph``, ``local_coordinate_system-0.1.1``, coordinates in millimeter).
+    schema : {"0.1.0", "1.0.0"}
+        ``"0.1.0"`` (the default): the format weldx 0.6 to 0.8.2 writes and reads
+        (``di_graph``, ``local_coordinate_system-0.1.1``, coordinates in millimeter, data
+        attached to frames). ``"1.0.0"``: the legacy format (weldx up to 0.4; tags
+        ``tag:weldx.bam.de:...``, coordinates in millimetres without unit, no data), which
+        current weldx opens only as a raw dictionary.
     key : str
         Where the hierarchy goes in the file's tree.
 
