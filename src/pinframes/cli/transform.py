@@ -23,7 +23,7 @@ from ..values.timeconv import TimeAxis
 from ._column_units import LENGTH_UNITS, metres_per_unit
 from ._evaluate import add_time_arguments, requested_times
 from ._files import read_tree, require_frames
-from ._output import write_text
+from ._output import require_suffix, write_text
 
 __all__ = ["add_parser", "run"]
 
@@ -58,6 +58,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Transform the data and write them."""
+    require_suffix(args.output, (".csv",), "CSV")
     tree = read_tree(args.file)
     require_frames(tree, args.file, args.frame, args.relative_to)
     names, times, data = _read_data(args.data)
