@@ -119,7 +119,7 @@ def evaluate_poses(tree: FrameTree, frame: str, relative_to: str, times: TimeAxi
         if times is None:
             return tree.pose(frame, relative_to=relative_to)
         time_ref = times.reference
-    values = _time_values(times)
+    values = times.as_numpy()
     count = values.shape[0]
     bar = _ProgressBar(progress, count) if progress is not None and count > CHUNK_SIZE else None
     parts = []
@@ -142,11 +142,6 @@ def pose_velocity(tree: FrameTree, pose: Pose, frame: str, relative_to: str,
         return tree.velocity(frame, relative_to, expressed_in=expressed_in)
     times = offsets if reference is None else reference + offsets
     return tree.velocity(frame, relative_to, times, expressed_in, time_ref=reference)
-
-
-def _time_values(times: TimeAxis) -> np.ndarray:
-    offsets = times.offsets.astype("timedelta64[ns]")
-    return offsets if times.reference is None else times.reference + offsets
 
 
 def _concatenate(parts: list[Pose]) -> Pose:

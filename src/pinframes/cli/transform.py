@@ -59,7 +59,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 def run(args: argparse.Namespace) -> int:
     """Transform the data and write them."""
     require_suffix(args.output, (".csv",), "CSV")
-    tree = read_tree(args.file)
+    tree = read_tree(args.file, args.robot_description)
     require_frames(tree, args.file, args.frame, args.relative_to)
     names, times, data = _read_data(args.data)
     if not np.all(np.isfinite(data)):
@@ -94,10 +94,8 @@ def _every_point_at_every_time(
     data: np.ndarray, names: list[str],
 ) -> tuple[list[str], np.ndarray]:
     """Every point at every time of ``axis``."""
-    offsets = axis.offsets.astype("timedelta64[ns]")
-    times = offsets if axis.reference is None else axis.reference + offsets
     time_ref = args.time_ref if axis.reference is None else axis.reference
-    out = method(data, args.frame, args.relative_to, times, time_ref=time_ref)
+    out = method(data, args.frame, args.relative_to, axis.as_numpy(), time_ref=time_ref)
     count, points = out.shape[:2]
     seconds = np.repeat(axis.offsets / 1e9, points)
     index = np.tile(np.arange(points), count)
