@@ -9,7 +9,6 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import PinframesError
 from ...kinematics import Snapshot
 from ...tree import FrameTree
 from ...values.joint import Joint, mimic_chain
@@ -19,37 +18,26 @@ from .._snapshot import moving_parts, one_instant
 from .._writable import check_writable_tree, refuse_attached_data
 from ..atomic import atomic_write
 from ..limits import Limits
-from ..trajectory_files import read_joint_trajectory
 from ._mount import URDF_METADATA_KEY, mount_robot
 from ._parse import parse_urdf
 
-__all__ = ["joint_state_path", "read_urdf", "write_urdf"]
+__all__ = ["joint_state_path", "read_robot", "write_urdf"]
 
 
-def read_urdf(path: str | os.PathLike[str], *, strict: bool = False,
-              limits: Limits | None = None, joint_state: bool = True) -> FrameTree:
-    """A robot alone: the tree's root is the robot's root link, named after the robot.
+def read_robot(path: str | os.PathLike[str], *, strict: bool = False,
+               limits: Limits | None = None) -> FrameTree:
+    """A robot file alone: the tree's root is the robot's root link, named after the robot,
+    every joint at its rest value (:func:`pinframes.read_urdf` adds the joint values written
+    beside the file).
 
     ``strict`` refuses a mimic of a joint the file does not have (by default such a joint
     stays independent, with a :class:`~pinframes.urdf.BrokenMimicWarning`). ``limits``
     (:class:`pinframes.Limits`; None: the defaults) bounds the XML elements
     (``max_xml_elements``) and their nesting (``max_depth``); a ``<!DOCTYPE>`` is refused.
-
-    The joint values :func:`write_urdf` writes beside the file (``cell.urdf`` ->
-    ``cell.joints.csv``, :func:`joint_state_path`) are read with it when that file exists,
-    so the robot stands where it stood when it was written (one sample per joint, at the
-    time it was written); ``joint_state=False`` leaves every joint at its rest value.
     """
     robot = parse_urdf(path, strict=strict, limits=limits)
     tree = FrameTree(root=robot.root_link, name=robot.name)
     mount_robot(tree, robot, None, None, "")
-    beside = None if robot.source == "<urdf string>" else joint_state_path(robot.source)
-    if joint_state and beside is not None and beside.is_file():
-        times, positions, names = read_joint_trajectory(beside, limits=limits)
-        try:
-            tree.set_joint_trajectory(times, positions, names)
-        except PinframesError as exc:
-            raise exc.located(file=beside) from None
     return tree
 
 
