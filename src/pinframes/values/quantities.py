@@ -1,10 +1,10 @@
 """pint quantities (as weldx users write them), converted to pinframes' units.
 
 Lengths become metres, angles radians, times seconds, and quaternions and rotation matrices
-must be plain numbers. pint stays optional: it is never
-imported here. A value is a quantity when its type comes from the ``pint`` package;
-anything else passes through unchanged, as a number already in pinframes' unit. A quantity
-of another kind (a length given as an angle) is refused with the caller's error class.
+must be plain numbers. pint stays optional: it is never imported here. A value is a
+quantity when its type comes from the ``pint`` package; anything else passes through
+unchanged, as a number already in pinframes' unit. A quantity of another kind (a length
+given as an angle) is refused with the caller's error class.
 """
 
 from __future__ import annotations
