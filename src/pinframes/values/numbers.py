@@ -6,6 +6,8 @@ numpy turns complex numbers into floats by dropping their imaginary parts (with 
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -43,6 +45,18 @@ def require_finite_result(array: NDArray[np.float64], what: str,
                           field: str | None = None) -> None:
     """Raise ``error`` when ``array``, computed from finite inputs, overflowed to infinity
     or NaN (two translations of 1e308 m add up to more than a float holds)."""
-    if not np.isfinite(array).all():
+    if not _all_finite(array):
         raise error(f"{what} overflows double precision (beyond about 1.8e308): the values "
                     "combined are finite but too large", frame=frame, field=field)
+
+
+_FEW = 64
+"""Up to this many values Python's own ``math.isfinite`` is the faster check: numpy's
+``isfinite(...).all()`` costs a few microseconds whatever the size, as much as a cached
+static query (benchmarks/bench_queries.py, case c)."""
+
+
+def _all_finite(array: NDArray[np.float64]) -> bool:
+    if array.size <= _FEW:
+        return all(map(math.isfinite, array.ravel().tolist()))
+    return bool(np.isfinite(array).all())
