@@ -87,11 +87,8 @@ class TreeQueries(TreeStructure):
         self._require(frame, "frame")
         relative_to = self._default_reference(frame, relative_to)
         self._require(relative_to, "relative_to")
-        pose = evaluate_pose(self._frozen(), frame, relative_to, times, time_ref,
+        return evaluate_pose(self._frozen(), frame, relative_to, times, time_ref,
                              extrapolation)
-        _require_finite(pose.translation, "translation",
-                        f"the pose of {frame!r} in {relative_to!r}", frame)
-        return pose
 
     def poses(
         self,
