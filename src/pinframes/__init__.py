@@ -10,6 +10,7 @@ from .errors import (
     FrameExistsError,
     FrameNotFoundError,
     FramesYamlWarning,
+    GeometryError,
     InvalidDataError,
     InvalidPoseError,
     InvalidTimeError,
@@ -21,6 +22,7 @@ from .errors import (
     PinframesError,
     ReadError,
     ReferenceTimeError,
+    TargetNotReachedError,
     TreeStructureError,
     UnsupportedFeatureError,
     WriteError,
@@ -33,8 +35,16 @@ from .formats.rosbag import read_rosbag
 from .formats.scene import read_scene, write_scene
 from .formats.urdf import write_urdf
 from .formats.urdf_files import read_urdf
-from .kinematics import FrameJacobian, PinocchioTree, Snapshot, Velocity
+from .kinematics import (
+    Clearance,
+    FrameJacobian,
+    JointSolution,
+    PinocchioTree,
+    Snapshot,
+    Velocity,
+)
 from .tree import FrameTree
+from .values.geometry import FrameGeometry, Shape
 from .values.joint import Joint, Mimic
 from .values.joint_trajectory import JointTrack, JointTrajectory
 from .values.pose import Pose
@@ -49,14 +59,17 @@ __all__ = [
     "ArgumentTypeError",
     "BagWarning",
     "BrokenMimicWarning",
+    "Clearance",
     "DataNotFoundError",
     "ExtrapolationError",
     "FileFormatError",
     "FrameExistsError",
+    "FrameGeometry",
     "FrameJacobian",
     "FrameNotFoundError",
     "FrameTree",
     "FramesYamlWarning",
+    "GeometryError",
     "InvalidDataError",
     "InvalidPoseError",
     "InvalidTimeError",
@@ -64,6 +77,7 @@ __all__ = [
     "JointError",
     "JointLimitWarning",
     "JointNotFoundError",
+    "JointSolution",
     "JointTrack",
     "JointTrajectory",
     "JointWithoutSamplesWarning",
@@ -76,9 +90,11 @@ __all__ = [
     "PoseStack",
     "ReadError",
     "ReferenceTimeError",
+    "Shape",
     "Snapshot",
     "SpatialData",
     "Subsystem",
+    "TargetNotReachedError",
     "TimeAxis",
     "TreeStructureError",
     "UnsupportedFeatureError",

@@ -29,6 +29,7 @@ __all__ = [
     "FrameExistsError",
     "FrameNotFoundError",
     "FramesYamlWarning",
+    "GeometryError",
     "InvalidDataError",
     "InvalidPoseError",
     "InvalidTimeError",
@@ -40,6 +41,7 @@ __all__ = [
     "PinframesError",
     "ReadError",
     "ReferenceTimeError",
+    "TargetNotReachedError",
     "TreeStructureError",
     "UnsupportedFeatureError",
     "WriteError",
@@ -165,12 +167,22 @@ class DataNotFoundError(NameNotFoundError):
     """A data set name that no frame of the tree holds."""
 
 
+class TargetNotReachedError(PinframesError, ValueError):
+    """A target that ``solve_joints(..., strict=True)`` could not reach within the joint
+    limits and tolerances (the message names the time and the residual errors)."""
+
+
 class FileFormatError(PinframesError, ValueError):
     """A file whose content does not follow its format."""
 
 
 class UnsupportedFeatureError(PinframesError, ValueError):
     """Valid input that pinframes deliberately does not handle (said in the message)."""
+
+
+class GeometryError(PinframesError, ValueError):
+    """Geometry a query needs and cannot have: a frame that is no URDF link, a link without
+    shapes of the kind asked for, a malformed shape, a mesh file missing or unreadable."""
 
 
 class WriteError(PinframesError, OSError):
