@@ -1,24 +1,19 @@
 """URDF in and out: robots as frames and joints of a :class:`~pinframes.FrameTree`."""
 
-from .._registry import FileFormat
 from ._mount import DRIVEN_JOINT_TYPES, URDF_METADATA_KEY, mount_robot, mount_urdf
 from ._parse import JointDescription, RobotDescription, is_urdf, parse_urdf
-from ._read_write import joint_state_path, read_urdf, write_urdf
+from ._read_write import joint_state_path, read_robot, write_urdf
 
 __all__ = [
     "DRIVEN_JOINT_TYPES",
-    "URDF_FORMAT",
     "URDF_METADATA_KEY",
     "JointDescription",
     "RobotDescription",
+    "is_urdf",
     "joint_state_path",
     "mount_robot",
     "mount_urdf",
     "parse_urdf",
-    "read_urdf",
+    "read_robot",
     "write_urdf",
 ]
-
-URDF_FORMAT = FileFormat("urdf", "URDF", (".urdf",), read_urdf, write_urdf,
-                         ("time", "freeze_joints"), head_test=is_urdf, looks_like="a URDF file")
-"""The URDF format: XML whose root element is ``<robot>``."""

@@ -1,0 +1,66 @@
+"""``read_urdf``: a URDF file with the joint values written beside it.
+
+:func:`pinframes.write_urdf` writes a tree at one time as two files, the robot
+(``cell.urdf``) and its joints' values then (``cell.joints.csv``, a joint trajectory file of
+one row). Reading the URDF reads both, so the robot stands where it stood. This sits beside
+the ``urdf`` package, which parses, mounts and writes robots, with the format's entry
+(:data:`URDF_FORMAT`), whose reader reads a joint trajectory file too.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from ..errors import PinframesError
+from ..tree import FrameTree
+from ._registry import FileFormat
+from .limits import Limits
+from .reading import InputFile
+from .trajectory_files import read_joint_trajectory
+from .urdf import is_urdf, joint_state_path, read_robot, write_urdf
+
+__all__ = ["URDF_FORMAT", "read_urdf"]
+
+
+def read_urdf(path: str | os.PathLike[str], *, strict: bool = False,
+              limits: Limits | None = None, joint_state: bool = True) -> FrameTree:
+    """A robot file as a tree: its root is the robot's root link, named after the robot.
+
+    ``strict`` refuses a mimic of a joint the file does not have (by default such a joint
+    stays independent, with a :class:`~pinframes.urdf.BrokenMimicWarning`). ``limits``
+    (:class:`pinframes.Limits`; None: the defaults) bounds the XML elements
+    (``max_xml_elements``) and their nesting (``max_depth``); a ``<!DOCTYPE>`` is refused.
+
+    The joint values :func:`~pinframes.write_urdf` writes beside the file (``cell.urdf`` ->
+    ``cell.joints.csv``) are read with it when that file exists: one sample per joint, at
+    the time the file was written, so the robot stands where it stood then.
+    ``joint_state=False`` leaves every joint at its rest value.
+    """
+    tree = read_robot(path, strict=strict, limits=limits)
+    beside = _joint_state_file(path)
+    if joint_state and beside is not None and beside.is_file():
+        times, positions, names = read_joint_trajectory(beside, limits=limits)
+        try:
+            tree.set_joint_trajectory(times, positions, names)
+        except PinframesError as exc:
+            raise exc.located(file=beside) from None
+    return tree
+
+
+def _joint_state_file(path: str | os.PathLike[str]) -> Path | None:
+    """Where the joint values of the URDF ``path`` would be; None for URDF text."""
+    if isinstance(path, str) and path.lstrip().startswith("<"):
+        return None
+    return joint_state_path(path)
+
+
+def _files_read(source: InputFile) -> list[Path]:
+    """The joint values beside the URDF (``cell.urdf`` -> ``cell.joints.csv``)."""
+    return [joint_state_path(source.path)]
+
+
+URDF_FORMAT = FileFormat("urdf", "URDF", (".urdf",), read_urdf, write_urdf,
+                         ("time", "freeze_joints"), head_test=is_urdf, looks_like="a URDF file",
+                         files_read=_files_read)
+"""The URDF format: XML whose root element is ``<robot>``, with the joint values beside it."""
