@@ -106,7 +106,7 @@ def key_ancestors(key: str) -> list[str]:
 
 
 def locate_in(section: str):
-    """A locator for :func:`~pinframes.formats._yaml_loader.load_yaml`:
+    """A locator for :meth:`~pinframes.formats.reading.InputFile.yaml`:
     ``section.<key>.<field>``."""
 
     def locate(path: KeyPath) -> tuple[str | None, str | None]:
