@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import yaml
+from scipy.spatial.transform import Rotation
 
 from pinframes import read_scene
 from pinframes.cli.demo import bundled_scene
@@ -38,6 +39,9 @@ def test_bundled_scene_matches_cell_description():
         name = frame["name"]
         assert tree.parent(name) == frame["parent"]
         pose = tree.local_pose(name)
+        if "curve" in frame:
+            check_arc_frame(pose, frame["curve"])
+            continue
         np.testing.assert_array_equal(np.atleast_2d(pose.translation),
                                       np.atleast_2d(frame["xyz"]).repeat(len(pose), axis=0))
         if "keyframes" in frame:
@@ -57,6 +61,51 @@ def test_bundled_scene_matches_cell_description():
         track = tree.joint_track(joint)
         np.testing.assert_array_equal(track.values, motion[:, column])
         np.testing.assert_array_equal(track.times, np.round(motion[:, 0] * 1e9))
+
+
+def check_arc_frame(pose, curve):
+    """A frame along an arc of cell_design.yaml: points on the arc at equal steps of time, x
+    the tangent (the chord at the two ends), z away from the centre."""
+    arc = curve["arc"]
+    count, axis = arc["count"], np.array(arc["axis_xyz"])
+    centre, start = np.array(arc["centre_xyz"]), np.array(arc["start_xyz"])
+    angles = np.linspace(0.0, arc["angle"], count)
+    turns = Rotation.from_rotvec(angles[:, None] * axis).as_matrix()
+    points = centre + turns @ (start - centre)
+    np.testing.assert_array_equal(pose.times.astype(np.int64),
+                                  np.round(np.linspace(0.0, curve["duration_s"], count) * 1e9))
+    np.testing.assert_allclose(pose.translation, points, atol=1e-14)
+    tangents = np.cross(axis, points - centre)
+    tangents[0], tangents[-1] = points[1] - points[0], points[-1] - points[-2]
+    tangents /= np.linalg.norm(tangents, axis=1)[:, None]
+    np.testing.assert_allclose(pose.rotation[:, :, 0], tangents, atol=1e-12)
+    outward = (points - centre) / np.linalg.norm(points - centre, axis=1)[:, None]
+    outward -= np.sum(outward * tangents, axis=1)[:, None] * tangents
+    outward /= np.linalg.norm(outward, axis=1)[:, None]
+    np.testing.assert_allclose(pose.rotation[:, :, 2], outward, atol=1e-12)
+
+
+def test_seam_point_rides_the_seam_at_the_travel_speed():
+    """seam_point stays within a few micrometres of the design seam, and the torch_target
+    above it has the design torch rotation."""
+    cell = yaml.safe_load((MODELS / "welding_cell" / "cell_design.yaml").read_text())
+    seam = cell["seam"]
+    tree = read_scene(MODELS / "welding_cell" / "scene.yaml")
+    times = np.linspace(0.0, DURATION, 20_001)
+    pose = tree.pose("seam_point", relative_to=seam["frame"], times=times)
+    angle = np.pi * times / DURATION
+    on_seam = np.column_stack([RADIUS * np.sin(angle), np.zeros_like(angle),
+                               RADIUS * np.cos(angle) - RADIUS])
+    gap = np.linalg.norm(pose.translation - on_seam, axis=1)
+    assert gap.max() < 2.2e-6  # the sagitta of a 1.34 mm chord: r (1 - cos(pi / 512))
+    assert seam["radius"] == RADIUS and seam["end_time_s"] == DURATION
+    design = tree.pose("torch_target", relative_to="seam_point").rotation
+    x, y, z, w = cell["torch"]["tcp_quat_xyzw_in_seam_point"]
+    np.testing.assert_allclose(design, Rotation.from_quat([x, y, z, w]).as_matrix(),
+                               atol=1e-11)
+    wire = design[:, 2]
+    np.testing.assert_allclose(wire, [np.sin(np.radians(10)), 0.0, -np.cos(np.radians(10))],
+                               atol=1e-11)  # 10 degrees ahead, square across the seam
 
 
 def test_demo_prints_summary_and_writes_csv_and_png(run_cli, tmp_path):
