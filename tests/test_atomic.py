@@ -4,7 +4,7 @@ import stat
 import pytest
 
 from pinframes.errors import WriteError
-from pinframes.formats._atomic import atomic_write
+from pinframes.formats.atomic import atomic_write
 
 
 def test_new_files_get_the_umask_mode_and_replaced_files_keep_theirs(tmp_path):

@@ -8,11 +8,11 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from pinframes.values._interpolation import Keyframes
-from pinframes.values._se3 import IDENTITY, compose, inverse
 from pinframes.values._trigonometry import cos_sin
+from pinframes.values.interpolation import Keyframes
 from pinframes.values.joint import Joint
 from pinframes.values.rotations import matrix_from_quaternion
+from pinframes.values.se3 import IDENTITY, compose, inverse
 
 
 def random_quaternions(rng, count):

@@ -96,7 +96,7 @@ def test_mimic_joints_move_at_their_multiplier():
 
 
 def test_rotation_steps_are_pinocchio_log3(rng):
-    from pinframes.values._interpolation import rotation_steps
+    from pinframes.values.interpolation import rotation_steps
 
     rotations = np.array([pin.exp3(rng.normal(size=3)) for _ in range(20)])
     rotations[5] = rotations[4] @ pin.exp3(np.array([0.0, 0.0, np.pi - 1e-6]))

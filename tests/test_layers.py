@@ -1,4 +1,5 @@
-"""The package's layers: no module imports a higher layer, and no imports go round in a circle.
+"""The package's layers: no module imports a higher layer, no imports go round in a circle,
+and no module reaches into another folder's ``_`` modules.
 
 Every import is read from the source (module level, inside functions and under
 ``TYPE_CHECKING`` alike), so an import hidden in a function counts as much as one at the top.
@@ -89,7 +90,7 @@ def test_the_reader_resolves_relative_imports_and_imports_inside_functions(tmp_p
     assert "pinframes.errors" in graph["pinframes.tree.frame_tree"]
     # `from .formats import asdf` inside __getattr__, seen as the module pinframes.formats.asdf
     assert "pinframes.formats.asdf" in graph["pinframes"]
-    assert "pinframes.kinematics._model" in graph["pinframes.kinematics._evaluate"]
+    assert "pinframes.kinematics._model" in graph["pinframes.kinematics._path"]
 
 
 def test_every_module_belongs_to_a_layer():
@@ -127,6 +128,55 @@ def test_no_import_cycles():
         if module not in state:
             visit(module, [])
     assert cycles == []
+
+
+def _private_owner(module: str) -> str | None:
+    """The folder (package) whose own business ``module`` is, when a part of its name starts
+    with ``_`` (``pinframes.values._readonly`` -> ``pinframes.values``); None for a public
+    module."""
+    parts = module.split(".")
+    for depth, part in enumerate(parts):
+        if part.startswith("_") and not part.startswith("__"):
+            return ".".join(parts[:depth])
+    return None
+
+
+def _folder(module: str) -> str:
+    """The package a module lives in (a package's ``__init__`` lives in the package)."""
+    path = PACKAGE.parent.joinpath(*module.split("."))
+    return module if path.is_dir() else module.rpartition(".")[0]
+
+
+def _crossings(graph: dict[str, set[str]]) -> list[str]:
+    """Imports of a ``_`` module from outside its folder (and the folders inside it)."""
+    crossings = []
+    for module, imports in graph.items():
+        folder = _folder(module)
+        for target in sorted(imports):
+            owner = _private_owner(target)
+            if owner is not None and folder != owner and not folder.startswith(owner + "."):
+                crossings.append(f"{module} -> {target}")
+    return crossings
+
+
+def test_private_modules_stay_in_their_folder():
+    """A ``_`` module is used by its own folder (and the folders inside it) only; what other
+    folders use has a public name."""
+    assert _crossings(_graph()) == []
+
+
+def test_the_crossing_check_tells_a_crossing_from_a_folder_of_its_own():
+    """A sibling folder's ``_`` module crosses; the own folder's and a parent folder's do not,
+    nor does a public module."""
+    graph = {
+        "pinframes.kinematics.pose": {"pinframes.values._readonly", "pinframes.kinematics._path",
+                                      "pinframes.values.se3"},
+        "pinframes.formats.urdf._parse": {"pinframes.formats._paths"},
+        "pinframes.cli._output": {"pinframes.formats._paths"},
+        "pinframes.kinematics": {"pinframes.kinematics._description"},
+    }
+    assert _crossings(graph) == ["pinframes.kinematics.pose -> pinframes.values._readonly",
+                                 "pinframes.cli._output -> pinframes.formats._paths"]
 
 
 @pytest.mark.parametrize("layer", ["values", "kinematics", "tree"])

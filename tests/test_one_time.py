@@ -20,9 +20,9 @@ from hardening.tree_model import build_tree
 from hardening.tree_strategies import absolute_trees, trees
 from pinframes import FrameTree, JointWithoutSamplesWarning, Pose
 from pinframes.errors import ExtrapolationError
-from pinframes.kinematics._evaluate import prepare_evaluation
 from pinframes.kinematics._one_time import FEW_TIMES, MAX_DEGREES_OF_FREEDOM
-from pinframes.values._interpolation import Keyframes, segment_position, segment_positions
+from pinframes.kinematics._path import prepare_path
+from pinframes.values.interpolation import Keyframes, segment_position, segment_positions
 from pinframes.values.joint_trajectory import JointTrajectory
 
 from geometry import homogeneous, rot_z
@@ -376,7 +376,7 @@ def test_queries_in_several_threads_at_once_each_get_their_own_time(rng):
 def test_a_used_compiled_model_pickles_and_evaluates_in_the_copy(rng):
     tree, *_ = panda_on_mount(rng)
     tree.pose("panda_hand", "world", times=1.0)  # creates the model's pin.Data
-    model = prepare_evaluation(tree._frozen(), "panda_hand", "world").model
+    model = prepare_path(tree._frozen(), "panda_hand", "world").model
     copy = pickle.loads(pickle.dumps(model))
     q = pin.randomConfiguration(copy.model)
     pin.framesForwardKinematics(model.model, model.data, q)

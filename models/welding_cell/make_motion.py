@@ -27,8 +27,8 @@ The cell (all lengths in metres, angles in radians, times in seconds, quaternion
   speed over the 20 s.
 - ``seam_point``: the weld point, moving along the seam over the 20 s at the constant travel
   speed (x travel direction, y pipe axis, z outward normal): a polyline of
-  ``SEAM_POINT_COUNT`` points on the half circle (``pinframes.Pose.along_curve``), within
-  2.1 micrometres of it.
+  ``SEAM_POINT_COUNT`` points on the half circle, one per robot sample
+  (``pinframes.Pose.along_curve``), within 0.04 micrometres of it.
 - ``torch_target``: the torch pose the cell is designed for, a static frame under
   ``seam_point``: tip on the seam, 10 degree push angle, 90 degree work angle.
 - ``torch_tcp``: the tool centre point of a torch with a 22 degree neck, a static frame under
@@ -53,7 +53,7 @@ import numpy as np
 import pinocchio as pin
 import yaml
 
-from pinframes.formats._atomic import atomic_write
+from pinframes.formats.atomic import atomic_write
 
 HERE = Path(__file__).resolve().parent
 URDF_PATH = HERE.parent / "welding_robot" / "welding_robot.urdf"
@@ -71,7 +71,7 @@ TORCH_NECK_ANGLE_RAD = math.radians(22.0)
 PUSH_ANGLE_RAD = math.radians(10.0)
 TORCH_ANGLE_START_RAD = math.radians(-25.0)  # seam point under the torch, from the pipe top
 TORCH_ANGLE_END_RAD = math.radians(25.0)
-SEAM_POINT_COUNT = 257  # polyline points of seam_point: chords 1.34 mm, sagitta 2.1 um
+SEAM_POINT_COUNT = 2001  # seam_point: one point per robot sample; chords 0.17 mm, sagitta 0.034 um
 ROBOT_PREFIX = "robot/"
 JOINT_NAMES = [f"joint_{i}" for i in range(1, 7)]
 IK_SEED = np.array([-0.4, 0.3, 0.2, 0.0, 1.0, 1.5])  # rad, elbow up, wrist bent down

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from .errors import ReferenceTimeError, UnsupportedFeatureError
-from .formats._atomic import atomic_write
+from .formats.atomic import atomic_write
 from .formats.urdf import URDF_METADATA_KEY
 from .tree import FrameTree
 from .values.timeconv import TimeAxis, timestamp_ns

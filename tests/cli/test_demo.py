@@ -97,7 +97,7 @@ def test_seam_point_rides_the_seam_at_the_travel_speed():
     on_seam = np.column_stack([RADIUS * np.sin(angle), np.zeros_like(angle),
                                RADIUS * np.cos(angle) - RADIUS])
     gap = np.linalg.norm(pose.translation - on_seam, axis=1)
-    assert gap.max() < 2.2e-6  # the sagitta of a 1.34 mm chord: r (1 - cos(pi / 512))
+    assert gap.max() < 4e-8  # the sagitta of a 0.17 mm chord: r (1 - cos(pi / 4000))
     assert seam["radius"] == RADIUS and seam["end_time_s"] == DURATION
     design = tree.pose("torch_target", relative_to="seam_point").rotation
     x, y, z, w = cell["torch"]["tcp_quat_xyzw_in_seam_point"]

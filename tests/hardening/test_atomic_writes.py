@@ -17,7 +17,7 @@ from pinframes import FrameTree, Joint, Mimic, Pose, write_frames_yaml, write_sc
 from pinframes.cli import main
 from pinframes.cli._output import write_poses
 from pinframes.errors import JointError, UnsupportedFeatureError, WriteError
-from pinframes.formats._atomic import atomic_write
+from pinframes.formats.atomic import atomic_write
 
 OLD = b"old content \x00\xff kept byte for byte\n"
 
@@ -50,7 +50,7 @@ def fail_on_fsync(monkeypatch) -> None:
     """The disk fills up after the content was handed over, before the rename."""
     def no_space(fd):
         raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
-    monkeypatch.setattr("pinframes.formats._atomic.os.fsync", no_space)
+    monkeypatch.setattr("pinframes.formats.atomic.os.fsync", no_space)
 
 
 def assert_untouched(folder: Path, path: Path) -> None:
@@ -199,7 +199,7 @@ def test_failing_to_make_the_temporary_file_is_a_write_error(tmp_path, monkeypat
     # What a read-only folder does for users who are not root.
     def refuse(*args, **kwargs):
         raise PermissionError(errno.EACCES, os.strerror(errno.EACCES))
-    monkeypatch.setattr("pinframes.formats._atomic.tempfile.mkstemp", refuse)
+    monkeypatch.setattr("pinframes.formats.atomic.tempfile.mkstemp", refuse)
     with pytest.raises(WriteError, match="Permission denied"), atomic_write(tmp_path / "x"):
         pass
     assert list(tmp_path.iterdir()) == []

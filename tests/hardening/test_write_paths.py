@@ -107,7 +107,7 @@ def test_temporary_files_of_killed_writers_are_removed_by_the_next_write(tmp_pat
     # a writer killed (SIGKILL) while its temporary file is open, as a crash would leave it
     child = subprocess.Popen([sys.executable, "-c", (
         "import sys, time\n"
-        "from pinframes.formats._atomic import atomic_write\n"
+        "from pinframes.formats.atomic import atomic_write\n"
         "with atomic_write(sys.argv[1]) as handle:\n"
         "    handle.write(b'half')\n"
         "    print('open', flush=True)\n"

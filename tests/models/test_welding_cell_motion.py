@@ -191,7 +191,7 @@ def test_seam_point_follows_the_seam_and_torch_target_is_the_design_torch(cell, 
     start = np.asarray(seam["centre_xyz"]) + _axis_angle(seam["axis_xyz"], seam["start_angle"]) @ [
         0.0, 0.0, seam["radius"]]
     np.testing.assert_allclose(arc["start_xyz"], start, atol=1e-15)
-    # a chord of the polyline passes r (1 - cos(step / 2)) inside the circle: a few um
+    # a chord of the polyline passes r (1 - cos(step / 2)) inside the circle: under a few um
     step = arc["angle"] / (arc["count"] - 1)
     assert seam["radius"] * (1 - np.cos(step / 2)) < 2.5e-6
     target = frames["torch_target"]

@@ -20,7 +20,7 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
-from ..formats._atomic import atomic_write
+from ..formats.atomic import atomic_write
 
 __all__ = ["MANIFEST_NAME", "Manifest"]
 

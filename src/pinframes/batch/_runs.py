@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import FileFormatError, ReadError
-from ..formats._reading import read_text
+from ..formats.reading import read_text
 
 __all__ = ["RUNS_LIST_SUFFIX", "Run", "find_runs"]
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 import sys
 
 from ..errors import FileFormatError
-from ..formats._atomic import atomic_write
+from ..formats.atomic import atomic_write
 from ..formats.pose_files import POSE_FILE_FORMATS, pose_file_format, poses_text
 from ..formats.pose_files import write_poses as write_pose_file
 from ..kinematics import Velocity

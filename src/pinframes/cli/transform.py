@@ -17,7 +17,7 @@ from collections.abc import Callable
 import numpy as np
 
 from ..errors import FileFormatError, InvalidDataError
-from ..formats._reading import read_text
+from ..formats.reading import read_text
 from ..values.timeconv import TimeAxis
 from ._evaluate import add_time_arguments, requested_times
 from ._files import read_tree, require_frames

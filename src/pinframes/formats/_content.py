@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import FileFormatError
-from ._reading import read_bytes
+from .reading import read_bytes
 
 __all__ = ["format_by_content"]
 

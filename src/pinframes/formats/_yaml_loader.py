@@ -16,8 +16,8 @@ from typing import Any
 import yaml
 
 from ..errors import FileFormatError
-from ._reading import read_text
 from ._yaml_size import check_yaml_size
+from .reading import read_text
 
 __all__ = ["KeyPath", "Locate", "load_yaml"]
 

@@ -29,7 +29,7 @@ from ..errors import ArgumentTypeError, FileFormatError
 from ..kinematics import Velocity
 from ..values.pose import Pose
 from ..values.timeconv import format_timestamp_iso
-from ._atomic import atomic_write
+from .atomic import atomic_write
 
 __all__ = ["COLUMNS", "POSE_FILE_FORMATS", "VELOCITY_COLUMNS", "pose_file_format", "poses_text",
            "write_poses"]

@@ -27,9 +27,9 @@ from numpy.typing import NDArray
 from ..errors import FileFormatError, InvalidTimeError, PinframesError
 from ..values.timeconv import parse_time_axis
 from ._paths import path_argument
-from ._reading import read_bytes, read_text
 from ._registry import detect_format, file_format
 from .limits import Limits, current_limits, exceeded, reader_with_limits
+from .reading import read_bytes, read_text
 
 __all__ = [
     "JOINT_TRAJECTORY",

@@ -1,18 +1,20 @@
-"""Kinematics: a frozen description of a tree, compiled to Pinocchio and evaluated.
+"""Kinematics: a frozen description of a tree, compiled to Pinocchio and queried.
 
-``FrameTree`` hands a :class:`TreeDescription` to :func:`evaluate_pose`, which compiles the
-query path (``_model``), plans its times (``_timeline``) and evaluates it (``_evaluate``).
-Velocities and Jacobians (:func:`evaluate_velocity`, :func:`evaluate_jacobian`) sample the
-same path (``sampled_path``) and add the exact rates of what it interpolates (``rates``)
-through the joints' twists (``twists``).
+The queries, one public module each: :mod:`.pose` (``FrameTree.pose``, ``sample_times``),
+:mod:`.poses` (many pairs in one call), :mod:`.snapshot` (the whole tree at one instant),
+:mod:`.velocity`, :mod:`.jacobian` and :mod:`.pinocchio_tree` (``to_pinocchio``). Their
+steps are the ``_`` modules: the frozen tree (``_description``), its compiled path
+(``_model``), path preparation (``_path``), the query's times (``_times``), joint sampling
+(``_sampling``), the one-time path (``_one_time``), and for velocities and Jacobians the
+sampled path (``_sampled_path``), exact rates (``_rates``) and joint twists (``_twists``).
 """
 
 from ._description import TreeDescription, paths_to_common_ancestor
-from ._evaluate import default_times, evaluate_pose
-from ._many import evaluate_poses
-from ._snapshot import Snapshot, snapshot
 from .jacobian import FrameJacobian, evaluate_jacobian
 from .pinocchio_tree import PinocchioTree
+from .pose import default_times, evaluate_pose
+from .poses import evaluate_poses
+from .snapshot import Snapshot, snapshot
 from .velocity import Velocity, evaluate_velocity
 
 __all__ = [

@@ -17,10 +17,10 @@ from typing import Any
 
 import numpy as np
 
-from ..values._se3 import IDENTITY, Transform, compose
 from ..values.joint import Joint
 from ..values.joint_trajectory import JointTrajectory
 from ..values.pose import Pose
+from ..values.se3 import IDENTITY, Transform, compose
 
 __all__ = ["TreeDescription", "paths_to_common_ancestor"]
 

@@ -18,9 +18,9 @@ import numpy as np
 import pinocchio as pin
 from numpy.typing import NDArray
 
-from ..values._se3 import IDENTITY, Transform, canonical, compose, inverse
 from ..values.joint import Joint
 from ..values.rotations import quaternion_from_matrix
+from ..values.se3 import IDENTITY, Transform, canonical, compose, inverse
 from ._description import TreeDescription
 
 __all__ = ["CompiledJoint", "CompiledModel", "compile_model"]
@@ -128,7 +128,7 @@ class CompiledModel:
         """Each joint's index and frame in the root (``oMi``), static or samples last, parents
         before children.
 
-        ``samples[i]`` is what :func:`~pinframes.kinematics._evaluate.sample_joints` gives:
+        ``samples[i]`` is what :func:`~pinframes.kinematics._sampling.sample_joints` gives:
         a free-flyer's pose in its parent joint, placement included; a robot joint's
         value(s). Pinocchio's recursion ``oMi[j] = oMi[parent(j)] @ placement[j] @
         motion_j(q)``, evaluated left to right so that the static placement meets one

@@ -1,7 +1,7 @@
 """Queries at one time (or a few): every source sampled in Python floats, then Pinocchio's own
 forward kinematics.
 
-The batched kernels of :mod:`pinframes.kinematics._evaluate` are built for many samples; at
+The batched kernels of :mod:`pinframes.kinematics.pose` are built for many samples; at
 one sample their cost is numpy's overhead per call (about 45 calls on arrays of length one
 to interpolate a moving frame, as many again to compose the path). Here, per time, the
 configuration ``q`` of the compiled model is set from the interpolated poses of its moving
@@ -24,11 +24,11 @@ import numpy as np
 import pinocchio as pin
 from numpy.typing import NDArray
 
-from ..values._interpolation import Keyframes, segment_position
-from ..values._se3 import Transform
-from ..values._timeline import QueryTimeline
+from ..values.interpolation import Keyframes, segment_position
 from ..values.joint import mimic_chain
 from ..values.joint_trajectory import JointTrajectory
+from ..values.se3 import Transform
+from ..values.timeline import QueryTimeline
 from ._description import TreeDescription
 from ._model import CompiledModel
 

@@ -21,11 +21,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ArgumentTypeError, JointError
-from ..values._se3 import IDENTITY
 from ..values.joint import mimic_primary
+from ..values.se3 import IDENTITY
 from ._description import TreeDescription
-from .sampled_path import SampledPath, plan_query
-from .twists import Twist, jacobian_columns
+from ._sampled_path import SampledPath, plan_query
+from ._twists import Twist, jacobian_columns
 
 __all__ = ["FrameJacobian", "evaluate_jacobian"]
 
@@ -64,7 +64,7 @@ def evaluate_jacobian(tree: TreeDescription, frame: str, relative_to: str, times
     column_of = {name: column for column, name in enumerate(names)}
     planned = plan_query(tree, frame, relative_to, times, time_ref, extrapolation)
     matrix = np.zeros((planned.count, 6, len(names)))
-    if planned.evaluation.static is None:
+    if planned.prepared.static is None:
         for part, path in planned.chunks(tree):
             matrix[part] = _columns_in_reference(tree, path, column_of)
     return FrameJacobian(matrix, tuple(names), planned.times, planned.reference_time)

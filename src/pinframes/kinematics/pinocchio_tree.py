@@ -8,10 +8,12 @@ import numpy as np
 import pinocchio as pin
 from numpy.typing import NDArray
 
-from ..values._se3 import samples_first
-from . import _evaluate
+from ..values.se3 import samples_first
 from ._description import TreeDescription
 from ._model import compile_model
+from ._path import model_sources
+from ._sampling import sample_joints
+from ._times import basis_shifts, plan_timeline
 
 __all__ = ["PinocchioTree"]
 
@@ -52,15 +54,15 @@ class PinocchioTree:
         moving thing's keyframe times (one configuration if nothing moves).
         """
         tree, compiled = self._tree, self._compiled
-        sources = _evaluate.model_sources(tree, compiled)
-        timeline = _evaluate.plan_timeline(tree, sources, times, time_ref)
+        sources = model_sources(tree, compiled)
+        timeline = plan_timeline(tree, sources, times, time_ref)
         evaluation_times = timeline.evaluation_times
         if evaluation_times is None:
             evaluation_times = np.zeros(1, dtype=np.int64)
         keyframes = [tree.local_poses[joint.frame].keyframes if joint.joint is None else None
                      for joint in compiled.joints]
-        samples = _evaluate.sample_joints(tree, compiled, keyframes, evaluation_times,
-                                          _evaluate.basis_shifts(sources, timeline))
+        samples = sample_joints(tree, compiled, keyframes, evaluation_times,
+                                basis_shifts(sources, timeline))
         motions = [samples_first(sample) if joint.joint is None else None
                    for joint, sample in zip(compiled.joints, samples, strict=True)]
         values = [None if joint.joint is None else np.broadcast_to(sample, evaluation_times.shape)

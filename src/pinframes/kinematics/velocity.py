@@ -1,7 +1,7 @@
 """``FrameTree.velocity``: how fast a frame moves relative to another, per sample.
 
-Exact derivatives of what ``pose()`` interpolates (see :mod:`.rates`), carried through the
-compiled model of the query path (see :mod:`.twists`). The linear velocity is that of the
+Exact derivatives of what ``pose()`` interpolates (see :mod:`._rates`), carried through the
+compiled model of the query path (see :mod:`._twists`). The linear velocity is that of the
 frame's origin relative to the reference frame (the derivative of
 ``pose(frame, relative_to).translation``); the angular velocity ``w`` satisfies
 ``dR/dt = [w]x @ R`` for ``R = pose(frame, relative_to).rotation``. Both are written in the
@@ -17,13 +17,14 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..values._se3 import IDENTITY
 from ..values.joint import Joint, mimic_primary
+from ..values.se3 import IDENTITY
 from ._description import TreeDescription
-from ._evaluate import Evaluation, evaluate_pose
-from .rates import keyframe_rates, segment_rates, track_rates
-from .sampled_path import PlannedQuery, SampledPath, plan_query
-from .twists import Twist, rotate, velocity_sum
+from ._path import PreparedPath
+from ._rates import keyframe_rates, segment_rates, track_rates
+from ._sampled_path import PlannedQuery, SampledPath, plan_query
+from ._twists import Twist, rotate, velocity_sum
+from .pose import evaluate_pose
 
 __all__ = ["Velocity", "evaluate_velocity", "joint_rates"]
 
@@ -67,9 +68,9 @@ def evaluate_velocity(tree: TreeDescription, frame: str, relative_to: str, times
     """``tree.velocity(...)``; frame names already checked."""
     planned = plan_query(tree, frame, relative_to, times, time_ref, extrapolation)
     linear, angular = np.zeros((planned.count, 3)), np.zeros((planned.count, 3))
-    if planned.evaluation.static is None:
+    if planned.prepared.static is None:
         for part, path in planned.chunks(tree):
-            linear_c, angular_c = _velocity_in_root(tree, planned.evaluation, path)
+            linear_c, angular_c = _velocity_in_root(tree, planned.prepared, path)
             axes = (path.frame if expressed_in == frame else path.relative_to)[0]
             if axes is not IDENTITY[0]:  # the root's own axes need no turn
                 rotation_t = np.swapaxes(axes, -1, -2)
@@ -96,13 +97,13 @@ def _orientation(tree: TreeDescription, other: str, relative_to: str, planned: P
     return evaluate_pose(tree, other, relative_to, times, None, "clamp").rotation
 
 
-def _velocity_in_root(tree: TreeDescription, evaluation: Evaluation, path: SampledPath
+def _velocity_in_root(tree: TreeDescription, prepared: PreparedPath, path: SampledPath
                       ) -> tuple[FloatArray, FloatArray]:
     """``(v, w)`` of the frame relative to the reference frame, in the root's axes."""
     twists: dict[int, Twist] = {}
     segments: dict[tuple[str, int], tuple[NDArray[np.intp], FloatArray]] = {}
     for position, joint in enumerate(path.model.joints):
-        keyframes = evaluation.placed_keyframes[position]
+        keyframes = prepared.placed_keyframes[position]
         if position not in path.signs:
             continue
         if keyframes is not None:  # a moving frame's free-flyer

@@ -13,11 +13,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ArgumentTypeError, InvalidTimeError, ReferenceTimeError
-from ..values._timeline import TimedSource, plan_query_timeline
 from ..values.joint import mimic_chain
 from ..values.joint_trajectory import JointTrajectory
 from ..values.pose import Pose
 from ..values.timeconv import TimeAxis, parse_time_axis, parse_timestamp, shift_ns, timestamp_ns
+from ..values.timeline import TimedSource, plan_query_timeline
 from ._tree_like import Tree, TreeLike
 
 __all__ = ["resampled", "time_union"]
@@ -39,7 +39,7 @@ def time_union(tree: TreeLike, frames: Iterable[str] | None = None) -> TimeAxis 
             sources.extend(
                 TimedSource(frame, times, own if own is not None else tree.reference_time)
                 for times, own in _frame_samples(tree, frame))
-    # the default times of a query through all of them (SPEC 4, values._timeline)
+    # the default times of a query through all of them (SPEC 4, values.timeline)
     timeline = plan_query_timeline(sources, None, None, tree.reference_time, False)
     offsets = timeline.result_offsets
     return None if offsets is None else TimeAxis(offsets, timeline.reference)

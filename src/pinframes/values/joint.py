@@ -17,8 +17,8 @@ import pinocchio as pin
 from numpy.typing import NDArray
 
 from ..errors import JointError
-from ._se3 import rotated_vector, rotation_product, turned
 from ._trigonometry import cos_sin
+from .se3 import rotated_vector, rotation_product, turned
 
 __all__ = ["JOINT_KINDS", "Joint", "Mimic", "mimic_chain", "mimic_primary"]
 

@@ -17,8 +17,8 @@ from ..errors import (
     JointLimitWarning,
     near_misses,
 )
-from ._interpolation import segment_position, segment_positions
 from ._readonly import readonly_copy
+from .interpolation import segment_position, segment_positions
 from .joint import Joint
 from .timeconv import parse_time_axis
 

@@ -13,13 +13,11 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InvalidPoseError, InvalidTimeError, ReferenceTimeError
-from ._interpolation import Keyframes
 from ._readonly import readonly
-from ._se3 import compose, inverse, samples_first, samples_last
-from ._timeline import QueryTimeline, TimedSource, plan_query_timeline
 from ._transform_data import transform_data
 from .curve_frames import curve_rotations, length_along_polyline
 from .euler import euler_from_matrix, matrix_from_euler
+from .interpolation import Keyframes
 from .lengths import metres
 from .rotations import (
     ROTATION_TOLERANCE,
@@ -31,6 +29,7 @@ from .rotations import (
     rpy_from_matrix,
     sign_continuous_quaternions,
 )
+from .se3 import compose, inverse, samples_first, samples_last
 from .timeconv import (
     TimeAxis,
     anchor_time_axis,
@@ -40,6 +39,7 @@ from .timeconv import (
     shift_ns,
     timestamp_ns,
 )
+from .timeline import QueryTimeline, TimedSource, plan_query_timeline
 
 __all__ = ["Pose", "trusted_pose"]
 

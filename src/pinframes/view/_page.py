@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import InvalidTimeError, ReferenceTimeError, UnsupportedFeatureError
-from ..formats._atomic import atomic_write
+from ..formats.atomic import atomic_write
 from ..formats.urdf import URDF_METADATA_KEY
 from ..tree import FrameTree
 from ..values.pose import Pose

@@ -19,9 +19,9 @@ from ...errors import ArgumentTypeError, TreeStructureError, UnsupportedFeatureE
 from ...tree import FrameTree
 from ...values.pose import Pose
 from ...values.subsystem import Subsystem
-from .._atomic import atomic_write
 from .._joint_steps import check_joint_steps
 from .._writable import check_writable_tree
+from ..atomic import atomic_write
 from ._asdf_config import temporary_asdf_config
 from ._data import encode_data
 from ._depth import MAX_GRAPH_DEPTH, deepest_frame, recursion_room, too_deep

@@ -19,9 +19,9 @@ import yaml
 from ...errors import PinframesError, UnsupportedFeatureError
 from ...tree import FrameTree
 from ...values.pose import Pose
-from .._atomic import atomic_write
 from .._snapshot import one_instant
 from .._writable import check_writable_tree
+from ..atomic import atomic_write
 from ..limits import current_limits
 from ._reader import METADATA_KEY
 from ._schema import (

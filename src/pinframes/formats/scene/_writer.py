@@ -19,10 +19,10 @@ import yaml
 from ...tree import FrameTree
 from ...values.pose import Pose
 from ...values.timeconv import format_timedelta_iso
-from .._atomic import atomic_write
 from .._joint_steps import check_joint_steps
 from .._snapshot import one_instant
 from .._writable import check_writable_tree
+from ..atomic import atomic_write
 from ._reader import SCENE_FORMAT_KEY, SCENE_FORMAT_VERSION
 
 __all__ = ["write_scene"]

@@ -12,8 +12,8 @@ import numpy as np
 
 from ...errors import BrokenMimicWarning, FileFormatError
 from ...values.pose import Pose
-from .._reading import read_text
 from ..limits import Limits, current_limits, exceeded, reader_with_limits
+from ..reading import read_text
 from ._bounded_xml import parse_bounded_xml
 
 __all__ = ["URDF_JOINT_TYPES", "JointDescription", "RobotDescription", "parse_urdf"]

@@ -14,9 +14,9 @@ from ...tree import FrameTree
 from ...values.joint import Joint, mimic_chain
 from ...values.rotations import rpy_from_matrix
 from ...values.timeconv import format_timestamp_iso
-from .._atomic import atomic_write
 from .._snapshot import moving_parts, one_instant
 from .._writable import check_writable_tree
+from ..atomic import atomic_write
 from ..limits import Limits
 from ._mount import URDF_METADATA_KEY, mount_robot
 from ._parse import parse_urdf

@@ -12,9 +12,9 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from ._se3 import Transform, to_stacks
 from ._trigonometry import cos_sin
 from .rotations import matrix_rows_from_quaternion, quaternion_from_matrix
+from .se3 import Transform, to_stacks
 
 __all__ = ["Keyframes", "rotation_steps", "segment_indices", "segment_position",
            "segment_positions"]

@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ..values._interpolation import Keyframes, segment_indices
+from ..values.interpolation import Keyframes, segment_indices
 from ..values.joint_trajectory import JointTrajectory
 
 __all__ = ["keyframe_rates", "segment_rates", "track_rates"]

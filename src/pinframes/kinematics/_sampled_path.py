@@ -14,12 +14,14 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..values._se3 import Transform
-from ..values._timeline import QueryTimeline
-from . import _evaluate
+from ..values.se3 import Transform
+from ..values.timeline import QueryTimeline
 from ._description import TreeDescription
 from ._model import CompiledModel
-from .twists import Twist, joint_signs, robot_joint_axes
+from ._path import PreparedPath, prepare_path
+from ._sampling import CHUNK, sample_joints
+from ._times import basis_shifts, checked_timeline
+from ._twists import Twist, joint_signs, robot_joint_axes
 
 __all__ = ["PlannedQuery", "SampledPath", "plan_query", "sample_path"]
 
@@ -64,7 +66,7 @@ class SampledPath:
 class PlannedQuery:
     """A query's compiled path, its timeline and the result's times."""
 
-    evaluation: _evaluate.Evaluation
+    prepared: PreparedPath
     timeline: QueryTimeline
     count: int
     offsets: NDArray[np.int64] | None
@@ -79,41 +81,41 @@ class PlannedQuery:
         return self.timeline.reference
 
     def chunks(self, tree: TreeDescription) -> Iterator[tuple[slice, SampledPath]]:
-        """The path sampled in slices of at most ``_evaluate.CHUNK`` times (moving paths only)."""
-        evaluation, timeline = self.evaluation, self.timeline
-        assert evaluation.model is not None, "a static path has no model to sample"
-        shifts = _evaluate.basis_shifts(list(evaluation.sources), timeline)
-        signs = joint_signs(evaluation.model, evaluation.frame, evaluation.relative_to)
+        """The path sampled in slices of at most ``CHUNK`` times (moving paths only)."""
+        prepared, timeline = self.prepared, self.timeline
+        assert prepared.model is not None, "a static path has no model to sample"
+        shifts = basis_shifts(list(prepared.sources), timeline)
+        signs = joint_signs(prepared.model, prepared.frame, prepared.relative_to)
         times = timeline.evaluation_times
         if times is None:
             times = np.zeros(1, dtype=np.int64)
-        for start in range(0, self.count, _evaluate.CHUNK):
-            part = slice(start, start + _evaluate.CHUNK)
-            yield part, sample_path(tree, evaluation, signs, shifts, times[part])
+        for start in range(0, self.count, CHUNK):
+            part = slice(start, start + CHUNK)
+            yield part, sample_path(tree, prepared, signs, shifts, times[part])
 
 
 def plan_query(tree: TreeDescription, frame: str, relative_to: str, times: Any, time_ref: Any,
                extrapolation: str) -> PlannedQuery:
     """Compile (or reuse) the path and plan its timeline by the rules of ``pose()``."""
-    evaluation = _evaluate.prepare_evaluation(tree, frame, relative_to)
-    timeline = _evaluate.checked_timeline(tree, evaluation, times, time_ref, extrapolation)
+    prepared = prepare_path(tree, frame, relative_to)
+    timeline = checked_timeline(tree, prepared, times, time_ref, extrapolation)
     offsets = timeline.result_offsets
-    return PlannedQuery(evaluation, timeline, 1 if offsets is None else offsets.shape[0],
+    return PlannedQuery(prepared, timeline, 1 if offsets is None else offsets.shape[0],
                         offsets)
 
 
-def sample_path(tree: TreeDescription, evaluation: _evaluate.Evaluation, signs: dict[int, float],
+def sample_path(tree: TreeDescription, prepared: PreparedPath, signs: dict[int, float],
                 shifts: dict[str, int], times: NDArray[np.int64]) -> SampledPath:
-    """The path of ``evaluation`` (a moving one) at ``times`` (timeline basis).
+    """The path of ``prepared`` (a moving one) at ``times`` (timeline basis).
 
     Keeps of each joint's frame only what the twists need (its origin, its axis, a
     free-flyer's parent rotation), so that the forward kinematics can let the frames go
     (see :meth:`CompiledModel.joint_frames`).
     """
-    model = evaluation.model
+    model = prepared.model
     assert model is not None, "a static path has no model to sample"
-    samples = _evaluate.sample_joints(tree, model, evaluation.placed_keyframes, times, shifts)
-    ends = model.frame_parents([evaluation.frame, evaluation.relative_to])
+    samples = sample_joints(tree, model, prepared.placed_keyframes, times, shifts)
+    ends = model.frame_parents([prepared.frame, prepared.relative_to])
     # the moving frames' free-flyers below another joint: their twists turn by its rotation
     flyer_parents = {index: joint.parent for index, joint in enumerate(model.joints)
                      if index in signs and joint.joint is None and joint.parent >= 0}
@@ -132,7 +134,7 @@ def sample_path(tree: TreeDescription, evaluation: _evaluate.Evaluation, signs: 
     parent_rotations = {index: _rotations_first(kept[parent][0])
                         for index, parent in flyer_parents.items()}
     frame, relative_to = model.frame_placements_in_root(
-        kept, [evaluation.frame, evaluation.relative_to])
+        kept, [prepared.frame, prepared.relative_to])
     return SampledPath(model, origins, parent_rotations, unit_twists,
                        (_rotations_first(frame[0]), _vectors_first(frame[1])),
                        (_rotations_first(relative_to[0]), _vectors_first(relative_to[1])),

@@ -19,7 +19,7 @@ from ..errors import InvalidTimeError
 from ..values.pose import Pose
 from ..values.pose_stack import PoseStack
 from ._description import TreeDescription
-from ._evaluate import evaluate_pose
+from .pose import evaluate_pose
 
 __all__ = ["evaluate_poses"]
 

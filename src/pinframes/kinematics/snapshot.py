@@ -13,10 +13,11 @@ from typing import Any
 import numpy as np
 
 from ..errors import InvalidTimeError
-from ..values._timeline import TimedSource
 from ..values.joint import mimic_chain
+from ..values.timeline import TimedSource
 from ._description import TreeDescription
-from ._evaluate import basis_shifts, plan_timeline, sample_joint_values
+from ._sampling import sample_joint_values
+from ._times import basis_shifts, plan_timeline
 
 __all__ = ["Snapshot", "snapshot"]
 
