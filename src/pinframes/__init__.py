@@ -27,7 +27,7 @@ from .formats.limits import Limits
 from .formats.pose_files import write_poses
 from .formats.scene import read_scene, write_scene
 from .formats.urdf import read_urdf, write_urdf
-from .kinematics import FrameJacobian, PinocchioTree, Snapshot, Velocity
+from .kinematics import FrameJacobian, PinocchioTree, Snapshot, Velocity, WeldProcess
 from .tree import FrameTree
 from .values.joint import Joint, Mimic
 from .values.joint_trajectory import JointTrack, JointTrajectory
@@ -73,6 +73,7 @@ __all__ = [
     "TreeStructureError",
     "UnsupportedFeatureError",
     "Velocity",
+    "WeldProcess",
     "WriteError",
     "__version__",
     "read",

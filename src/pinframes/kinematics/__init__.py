@@ -2,7 +2,8 @@
 
 The queries, one public module each: :mod:`.pose` (``FrameTree.pose``, ``sample_times``),
 :mod:`.poses` (many pairs in one call), :mod:`.snapshot` (the whole tree at one instant),
-:mod:`.velocity`, :mod:`.jacobian` and :mod:`.pinocchio_tree` (``to_pinocchio``). Their
+:mod:`.velocity`, :mod:`.jacobian`, :mod:`.weld_process` (the welding process along a seam)
+and :mod:`.pinocchio_tree` (``to_pinocchio``). Their
 steps are the ``_`` modules: the frozen tree (``_description``), its compiled path
 (``_model``), path preparation (``_path``), the query's times (``_times``), joint sampling
 (``_sampling``), the one-time path (``_one_time``), and for velocities and Jacobians the
@@ -16,6 +17,7 @@ from .pose import default_times, evaluate_pose
 from .poses import evaluate_poses
 from .snapshot import Snapshot, snapshot
 from .velocity import Velocity, evaluate_velocity
+from .weld_process import WeldProcess, evaluate_weld_process
 
 __all__ = [
     "FrameJacobian",
@@ -23,11 +25,13 @@ __all__ = [
     "Snapshot",
     "TreeDescription",
     "Velocity",
+    "WeldProcess",
     "default_times",
     "evaluate_jacobian",
     "evaluate_pose",
     "evaluate_poses",
     "evaluate_velocity",
+    "evaluate_weld_process",
     "paths_to_common_ancestor",
     "snapshot",
 ]
