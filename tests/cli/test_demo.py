@@ -124,6 +124,19 @@ def test_demo_prints_summary_and_writes_csv_and_png(run_cli, tmp_path):
     # linear joint interpolation between them speeds the tip up by at most 0.1 %
     fastest = float(summary["max travel speed"].removesuffix(" mm/s"))
     assert 1000 * seam_length / DURATION <= fastest <= 1.001 * 1000 * seam_length / DURATION
+    # the welding process along seam_point: the ranges of speed, angles and offset
+    def span(name, unit):
+        low, high = summary[name].removesuffix(f" {unit}").split(" .. ")
+        return float(low), float(high)
+
+    design_speed = 1000 * seam_length / DURATION
+    assert design_speed * 0.999 <= span("travel speed", "mm/s")[0]
+    assert span("travel speed", "mm/s")[1] <= design_speed * 1.001
+    # at the two ends seam_point's x is the end chord, 0.045 deg off the tangent
+    assert 9.95 <= span("travel angle", "deg")[0] <= span("travel angle", "deg")[1] <= 10.05
+    assert span("work angle", "deg") == (90.0, 90.0)
+    for name in ("offset along", "offset across", "offset normal"):
+        assert span(name, "mm") == (0.0, 0.0)
 
     text = (tmp_path / "results" / "torch_poses.csv").read_text()
     assert text.startswith("time_s,x_m,y_m,z_m,qx,qy,qz,qw\n")
