@@ -68,6 +68,19 @@ def test_a_point_on_a_turning_table_at_known_speed():
                                atol=1e-15)
 
 
+def test_a_static_pair_in_a_moving_frames_axes_without_times_is_at_rest():
+    """Nothing moves between the two frames: one zero velocity, whatever axes it is written
+    in (it was a ValueError when the third frame moved)."""
+    tree = FrameTree()
+    tree.add("a", "world", Pose([1.0, 0.0, 0.0]))
+    tree.add("b", "world", Pose([0.0, 1.0, 0.0]))
+    tree.add("turning", "world", Pose(rotation=[[0, 0, 0, 1], [0, 0, 1, 0]], times=[0.0, 1.0]))
+    velocity = tree.velocity("a", "b", expressed_in="turning")
+    assert velocity.times is None
+    np.testing.assert_array_equal(velocity.linear, [[0.0, 0.0, 0.0]])
+    np.testing.assert_array_equal(velocity.angular, [[0.0, 0.0, 0.0]])
+
+
 def test_keyframes_use_the_segment_that_starts_there():
     tree = FrameTree()
     tree.add("slider", "world", Pose([[0, 0, 0], [1, 0, 0], [1, 2, 0]], times=[0.0, 1.0, 2.0]))

@@ -22,7 +22,7 @@ from pinframes import FrameTree, JointWithoutSamplesWarning, Pose
 from pinframes.errors import ExtrapolationError
 from pinframes.kinematics._one_time import FEW_TIMES, MAX_DEGREES_OF_FREEDOM
 from pinframes.kinematics._path import prepare_path
-from pinframes.values.interpolation import Keyframes, segment_position, segment_positions
+from pinframes.values.interpolation import Keyframes, Segments, segment_position
 from pinframes.values.joint_trajectory import JointTrajectory
 
 from geometry import homogeneous, rot_z
@@ -47,13 +47,14 @@ def batched_at(tree: FrameTree, frame: str, relative_to: str, t, **options) -> n
 
 
 # -- the scalar samplers ---------------------------------------------------------------------
-def test_segment_position_is_segment_positions_for_one_time(rng):
+def test_segment_position_is_segments_for_one_time(rng):
     for count in (1, 2, 7):
         keyframe_times = np.cumsum(rng.integers(1, 10**9, size=count))
         times = np.concatenate([keyframe_times, keyframe_times - 1, keyframe_times + 1,
                                 rng.integers(keyframe_times[0] - 10**9,
                                              keyframe_times[-1] + 10**9, size=50)])
-        index, fraction = segment_positions(keyframe_times, times)
+        segments = Segments(keyframe_times, times)
+        index, fraction = segments.index, segments.fraction
         for position, time in enumerate(times.tolist()):
             one = segment_position(keyframe_times, time)
             assert one == (index[position], fraction[position])

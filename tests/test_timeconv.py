@@ -5,6 +5,7 @@ import pytest
 
 from pinframes.errors import InvalidTimeError
 from pinframes.values.timeconv import (
+    TimeAxis,
     format_timedelta_iso,
     format_timestamp_iso,
     parse_time_axis,
@@ -92,3 +93,14 @@ def test_iso_timestamp_formatting(stamp, text):
 
 def test_plain_number_strings_are_seconds():
     assert parse_time_axis(["0", "1.5"]).offsets.tolist() == [0, 1_500_000_000]
+
+
+def test_time_axis_as_numpy():
+    relative = TimeAxis(np.array([0, 1_500_000_000]), None)
+    np.testing.assert_array_equal(relative.as_numpy(),
+                                  np.array([0, 1_500_000_000], dtype="timedelta64[ns]"))
+    anchored = TimeAxis(np.array([0, 2]), np.datetime64("2026-01-01T00:00:00", "ns"))
+    np.testing.assert_array_equal(anchored.as_numpy(), np.array(
+        ["2026-01-01T00:00:00.000000000", "2026-01-01T00:00:00.000000002"],
+        dtype="datetime64[ns]"))
+    assert anchored.as_numpy().dtype == np.dtype("datetime64[ns]")

@@ -16,7 +16,7 @@ from collections.abc import Iterator
 import numpy as np
 import pyarrow as pa  # type: ignore[import-untyped]
 
-from .. import FrameTree, Pose, Velocity
+from .. import FrameTree, Pose, TimeAxis, Velocity
 from ..errors import FrameNotFoundError, InvalidTimeError
 from ._options import BatchOptions
 
@@ -71,11 +71,11 @@ def _query_times(tree: FrameTree, frame: str, relative_to: str, options: BatchOp
         raise InvalidTimeError(f"nothing moves between {frame!r} and {relative_to!r} in "
                                "this run: give explicit times", field="times")
     time_ref = options.time_ref if options.times is not None else axis.reference
-    offsets = axis.offsets
     if options.step_ns is not None:
-        offsets = np.arange(offsets[0], offsets[-1] + 1, options.step_ns, dtype=np.int64)
-    as_timedelta = offsets.astype("timedelta64[ns]")
-    return (as_timedelta if axis.reference is None else axis.reference + as_timedelta), time_ref
+        offsets = axis.offsets
+        axis = TimeAxis(np.arange(offsets[0], offsets[-1] + 1, options.step_ns, dtype=np.int64),
+                        axis.reference)
+    return axis.as_numpy(), time_ref
 
 
 def _table(run_id: str, pose: Pose, velocity: Velocity | None, schema: pa.Schema

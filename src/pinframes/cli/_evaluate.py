@@ -132,7 +132,7 @@ def in_chunks(query: Callable[[np.ndarray], Result], times: TimeAxis,
     """``query(values)`` for consecutive chunks of at most :data:`CHUNK_SIZE` of ``times``
     (``timedelta64`` values, or ``datetime64`` with a reference), with a progress bar on
     ``progress`` (a terminal) when there is more than one chunk."""
-    values = _time_values(times)
+    values = times.as_numpy()
     count = values.shape[0]
     bar = _ProgressBar(progress, count) if progress is not None and count > CHUNK_SIZE else None
     parts = []
@@ -154,11 +154,6 @@ def pose_velocity(tree: FrameTree, pose: Pose, frame: str, relative_to: str,
         return tree.velocity(frame, relative_to, expressed_in=expressed_in)
     times = offsets if reference is None else reference + offsets
     return tree.velocity(frame, relative_to, times, expressed_in, time_ref=reference)
-
-
-def _time_values(times: TimeAxis) -> np.ndarray:
-    offsets = times.offsets.astype("timedelta64[ns]")
-    return offsets if times.reference is None else times.reference + offsets
 
 
 def _concatenate(parts: list[Pose]) -> Pose:

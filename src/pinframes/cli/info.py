@@ -11,6 +11,7 @@ import numpy as np
 
 from ..tree import FrameTree
 from ..values.timeconv import format_timestamp_iso
+from ..values.timeline import source_reference
 from ._files import read_tree
 
 __all__ = ["add_parser", "describe", "describe_json", "run"]
@@ -68,8 +69,7 @@ def describe_json(tree: FrameTree) -> dict[str, Any]:
         if times is not None:
             entry["samples"] = int(times.shape[0])
             entry["time_span_s"] = [times[0] / 1e9, times[-1] / 1e9]
-            reference = reference if reference is not None else tree.reference_time
-            entry["reference_time"] = _timestamp(reference)
+            entry["reference_time"] = _timestamp(source_reference(reference, tree.reference_time))
         frames.append(entry)
     return {
         "name": tree.name, "root": tree.root, "reference_time": _timestamp(tree.reference_time),

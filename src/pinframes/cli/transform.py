@@ -84,10 +84,8 @@ def _every_point_at_every_time(
     data: np.ndarray, names: list[str],
 ) -> tuple[list[str], np.ndarray]:
     """Every point at every time of ``axis``."""
-    offsets = axis.offsets.astype("timedelta64[ns]")
-    times = offsets if axis.reference is None else axis.reference + offsets
     time_ref = args.time_ref if axis.reference is None else axis.reference
-    out = method(data[None], args.frame, args.relative_to, times, time_ref=time_ref)
+    out = method(data[None], args.frame, args.relative_to, axis.as_numpy(), time_ref=time_ref)
     count, points = out.shape[:2]
     seconds = np.repeat(axis.offsets / 1e9, points)
     index = np.tile(np.arange(points), count)

@@ -142,8 +142,7 @@ def _csv_times(cells: list[str], column: str, rows: list[tuple[int, list[str]]],
         axis = parse_time_axis(cells, field=column)
     except InvalidTimeError as exc:
         raise FileFormatError(exc.message, file=path, frame=column) from None
-    offsets = axis.offsets.astype("timedelta64[ns]")
-    return offsets if axis.reference is None else axis.reference + offsets
+    return axis.as_numpy()
 
 
 def read_npz_trajectory(

@@ -7,7 +7,8 @@ and :mod:`.pinocchio_tree` (``to_pinocchio``). Their
 steps are the ``_`` modules: the frozen tree (``_description``), its compiled path
 (``_model``), path preparation (``_path``), the query's times (``_times``), joint sampling
 (``_sampling``), the one-time path (``_one_time``), and for velocities and Jacobians the
-sampled path (``_sampled_path``), exact rates (``_rates``) and joint twists (``_twists``).
+sampled path (``_sampled_path``) and joint twists (``_twists``); the exact rates of what
+moves are its interpolation scheme's (:mod:`pinframes.values.interpolation`).
 """
 
 from ._description import TreeDescription, paths_to_common_ancestor

@@ -1,4 +1,5 @@
-"""`TreeDescription`: what the evaluator needs of a frame tree, frozen at one tree version.
+"""`TreeDescription`: what the evaluator needs of a frame tree, frozen at one tree version,
+and what that version's shape says about a query path (its :class:`ModelLayout`).
 
 ``FrameTree`` builds one when a query needs it and keeps it until the tree changes; the
 evaluator reads nothing else of the tree. Besides the frames, it holds what the tree's
@@ -20,12 +21,51 @@ import numpy as np
 from ..values.joint import Joint
 from ..values.joint_trajectory import JointTrajectory
 from ..values.pose import Pose
-from ..values.se3 import IDENTITY, Transform, compose
+from ..values.se3 import IDENTITY, Transform, compose, inverse
+from ..values.timeline import TimedSource, source_reference
 
-__all__ = ["TreeDescription", "paths_to_common_ancestor"]
+__all__ = ["ModelJoint", "ModelLayout", "TreeDescription", "paths_to_common_ancestor"]
 
 _CACHE_LIMIT = 8192
 """Prepared query paths kept per tree version (oldest dropped first)."""
+
+
+@dataclass(frozen=True)
+class ModelJoint:
+    """One joint of a model of (part of) the tree.
+
+    Attributes
+    ----------
+    frame : str
+        The tree frame whose edge to its parent the joint moves.
+    parent : int
+        Index of the parent joint in the model's joints; -1 for the model's root.
+    placement : Transform
+        The joint frame in the parent joint's frame, static.
+    joint : Joint or None
+        The robot joint, or None for a free-flyer that carries a moving frame's pose.
+    """
+
+    frame: str
+    parent: int
+    placement: Transform
+    joint: Joint | None
+
+    @property
+    def name(self) -> str:
+        """Joint name in the Pinocchio model."""
+        return self.frame if self.joint is None else self.joint.name
+
+
+@dataclass(frozen=True)
+class ModelLayout:
+    """What a model of some frames below ``root`` holds: the joints between them and
+    ``root``, parents first, and each frame's placement on its nearest joint ``(joint index
+    or -1 for the root, placement)``."""
+
+    root: str
+    joints: tuple[ModelJoint, ...]
+    frames: dict[str, tuple[int, Transform]]
 
 
 @dataclass(frozen=True)
@@ -119,8 +159,66 @@ class TreeDescription:
             anchors[frame] = (anchor, compose(placement, (pose.rotation, pose.translation)))
         return anchors[name]
 
+    def frame_source(self, frame: str) -> TimedSource:
+        """The keyframe times of the moving frame ``frame`` and what they count from."""
+        pose = self.local_poses[frame]
+        return TimedSource(frame, pose.keyframes.times,
+                           source_reference(pose.reference_time, self.reference_time))
+
+    def joint_source(self, joint_name: str) -> TimedSource:
+        """The sample times of the driven joint ``joint_name`` and what they count from."""
+        trajectory = self.joint_trajectories[joint_name]
+        return TimedSource(joint_name, trajectory.times,
+                           source_reference(trajectory.reference, self.reference_time))
+
+    def path_layout(self, frame: str, relative_to: str) -> Transform | ModelLayout:
+        """The path between two frames: the static pose of ``frame`` in ``relative_to``
+        when nothing between them moves, else the layout of a model rooted at their lowest
+        common ancestor holding both."""
+        anchor, placement = self.anchor(frame)
+        reference_anchor, reference_placement = self.anchor(relative_to)
+        if anchor == reference_anchor:
+            return compose(inverse(reference_placement), placement)
+        up, _ = paths_to_common_ancestor(self.parents, self.depths, frame, relative_to)
+        return self.model_layout(up[-1], [frame, relative_to])
+
+    def model_layout(self, root: str, frames: list[str]) -> ModelLayout:
+        """The layout of a model rooted at ``root`` holding ``frames`` (``root`` or below it)
+        and every joint above them."""
+        root_anchor, root_placement = self.anchor(root)
+        root_depth = self.depths[root]
+        from_root_anchor = inverse(root_placement)
+        joint_frames: set[str] = set()
+        for frame in frames:
+            anchor = self.anchor(frame)[0]
+            while self.depths[anchor] > root_depth and anchor not in joint_frames:
+                joint_frames.add(anchor)
+                anchor = self.anchor(self.parents[anchor])[0]
+        # by depth (parents first), then name: the same joint order in every process
+        ordered = sorted(joint_frames, key=lambda frame: (self.depths[frame], frame))
+        index = {frame: position for position, frame in enumerate(ordered)}
+
+        def placed(anchor: str, placement: Transform) -> tuple[int, Transform]:
+            if anchor in index:
+                return index[anchor], placement
+            if anchor != root_anchor:
+                raise AssertionError(f"{anchor!r} is not below {root!r}")
+            return -1, compose(from_root_anchor, placement)
+
+        joints = []
+        for frame in ordered:
+            parent, placement = placed(*self.anchor(self.parents[frame]))
+            joint = self.joints.get(frame)
+            if joint is not None:
+                origin = self.local_poses[frame]
+                placement = compose(placement, (origin.rotation, origin.translation))
+            joints.append(ModelJoint(frame, parent, placement, joint))
+        placements = {frame: placed(*self.anchor(frame)) for frame in frames}
+        return ModelLayout(root, tuple(joints), placements)
+
     def time_group(self, joint_name: str) -> str:
-        """The first driven joint whose trajectory has the same times as ``joint_name``'s.
+        """The first driven joint whose trajectory has the same times, counted from the
+        same reference time, as ``joint_name``'s.
 
         Joints driven together (one ``set_joint_trajectory`` call, a robot's trajectory
         file) hold equal times arrays; a query searches their segments once per group.
@@ -128,15 +226,18 @@ class TreeDescription:
         groups = self._time_groups
         if groups is None:
             groups = {}
-            leaders: list[tuple[str, np.ndarray]] = []
-            for name, trajectory in self.joint_trajectories.items():
-                times = trajectory.times
+            leaders: list[tuple[str, TimedSource]] = []
+            for name in self.joint_trajectories:
+                source = self.joint_source(name)
+                times = source.times
                 groups[name] = next(
                     (leader for leader, known in leaders
-                     if known is times or (known.shape == times.shape
-                                           and np.array_equal(known, times))), name)
+                     if known.reference == source.reference
+                     and (known.times is times or (known.times.shape == times.shape
+                                                   and np.array_equal(known.times, times)))),
+                    name)
                 if groups[name] == name:
-                    leaders.append((name, times))
+                    leaders.append((name, source))
             object.__setattr__(self, "_time_groups", groups)  # whole, for concurrent queries
         return groups[joint_name]
 

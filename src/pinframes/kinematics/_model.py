@@ -11,66 +11,29 @@ from __future__ import annotations
 
 import threading
 from collections.abc import Iterator, Mapping, Sequence
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 import pinocchio as pin
 from numpy.typing import NDArray
 
-from ..values.joint import Joint
 from ..values.rotations import quaternion_from_matrix
-from ..values.se3 import IDENTITY, Transform, canonical, compose, inverse
-from ._description import TreeDescription
+from ..values.se3 import IDENTITY, Transform, canonical, compose
+from ._description import ModelLayout, TreeDescription
 
-__all__ = ["CompiledJoint", "CompiledModel", "compile_model"]
-
-
-@dataclass(frozen=True)
-class CompiledJoint:
-    """One joint of a compiled model.
-
-    Attributes
-    ----------
-    frame : str
-        The tree frame whose edge to its parent the joint moves.
-    parent : int
-        Index of the parent joint in :attr:`CompiledModel.joints`; -1 for the model's root.
-    placement : Transform
-        The joint frame in the parent joint's frame, static.
-    joint : Joint or None
-        The robot joint, or None for a free-flyer that carries a moving frame's pose.
-    """
-
-    frame: str
-    parent: int
-    placement: Transform
-    joint: Joint | None
-
-    @property
-    def name(self) -> str:
-        """Joint name in the Pinocchio model."""
-        return self.frame if self.joint is None else self.joint.name
+__all__ = ["CompiledModel", "compile_model"]
 
 
 class CompiledModel:
-    """Pinocchio model of a set of frames, rooted at the frame ``root``.
-
-    Parameters
-    ----------
-    root : str
-        The frame that is Pinocchio's universe.
-    joints : sequence of CompiledJoint
-        Parents before children.
-    frames : dict
-        Frame name -> (parent joint index or -1, placement in that joint's frame).
+    """Pinocchio model of a :class:`ModelLayout`: its root is Pinocchio's universe, its
+    joints the model's joints (:attr:`joints`, parents before children), its frames
+    ``OP_FRAME`` frames on their nearest joint.
     """
 
-    def __init__(
-        self, root: str, joints: Sequence[CompiledJoint], frames: dict[str, tuple[int, Transform]]
-    ) -> None:
+    def __init__(self, layout: ModelLayout) -> None:
+        root, frames = layout.root, layout.frames
         self.root = root
-        self.joints = tuple(joints)
+        self.joints = layout.joints
         self.model = pin.Model()
         self.model.name = root
         for joint in self.joints:
@@ -203,40 +166,9 @@ class CompiledModel:
 
 
 def compile_model(tree: TreeDescription, root: str, frames: list[str]) -> CompiledModel:
-    """A Pinocchio model rooted at ``root`` holding ``frames`` and every joint above them.
-
-    Every frame in ``frames`` must be ``root`` or below it.
-    """
-    root_anchor, root_placement = tree.anchor(root)
-    root_depth = tree.depths[root]
-    from_root_anchor = inverse(root_placement)
-    joint_frames: set[str] = set()
-    for frame in frames:
-        anchor = tree.anchor(frame)[0]
-        while tree.depths[anchor] > root_depth and anchor not in joint_frames:
-            joint_frames.add(anchor)
-            anchor = tree.anchor(tree.parents[anchor])[0]
-    # by depth (parents first), then name: the same joint order in every process
-    ordered = sorted(joint_frames, key=lambda frame: (tree.depths[frame], frame))
-    index = {frame: position for position, frame in enumerate(ordered)}
-
-    def placed(anchor: str, placement: Transform) -> tuple[int, Transform]:
-        if anchor in index:
-            return index[anchor], placement
-        if anchor != root_anchor:
-            raise AssertionError(f"{anchor!r} is not below {root!r}")
-        return -1, compose(from_root_anchor, placement)
-
-    joints = []
-    for frame in ordered:
-        parent, placement = placed(*tree.anchor(tree.parents[frame]))
-        joint = tree.joints.get(frame)
-        if joint is not None:
-            origin = tree.local_poses[frame]
-            placement = compose(placement, (origin.rotation, origin.translation))
-        joints.append(CompiledJoint(frame, parent, placement, joint))
-    placements = {frame: placed(*tree.anchor(frame)) for frame in frames}
-    return CompiledModel(root, joints, placements)
+    """A Pinocchio model rooted at ``root`` holding ``frames`` and every joint above them
+    (:meth:`TreeDescription.model_layout`); every frame must be ``root`` or below it."""
+    return CompiledModel(tree.model_layout(root, frames))
 
 
 def _to_se3(transform: Transform) -> pin.SE3:

@@ -24,13 +24,13 @@ import numpy as np
 import pinocchio as pin
 from numpy.typing import NDArray
 
-from ..values.interpolation import Keyframes, segment_position
+from ..values.interpolation import FrameInterpolation, JointInterpolation, segment_position
 from ..values.joint import mimic_chain
-from ..values.joint_trajectory import JointTrajectory
 from ..values.se3 import Transform
 from ..values.timeline import QueryTimeline
 from ._description import TreeDescription
 from ._model import CompiledModel
+from ._path import PreparedPath
 
 __all__ = ["FEW_TIMES", "MAX_DEGREES_OF_FREEDOM", "OneTimePlan", "one_time_plan",
            "takes_few_times"]
@@ -62,22 +62,23 @@ def takes_few_times(timeline: QueryTimeline, model: CompiledModel) -> bool:
 
 @dataclass(frozen=True)
 class _MovingFrame:
-    """A free-flyer: the moving frame ``source`` and its keyframes in its parent."""
+    """A free-flyer: the moving frame ``source`` and the interpolation of its keyframes in
+    its parent."""
 
     source: str
-    keyframes: Keyframes
+    keyframes: FrameInterpolation
 
 
 @dataclass(frozen=True)
 class _RobotJoint:
     """A robot joint: driven by the joint ``primary`` (itself unless it mimics one), from
-    its ``trajectory``, whose times it shares with the joints of ``time_group`` (see
-    :meth:`TreeDescription.time_group`), or, without one, at ``rest`` (radians or metres);
-    ``mimics`` are the ``(multiplier, offset)`` of the mimic links from the primary out to
-    the joint."""
+    the interpolation of its ``trajectory``, whose times it shares with the joints of
+    ``time_group`` (see :meth:`TreeDescription.time_group`), or, without one, at ``rest``
+    (radians or metres); ``mimics`` are the ``(multiplier, offset)`` of the mimic links from
+    the primary out to the joint."""
 
     primary: str
-    trajectory: JointTrajectory | None
+    trajectory: JointInterpolation | None
     time_group: str
     rest: float
     mimics: tuple[tuple[float, float], ...]
@@ -106,7 +107,8 @@ class OneTimePlan:
         steps: list[_MovingFrame | _RobotJoint] = []
         for position, joint in enumerate(model.joints):
             if joint.joint is None:
-                steps.append(_MovingFrame(joint.frame, tree.local_poses[joint.frame].keyframes))
+                steps.append(_MovingFrame(joint.frame,
+                                           tree.local_poses[joint.frame].keyframes.scheme()))
                 continue
             chain = mimic_chain(joint.joint, tree.joints_by_name)
             primary = chain[-1]
@@ -116,7 +118,8 @@ class OneTimePlan:
             group = "" if trajectory is None else tree.time_group(primary.name)
             # Pinocchio's joint ids count from 1 (0 is the universe)
             cos_sin = model.model.joints[position + 1].nq == 2
-            steps.append(_RobotJoint(primary.name, trajectory, group, primary.rest_value,
+            steps.append(_RobotJoint(primary.name, None if trajectory is None
+                                     else trajectory.scheme(), group, primary.rest_value,
                                      mimics, cos_sin))
         self._steps = tuple(steps)
         self.holds_rest_values = any(isinstance(step, _RobotJoint) and step.trajectory is None
@@ -147,8 +150,8 @@ class OneTimePlan:
     def _configuration(self, time: int, shifts: dict[str, int]) -> list[float]:
         """Pinocchio's configuration ``q`` of the model at ``time`` (timeline basis, ns)."""
         q: list[float] = []
-        # joints driven together have equal times: search their segments once
-        positions: dict[tuple[str, int], tuple[int, float]] = {}
+        # joints driven together (one time group) have equal times: search them once
+        positions: dict[str, tuple[int, float]] = {}
         for step in self._steps:
             if isinstance(step, _MovingFrame):
                 translation, quaternion = step.keyframes.pose_at(time - shifts[step.source])
@@ -160,9 +163,9 @@ class OneTimePlan:
                 value = step.rest
             else:
                 shift = shifts[step.primary]
-                position = positions.get((step.time_group, shift))
+                position = positions.get(step.time_group)
                 if position is None:
-                    position = positions[step.time_group, shift] = segment_position(
+                    position = positions[step.time_group] = segment_position(
                         trajectory.times, time - shift)
                 value = trajectory.value_at(time - shift, position)
             for multiplier, offset in step.mimics:
@@ -174,15 +177,12 @@ class OneTimePlan:
         return q
 
 
-def one_time_plan(
-    tree: TreeDescription, model: CompiledModel, frame: str, relative_to: str
-) -> OneTimePlan:
-    """The :class:`OneTimePlan` of the query of ``frame`` in ``relative_to``, prepared once
-    per tree version."""
-    key = ("one time", frame, relative_to)
-    plan = tree.cached(key)
+def one_time_plan(tree: TreeDescription, path: PreparedPath) -> OneTimePlan:
+    """The :class:`OneTimePlan` of a moving ``path``, made once and kept with the path."""
+    plan = path.plans.get("one time")
     if plan is None:
-        plan = OneTimePlan(tree, model, frame, relative_to)
-        tree.store(key, plan)
+        assert path.model is not None, "a static path has no model to evaluate"
+        plan = path.plans["one time"] = OneTimePlan(tree, path.model, path.frame,
+                                                    path.relative_to)
     assert isinstance(plan, OneTimePlan)
     return plan

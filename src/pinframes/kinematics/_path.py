@@ -10,14 +10,15 @@ query depends on its path, not on the tree. Prepared once per tree version (cach
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import Any
 
 from ..values.interpolation import Keyframes
 from ..values.joint import Joint, mimic_chain
-from ..values.se3 import IDENTITY, Transform, compose, inverse
+from ..values.se3 import Transform
 from ..values.timeline import TimedSource
-from ._description import TreeDescription, paths_to_common_ancestor
-from ._model import CompiledModel, compile_model
+from ._description import ModelLayout, TreeDescription
+from ._model import CompiledModel
 
 __all__ = ["PreparedPath", "model_sources", "prepare_path"]
 
@@ -28,7 +29,9 @@ class PreparedPath:
 
     Either ``static`` (the pose of the frame in the reference frame, when nothing between
     them can move) or ``model`` with, per joint, the moving frame's keyframes with the
-    joint placement folded in (None for robot joints), and the moving things it samples.
+    joint placement folded in (:meth:`Keyframes.placed`; None for robot joints), and the
+    moving things it samples. ``plans`` keeps what queries derive from the path once (the
+    one-time plan), so that it lives as long as the path.
     """
 
     frame: str
@@ -37,6 +40,7 @@ class PreparedPath:
     model: CompiledModel | None = None
     placed_keyframes: tuple[Keyframes | None, ...] = ()
     sources: tuple[TimedSource, ...] = ()
+    plans: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
 
 
 def prepare_path(tree: TreeDescription, frame: str, relative_to: str) -> PreparedPath:
@@ -45,32 +49,19 @@ def prepare_path(tree: TreeDescription, frame: str, relative_to: str) -> Prepare
     cached = tree.cached(key)
     if cached is not None:
         return cached
-    anchor, placement = tree.anchor(frame)
-    reference_anchor, reference_placement = tree.anchor(relative_to)
-    if anchor == reference_anchor:
-        path = PreparedPath(frame, relative_to, compose(inverse(reference_placement),
-                                                        placement))
-    else:
-        up, _ = paths_to_common_ancestor(tree.parents, tree.depths, frame, relative_to)
-        model = compile_model(tree, up[-1], [frame, relative_to])
+    layout = tree.path_layout(frame, relative_to)
+    if isinstance(layout, ModelLayout):
+        model = CompiledModel(layout)
         keyframes = tuple(
-            None if joint.joint is not None else _placed_keyframes(
-                tree.local_poses[joint.frame].keyframes, model.joint_placements[position])
+            None if joint.joint is not None
+            else tree.local_poses[joint.frame].keyframes.placed(model.joint_placements[position])
             for position, joint in enumerate(model.joints))
         path = PreparedPath(frame, relative_to, None, model, keyframes,
                             tuple(model_sources(tree, model)))
+    else:
+        path = PreparedPath(frame, relative_to, layout)
     tree.store(key, path)
     return path
-
-
-def _placed_keyframes(keyframes: Keyframes, placement: Transform) -> Keyframes:
-    """Keyframes of ``placement @ pose``: a static factor on the left commutes with
-    linear interpolation and SLERP, so it can be applied to the keyframes once."""
-    if placement is IDENTITY:
-        return keyframes
-    rotation, translation = placement
-    return Keyframes(keyframes.times, rotation @ keyframes.rotations,
-                     keyframes.translations @ rotation.T + translation)
 
 
 def model_sources(tree: TreeDescription, model: CompiledModel) -> list[TimedSource]:
@@ -78,17 +69,11 @@ def model_sources(tree: TreeDescription, model: CompiledModel) -> list[TimedSour
     sources: dict[str, TimedSource] = {}
     for joint in model.joints:
         if joint.joint is None:
-            pose = tree.local_poses[joint.frame]
-            reference = pose.reference_time if pose.reference_time is not None else (
-                tree.reference_time)
-            sources[joint.frame] = TimedSource(joint.frame, pose.keyframes.times, reference)
+            sources[joint.frame] = tree.frame_source(joint.frame)
             continue
         for name in _driving_joints(tree, joint.joint):
-            trajectory = tree.joint_trajectories.get(name)
-            if trajectory is not None:
-                reference = trajectory.reference if trajectory.reference is not None else (
-                    tree.reference_time)
-                sources[name] = TimedSource(name, trajectory.times, reference)
+            if name in tree.joint_trajectories:
+                sources[name] = tree.joint_source(name)
     return list(sources.values())
 
 

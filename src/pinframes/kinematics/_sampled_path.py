@@ -19,7 +19,7 @@ from ..values.timeline import QueryTimeline
 from ._description import TreeDescription
 from ._model import CompiledModel
 from ._path import PreparedPath, prepare_path
-from ._sampling import CHUNK, sample_joints
+from ._sampling import CHUNK, SegmentSearches, sample_joints
 from ._times import basis_shifts, checked_timeline
 from ._twists import Twist, joint_signs, robot_joint_axes
 
@@ -45,10 +45,10 @@ class SampledPath:
         The query frame and the reference frame in ``C``.
     signs : dict of int to float
         +1 for the joints moving the frame, -1 for those moving the reference frame.
-    shifts : dict of str to int
-        Per moving thing, what to subtract from timeline times to reach its own basis.
     times : ndarray of int64
         The sample times on the timeline's basis.
+    searches : SegmentSearches
+        Where they fall among each moving thing's samples (for their rates).
     """
 
     model: CompiledModel
@@ -58,8 +58,8 @@ class SampledPath:
     frame: Transform
     relative_to: Transform
     signs: dict[int, float]
-    shifts: dict[str, int]
     times: NDArray[np.int64]
+    searches: SegmentSearches
 
 
 @dataclass(frozen=True)
@@ -114,7 +114,8 @@ def sample_path(tree: TreeDescription, prepared: PreparedPath, signs: dict[int, 
     """
     model = prepared.model
     assert model is not None, "a static path has no model to sample"
-    samples = sample_joints(tree, model, prepared.placed_keyframes, times, shifts)
+    searches = SegmentSearches(tree, times, shifts)
+    samples = sample_joints(tree, model, prepared.placed_keyframes, times, shifts, searches)
     ends = model.frame_parents([prepared.frame, prepared.relative_to])
     # the moving frames' free-flyers below another joint: their twists turn by its rotation
     flyer_parents = {index: joint.parent for index, joint in enumerate(model.joints)
@@ -138,7 +139,7 @@ def sample_path(tree: TreeDescription, prepared: PreparedPath, signs: dict[int, 
     return SampledPath(model, origins, parent_rotations, unit_twists,
                        (_rotations_first(frame[0]), _vectors_first(frame[1])),
                        (_rotations_first(relative_to[0]), _vectors_first(relative_to[1])),
-                       signs, shifts, times)
+                       signs, times, searches)
 
 
 def _rotations_first(rotation: NDArray[np.float64]) -> NDArray[np.float64]:

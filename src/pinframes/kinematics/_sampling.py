@@ -16,71 +16,103 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import JointWithoutSamplesWarning
-from ..values.interpolation import Keyframes, segment_positions
+from ..values.interpolation import Keyframes, Segments
 from ..values.joint import Joint
 from ._description import TreeDescription
 from ._model import CompiledModel
 
-__all__ = ["CHUNK", "sample_joint_values", "sample_joints", "warn_joints_without_samples"]
+__all__ = ["CHUNK", "SegmentSearches", "sample_joint_values", "sample_joints",
+           "warn_joints_without_samples"]
 
 CHUNK = 1 << 12
 """Samples evaluated at once: the temporaries of a chunk (under 300 kB each) stay in the
 CPU caches; 2,048-8,192 ran alike, 16,384 1.8x slower (Panda, 10^5 samples, one thread)."""
 
 
+class SegmentSearches:
+    """Where one set of times (timeline basis, ns) falls among the samples of a query's
+    moving things: one search per moving frame and one per time group of joints
+    (:meth:`TreeDescription.time_group`: equal sample times and reference time), shared by
+    everything taken at those times (poses, joint values, and their rates).
+
+    Attributes
+    ----------
+    times : ndarray of int64 or None
+        The times; None for a path on which nothing is sampled.
+    """
+
+    __slots__ = ("_found", "_shifts", "_tree", "times")
+
+    def __init__(self, tree: TreeDescription, times: NDArray[np.int64] | None,
+                 shifts: dict[str, int]) -> None:
+        self._tree = tree
+        self.times = times
+        self._shifts = shifts
+        self._found: dict[tuple[str, str], Segments] = {}
+
+    def of_frame(self, frame: str, keyframe_times: NDArray[np.int64]) -> Segments:
+        """The times among the keyframes of the moving frame ``frame`` (its own basis)."""
+        return self._search(("frame", frame), frame, keyframe_times)
+
+    def of_joint(self, joint: str, sample_times: NDArray[np.int64]) -> Segments:
+        """The times among the samples of the driven joint ``joint`` (its own basis)."""
+        return self._search(("joints", self._tree.time_group(joint)), joint, sample_times)
+
+    def _search(self, key: tuple[str, str], source: str, sample_times: NDArray[np.int64]
+                ) -> Segments:
+        found = self._found.get(key)
+        if found is None:
+            assert self.times is not None  # a moving thing is a source: the query has times
+            found = self._found[key] = Segments(sample_times, self.times - self._shifts[source])
+        return found
+
+
 def sample_joints(
     tree: TreeDescription, model: CompiledModel, keyframes: Sequence[Keyframes | None],
     times: NDArray[np.int64] | None, shifts: dict[str, int],
+    searches: SegmentSearches | None = None,
 ) -> list[Any]:
     """Every joint of ``model`` at ``times`` (timeline basis, ns).
 
     A free-flyer gets its moving frame's ``(rotation, translation)`` from ``keyframes[i]``,
     samples last (``(3, 3, N)``, ``(3, N)``); a robot joint its value(s) (radians or metres):
     its trajectory, its mimic primary's, or 0. ``shifts`` holds, per source, what to
-    subtract from a timeline time to land on its own time basis.
+    subtract from a timeline time to land on its own time basis; ``searches`` may pass the
+    caller's :class:`SegmentSearches` of ``times`` (to reuse them for rates).
     """
+    if searches is None:
+        searches = SegmentSearches(tree, times, shifts)
     cache: dict[str, NDArray[np.float64] | float] = {}
-    segments: dict[str, tuple[NDArray[np.intp], NDArray[np.float64]]] = {}
     samples: list[Any] = []
     for joint, frames in zip(model.joints, keyframes, strict=True):
         if joint.joint is None:
-            assert frames is not None and times is not None
-            samples.append(frames.transform_at(times - shifts[joint.frame]))
+            assert frames is not None
+            segments = searches.of_frame(joint.frame, frames.times)
+            samples.append(frames.transform_at(segments.times, segments))
         else:
-            samples.append(sample_joint_values(tree, joint.joint, times, shifts, cache,
-                                               segments))
+            samples.append(sample_joint_values(tree, joint.joint, searches, cache))
     return samples
 
 
 def sample_joint_values(
-    tree: TreeDescription, joint: Joint, times: NDArray[np.int64] | None,
-    shifts: dict[str, int], cache: dict[str, NDArray[np.float64] | float],
-    segments: dict[str, tuple[NDArray[np.intp], NDArray[np.float64]]] | None = None,
+    tree: TreeDescription, joint: Joint, searches: SegmentSearches,
+    cache: dict[str, NDArray[np.float64] | float],
 ) -> NDArray[np.float64] | float:
-    """Values of ``joint`` at ``times``: its trajectory, its mimic primary's, or its rest
-    value.
+    """Values of ``joint`` at the times of ``searches``: its trajectory, its mimic
+    primary's, or its rest value.
 
-    ``cache`` keeps the values per joint name, ``segments`` the segment positions per
-    trajectory times array, for the other joints sampled at the same ``times``.
+    ``cache`` keeps the values per joint name for the other joints sampled at those times.
     """
     if joint.name in cache:
         return cache[joint.name]
     trajectory = tree.joint_trajectories.get(joint.name)
     if joint.mimic is not None:
-        primary = sample_joint_values(tree, tree.joints_by_name[joint.mimic.joint], times, shifts,
-                                      cache, segments)
+        primary = sample_joint_values(tree, tree.joints_by_name[joint.mimic.joint], searches,
+                                      cache)
         value = joint.mimic.multiplier * primary + joint.mimic.offset
     elif trajectory is not None:
-        assert times is not None  # a driven joint is a source: the query has times
-        shifted = times - shifts[joint.name]
-        # joints driven together have equal times: search their segments once
-        key = f"segments {tree.time_group(joint.name)} {shifts[joint.name]}"
-        positions = segments.get(key) if segments is not None else None
-        if positions is None:
-            positions = segment_positions(trajectory.times, shifted)
-            if segments is not None:
-                segments[key] = positions
-        value = trajectory.sample(shifted, positions)
+        segments = searches.of_joint(joint.name, trajectory.times)
+        value = trajectory.sample(segments.times, segments)
     else:
         value = joint.rest_value
         warn_joints_without_samples(tree)

@@ -61,10 +61,8 @@ def _requested_times(tree: TreeDescription, times: Any) -> TimeAxis | None:
                                    "take (a string naming a frame means that frame's "
                                    "keyframe times; pass seconds as a number or as '5s')",
                                    field="times")
-        pose = tree.local_poses[times]
-        reference = pose.reference_time if pose.reference_time is not None else (
-            tree.reference_time)
-        return TimeAxis(pose.keyframes.times, reference)
+        source = tree.frame_source(times)
+        return TimeAxis(source.times, source.reference)
     return parse_time_axis(times, field="times")
 
 

@@ -43,7 +43,7 @@ def evaluate_pose(
         rotation, translation = to_stacks(path.static, offsets.shape[0])
     elif path.model is not None and takes_few_times(timeline, path.model):
         # Pinocchio's own kinematics, time by time
-        plan = one_time_plan(tree, path.model, frame, relative_to)
+        plan = one_time_plan(tree, path)
         if plan.holds_rest_values:
             warn_joints_without_samples(tree)
         rotation, translation = plan.poses(timeline.evaluation_times,

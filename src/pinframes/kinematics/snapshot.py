@@ -14,9 +14,8 @@ import numpy as np
 
 from ..errors import InvalidTimeError
 from ..values.joint import mimic_chain
-from ..values.timeline import TimedSource
 from ._description import TreeDescription
-from ._sampling import sample_joint_values
+from ._sampling import SegmentSearches, sample_joint_values
 from ._times import basis_shifts, plan_timeline
 
 __all__ = ["Snapshot", "snapshot"]
@@ -41,20 +40,19 @@ class Snapshot:
 
 def snapshot(tree: TreeDescription, time: Any, time_ref: Any = None) -> Snapshot:
     """The tree at ``time`` (None only for a tree in which nothing moves)."""
-    sources = [TimedSource(frame, pose.keyframes.times, _reference(tree, pose.reference_time))
-               for frame, pose in tree.local_poses.items() if pose.is_time_dependent]
-    sources += [TimedSource(name, trajectory.times, _reference(tree, trajectory.reference))
-                for name, trajectory in tree.joint_trajectories.items()]
+    sources = [tree.frame_source(frame) for frame, pose in tree.local_poses.items()
+               if pose.is_time_dependent]
+    sources += [tree.joint_source(name) for name in tree.joint_trajectories]
     if time is None and sources:
         raise InvalidTimeError("parts of the tree move (" + ", ".join(
             s.name for s in sources) + "); give the time to take them at", field="time")
     timeline = plan_timeline(tree, sources, None if time is None else [time], time_ref)
     times = timeline.evaluation_times
-    shifts = basis_shifts(sources, timeline)
+    searches = SegmentSearches(tree, times, basis_shifts(sources, timeline))
     for joint in tree.joints_by_name.values():
         mimic_chain(joint, tree.joints_by_name)  # a JointError for a mimic of a missing joint
     cache: dict[str, Any] = {}
-    values = {name: float(np.ravel(sample_joint_values(tree, joint, times, shifts, cache))[0])
+    values = {name: float(np.ravel(sample_joint_values(tree, joint, searches, cache))[0])
               for name, joint in tree.joints_by_name.items()}
     if times is None:
         return Snapshot(None, values)
@@ -62,6 +60,3 @@ def snapshot(tree: TreeDescription, time: Any, time_ref: Any = None) -> Snapshot
         return Snapshot(np.datetime64(int(times[0]), "ns"), values)
     return Snapshot(np.timedelta64(int(times[0]), "ns"), values)
 
-
-def _reference(tree: TreeDescription, own: np.datetime64 | None) -> np.datetime64 | None:
-    return own if own is not None else tree.reference_time

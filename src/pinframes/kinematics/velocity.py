@@ -1,7 +1,8 @@
 """``FrameTree.velocity``: how fast a frame moves relative to another, per sample.
 
-Exact derivatives of what ``pose()`` interpolates (see :mod:`._rates`), carried through the
-compiled model of the query path (see :mod:`._twists`). The linear velocity is that of the
+Exact derivatives of what ``pose()`` interpolates (the ``rates`` of each moving thing's
+interpolation scheme, :mod:`pinframes.values.interpolation`), carried through the compiled
+model of the query path (see :mod:`._twists`). The linear velocity is that of the
 frame's origin relative to the reference frame (the derivative of
 ``pose(frame, relative_to).translation``); the angular velocity ``w`` satisfies
 ``dR/dt = [w]x @ R`` for ``R = pose(frame, relative_to).rotation``. Both are written in the
@@ -19,10 +20,11 @@ from numpy.typing import NDArray
 
 from ..values.joint import Joint, mimic_primary
 from ..values.se3 import IDENTITY
+from ..values.timeconv import TimeAxis
 from ._description import TreeDescription
 from ._path import PreparedPath
-from ._rates import keyframe_rates, segment_rates, track_rates
 from ._sampled_path import PlannedQuery, SampledPath, plan_query
+from ._sampling import SegmentSearches
 from ._twists import Twist, rotate, velocity_sum
 from .pose import evaluate_pose
 
@@ -76,7 +78,8 @@ def evaluate_velocity(tree: TreeDescription, frame: str, relative_to: str, times
                 rotation_t = np.swapaxes(axes, -1, -2)
                 linear_c, angular_c = rotate(rotation_t, linear_c), rotate(rotation_t, angular_c)
             linear[part], angular[part] = linear_c, angular_c
-    if expressed_in not in (frame, relative_to):
+    # without times a static path has one velocity, zero in any axes
+    if expressed_in not in (frame, relative_to) and planned.offsets is not None:
         rotation_t = np.swapaxes(_orientation(tree, expressed_in, relative_to, planned), 1, 2)
         linear, angular = rotate(rotation_t, linear), rotate(rotation_t, angular)
     return Velocity(linear, angular, planned.times, planned.reference_time, frame,
@@ -86,36 +89,31 @@ def evaluate_velocity(tree: TreeDescription, frame: str, relative_to: str, times
 def _orientation(tree: TreeDescription, other: str, relative_to: str, planned: PlannedQuery
                  ) -> FloatArray:
     """Rotations ``(T, 3, 3)`` of ``other`` in ``relative_to`` at the result's times."""
-    offsets, reference = planned.offsets, planned.reference_time
-    if offsets is None:
-        static = evaluate_pose(tree, other, relative_to, None, None, "clamp")
-        return np.broadcast_to(static.rotation, (1, 3, 3))
-    times = offsets.astype("timedelta64[ns]")
-    if reference is not None:
-        return evaluate_pose(tree, other, relative_to, reference + times, reference,
-                             "clamp").rotation
-    return evaluate_pose(tree, other, relative_to, times, None, "clamp").rotation
+    assert planned.offsets is not None  # a query at times
+    reference = planned.reference_time
+    return evaluate_pose(tree, other, relative_to,
+                         TimeAxis(planned.offsets, reference).as_numpy(), reference,
+                         "clamp").rotation
 
 
 def _velocity_in_root(tree: TreeDescription, prepared: PreparedPath, path: SampledPath
                       ) -> tuple[FloatArray, FloatArray]:
     """``(v, w)`` of the frame relative to the reference frame, in the root's axes."""
     twists: dict[int, Twist] = {}
-    segments: dict[tuple[str, int], tuple[NDArray[np.intp], FloatArray]] = {}
     for position, joint in enumerate(path.model.joints):
         keyframes = prepared.placed_keyframes[position]
         if position not in path.signs:
             continue
         if keyframes is not None:  # a moving frame's free-flyer
-            linear, angular = keyframe_rates(keyframes, path.times - path.shifts[joint.frame])
+            segments = path.searches.of_frame(joint.frame, keyframes.times)
+            linear, angular = keyframes.rates(segments.times, segments)
             parent_rotation = path.parent_rotations.get(position)
             if parent_rotation is not None:
                 linear = rotate(parent_rotation, linear)
                 angular = rotate(parent_rotation, angular)
             twists[position] = (linear, angular)
             continue
-        rates = None if joint.joint is None else joint_rates(
-            tree, joint.joint, path.times, path.shifts, segments)
+        rates = None if joint.joint is None else joint_rates(tree, joint.joint, path.searches)
         if rates is not None:
             sliding, turning = path.unit_twists[position]
             twists[position] = (None if sliding is None else sliding * rates[:, None],
@@ -123,23 +121,14 @@ def _velocity_in_root(tree: TreeDescription, prepared: PreparedPath, path: Sampl
     return velocity_sum(path.signs, path.origins, twists, path.frame[1])
 
 
-def joint_rates(
-    tree: TreeDescription, joint: Joint, times: NDArray[np.int64], shifts: dict[str, int],
-    segments: dict[tuple[str, int], tuple[NDArray[np.intp], FloatArray]] | None = None,
-) -> FloatArray | None:
-    """Velocities (N,) of ``joint`` at ``times`` (timeline basis), rad/s or m/s: its
+def joint_rates(tree: TreeDescription, joint: Joint, searches: SegmentSearches
+                ) -> FloatArray | None:
+    """Velocities (N,) of ``joint`` at the times of ``searches``, rad/s or m/s: its
     trajectory's, or its mimic primary's times the product of the multipliers; None when
-    no trajectory drives it. ``segments`` keeps the segment lookups of one set of times
-    for the joints of one time group (:meth:`TreeDescription.time_group`)."""
+    no trajectory drives it."""
     primary, multiplier = mimic_primary(joint, tree.joints_by_name)
-    track = tree.joint_trajectories.get(primary.name)
-    if track is None:
+    trajectory = tree.joint_trajectories.get(primary.name)
+    if trajectory is None:
         return None
-    own_times = times - shifts[primary.name]
-    found = None
-    if segments is not None:
-        key = (tree.time_group(primary.name), shifts[primary.name])
-        found = segments.get(key)
-        if found is None:
-            found = segments[key] = segment_rates(track.times, own_times)
-    return multiplier * track_rates(track, own_times, found)
+    segments = searches.of_joint(primary.name, trajectory.times)
+    return multiplier * trajectory.rates(segments.times, segments)

@@ -23,6 +23,7 @@ from ..values.joint_trajectory import JointTrajectory
 from ..values.pose import Pose
 from ..values.spatial_data import SpatialData
 from ..values.subsystem import Subsystem
+from ..values.timeline import source_reference
 from ._tree_like import Tree, TreeLike
 
 __all__ = ["copy_tree", "graft", "subtree"]
@@ -130,8 +131,8 @@ def _copy_frames(source: TreeLike, target: TreeLike, renamed: Callable[[str], st
         track = None if joint is None else source.joint_trajectory(joint.name)
         if joint is not None and track is not None:
             target.replace_joint_trajectory(prefix + joint.name, JointTrajectory(
-                track.times, track.reference if track.reference is not None else reference,
-                track.values))
+                track.times, source_reference(track.reference, reference), track.values,
+                track.interpolation))
     for data_name in source.data_names:
         if source.data_frame(data_name) in below:
             target.assign_data(prefix + data_name,

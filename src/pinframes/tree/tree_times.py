@@ -17,7 +17,7 @@ from ..values.joint import mimic_chain
 from ..values.joint_trajectory import JointTrajectory
 from ..values.pose import Pose
 from ..values.timeconv import TimeAxis, parse_time_axis, parse_timestamp, shift_ns, timestamp_ns
-from ..values.timeline import TimedSource, plan_query_timeline
+from ..values.timeline import TimedSource, plan_query_timeline, source_reference
 from ._tree_like import Tree, TreeLike
 
 __all__ = ["resampled", "time_union"]
@@ -37,7 +37,7 @@ def time_union(tree: TreeLike, frames: Iterable[str] | None = None) -> TimeAxis 
         tree.parent(frame)  # a FrameNotFoundError for unknown names
         if frame != tree.root:
             sources.extend(
-                TimedSource(frame, times, own if own is not None else tree.reference_time)
+                TimedSource(frame, times, source_reference(own, tree.reference_time))
                 for times, own in _frame_samples(tree, frame))
     # the default times of a query through all of them (SPEC 4, values.timeline)
     timeline = plan_query_timeline(sources, None, None, tree.reference_time, False)
@@ -62,8 +62,8 @@ def resampled(tree: Tree, times: Any, time_ref: Any = None) -> Tree:
             track = copy.joint_trajectory(joint.name)
             if track is not None:
                 own = _own_basis(axis, instants, track.reference, tree, frame)
-                copy.replace_joint_trajectory(joint.name, JointTrajectory(own, track.reference,
-                                                            track.sample(own)))
+                copy.replace_joint_trajectory(joint.name, JointTrajectory(
+                    own, track.reference, track.sample(own), track.interpolation))
             continue
         pose = copy.local_pose(frame)
         if pose.is_time_dependent:
@@ -90,7 +90,7 @@ def _own_basis(axis: TimeAxis, instants: NDArray[np.int64] | None,
                own: np.datetime64 | None, tree: TreeLike, frame: str) -> NDArray[np.int64]:
     """The requested times as ns on the basis of a pose or track (its own reference time,
     else the tree's, else plain offsets)."""
-    reference = own if own is not None else tree.reference_time
+    reference = source_reference(own, tree.reference_time)
     if instants is None:
         if reference is not None:
             raise ReferenceTimeError("relative times were given, but neither time_ref nor a "

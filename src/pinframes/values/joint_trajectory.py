@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -18,7 +18,11 @@ from ..errors import (
     near_misses,
 )
 from ._readonly import readonly_copy
-from .interpolation import segment_position, segment_positions
+from .interpolation import (
+    DEFAULT_JOINT_INTERPOLATION,
+    JointInterpolation,
+    Segments,
+)
 from .joint import Joint
 from .timeconv import parse_time_axis
 
@@ -38,6 +42,9 @@ class JointTrajectory:
     values : ndarray, shape (T,)
         Radians or metres. Continuous joints are stored unwrapped, so that linear
         interpolation takes the short way round.
+    interpolation : type of JointInterpolation
+        How values go between samples (default
+        :class:`~pinframes.values.interpolation.LinearValues`: linearly).
 
     Immutable: ``times`` and ``values`` are read-only copies of the arrays given.
     """
@@ -45,6 +52,10 @@ class JointTrajectory:
     times: NDArray[np.int64]
     reference: np.datetime64 | None
     values: NDArray[np.float64]
+    interpolation: type[JointInterpolation] = field(default=DEFAULT_JOINT_INTERPOLATION,
+                                                    repr=False)
+    _scheme: JointInterpolation | None = field(default=None, init=False, repr=False,
+                                               compare=False)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "times", readonly_copy(self.times))
@@ -60,29 +71,34 @@ class JointTrajectory:
         object.__setattr__(trajectory, "values", readonly_copy(values))
         return trajectory
 
-    def sample(
-        self, times: NDArray[np.int64],
-        positions: tuple[NDArray[np.intp], NDArray[np.float64]] | None = None,
-    ) -> NDArray[np.float64]:
+    def scheme(self) -> JointInterpolation:
+        """The instance of :attr:`interpolation` for this trajectory, made on first use."""
+        scheme = self._scheme
+        if scheme is None:
+            scheme = self.interpolation(self.times, self.values)
+            object.__setattr__(self, "_scheme", scheme)
+        return scheme
+
+    def sample(self, times: NDArray[np.int64], segments: Segments | None = None
+               ) -> NDArray[np.float64]:
         """Values at ``times`` (ns on this trajectory's own basis), held outside the samples.
 
-        ``positions`` may pass ``segment_positions(self.times, times)`` when it is known
-        (trajectories set together share their times, and so their segment positions).
+        ``segments`` may pass ``Segments(self.times, times)`` when it is known (trajectories
+        set together share their times, and so their segments).
         """
-        index, fraction = positions or segment_positions(self.times, times)
-        if self.values.shape[0] == 1:
-            return np.full(times.shape, self.values[0])
-        return (1.0 - fraction) * self.values[index] + fraction * self.values[index + 1]
+        return self.scheme().sample(times, segments)
 
     def value_at(self, time: int, position: tuple[int, float] | None = None) -> float:
         """The value at one ``time`` (ns on this trajectory's own basis), as :meth:`sample`
         gives it, in Python floats; ``position`` may pass ``segment_position(self.times,
         time)`` when it is known."""
-        index, fraction = position or segment_position(self.times, time)
-        if self.values.shape[0] == 1:
-            return float(self.values[0])
-        first, second = self.values[index:index + 2].tolist()
-        return (1.0 - fraction) * first + fraction * second
+        return self.scheme().value_at(time, position)
+
+    def rates(self, times: NDArray[np.int64], segments: Segments | None = None
+              ) -> NDArray[np.float64]:
+        """Rates (rad/s or m/s) at ``times`` (ns on this trajectory's own basis): zero where
+        the value is held."""
+        return self.scheme().rates(times, segments)
 
 
 JointTrack = JointTrajectory

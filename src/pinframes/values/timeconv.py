@@ -78,6 +78,12 @@ class TimeAxis:
         """True when the times are anchored to a reference timestamp."""
         return self.reference is not None
 
+    def as_numpy(self) -> NDArray[np.datetime64] | NDArray[np.timedelta64]:
+        """The times as numpy: ``datetime64[ns]`` instants when anchored to a reference,
+        else ``timedelta64[ns]`` offsets (what every time argument of pinframes takes)."""
+        offsets = self.offsets.astype("timedelta64[ns]")
+        return offsets if self.reference is None else self.reference + offsets
+
 
 def parse_time_axis(values: Any, *, field: str = "times") -> TimeAxis:
     """Read one or many times into a :class:`TimeAxis`.

@@ -16,7 +16,14 @@ from numpy.typing import NDArray
 from ..errors import InvalidTimeError, ReferenceTimeError
 from .timeconv import TimeAxis, parse_timestamp, shift_ns, timestamp_ns
 
-__all__ = ["QueryTimeline", "TimedSource", "plan_query_timeline"]
+__all__ = ["QueryTimeline", "TimedSource", "plan_query_timeline", "source_reference"]
+
+
+def source_reference(own: np.datetime64 | None, tree_reference: np.datetime64 | None
+                     ) -> np.datetime64 | None:
+    """What the times of a moving frame or a driven joint count from: its own reference
+    time, else its tree's (SPEC section 4); None when neither has one."""
+    return own if own is not None else tree_reference
 
 
 @dataclass(frozen=True)

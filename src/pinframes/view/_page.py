@@ -128,9 +128,7 @@ def _page_times(tree: FrameTree, frames: list[str], relative_to: str, times: Any
     """The times to query (None: static) and the time_ref to query them with."""
     if times is not None:
         if isinstance(times, TimeAxis):
-            offsets = times.offsets.astype("timedelta64[ns]")
-            return (offsets if times.reference is None else times.reference + offsets,
-                    time_ref)
+            return times.as_numpy(), time_ref
         return times, time_ref
     axes = [axis for frame in frames
             if (axis := tree.sample_times(frame, relative_to)) is not None]
