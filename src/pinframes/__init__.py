@@ -2,6 +2,7 @@
 
 from .errors import (
     ArgumentTypeError,
+    BagWarning,
     BrokenMimicWarning,
     ExtrapolationError,
     FileFormatError,
@@ -25,6 +26,7 @@ from .formats import read, read_joint_trajectory, write
 from .formats.frames_yaml import read_frames_yaml, write_frames_yaml
 from .formats.limits import Limits
 from .formats.pose_files import write_poses
+from .formats.rosbag import read_rosbag
 from .formats.scene import read_scene, write_scene
 from .formats.urdf import read_urdf, write_urdf
 from .kinematics import FrameJacobian, PinocchioTree, Snapshot, Velocity, WeldProcess
@@ -41,6 +43,7 @@ __version__ = "0.1.0"
 
 __all__ = [
     "ArgumentTypeError",
+    "BagWarning",
     "BrokenMimicWarning",
     "ExtrapolationError",
     "FileFormatError",
@@ -79,6 +82,7 @@ __all__ = [
     "read",
     "read_frames_yaml",
     "read_joint_trajectory",
+    "read_rosbag",
     "read_scene",
     "read_urdf",
     "write",

@@ -17,6 +17,7 @@ from collections.abc import Iterable
 
 __all__ = [
     "ArgumentTypeError",
+    "BagWarning",
     "BrokenMimicWarning",
     "ExtrapolationError",
     "FileFormatError",
@@ -176,6 +177,12 @@ class JointLimitWarning(UserWarning):
 
 class FramesYamlWarning(UserWarning):
     """A ``frames.yaml`` oddity that pinframes reads anyway (unknown fields, undeclared frames)."""
+
+
+class BagWarning(UserWarning):
+    """A ROS bag read the way tf2 reads it, with something worth knowing: transforms tf2
+    refuses, two transforms of a frame at one stamp, tf messages for links the robot
+    description already has, joint states for joints it does not drive."""
 
 
 class BrokenMimicWarning(UserWarning):

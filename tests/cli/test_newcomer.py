@@ -91,7 +91,8 @@ def test_other_files_say_what_they_look_like(run_cli, tmp_path, content, looks_l
     result = run_cli("info", path)
     assert result.returncode == 1
     assert looks_like in result.stderr
-    assert "pinframes reads trees from ASDF, URDF, scene and frames.yaml files" in result.stderr
+    assert ("pinframes reads trees from ASDF, URDF, scene, frames.yaml and ROS bag files"
+            in result.stderr)
 
 
 def test_info_json_describes_frames_and_joints(run_cli):

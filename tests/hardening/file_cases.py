@@ -519,4 +519,21 @@ ASDF = [
          "cannot read the numbers"),
 ]
 
-FILE_CASES = FRAMES_YAML + URDF + SCENE + TRAJECTORY + ASDF
+ROSBAG = [
+    Case("missing", "rosbag", MISSING, ReadError, None, None, "no such file"),
+    Case("garbage", "rosbag", GARBAGE, FileFormatError, None, None, "not a ROS bag"),
+    Case("folder-without-metadata", "rosbag", FOLDER, FileFormatError, None, None,
+         "a folder without metadata.yaml"),
+    Case("ros1-magic-only", "rosbag", b"#ROSBAG V2.0\n", FileFormatError, None, None,
+         "truncated or corrupt"),
+    Case("ros1-garbage", "rosbag", b"#ROSBAG V2.0\n" + GARBAGE, FileFormatError, None, None,
+         "truncated or corrupt"),
+    Case("mcap-magic-only", "rosbag", b"\x89MCAP0\r\n", FileFormatError, None, None,
+         "truncated or corrupt"),
+    Case("mcap-garbage", "rosbag", b"\x89MCAP0\r\n" + GARBAGE, FileFormatError, None, None,
+         "truncated or corrupt"),
+    Case("sqlite-garbage", "rosbag", b"SQLite format 3\x00" + GARBAGE, FileFormatError, None,
+         None, "truncated or corrupt"),
+]
+
+FILE_CASES = FRAMES_YAML + URDF + SCENE + TRAJECTORY + ASDF + ROSBAG

@@ -137,6 +137,9 @@ def readers(shared_data: Path | None = None) -> dict[str, Reader]:
         "read_joint_trajectory_npz": Reader(pinframes.read_joint_trajectory, None,
                                             _npz_samples()),
         "read_asdf": Reader(pinframes.read_asdf, "asdf", _asdf_samples(shared_data)),
+        "read_rosbag": Reader(pinframes.read_rosbag, None, (Sample(
+            "cell_run.mcap", (MODELS / "welding_cell" / "cell_run.mcap").read_bytes(),
+            "run.mcap"),)),
     }
 
 

@@ -15,6 +15,7 @@ from pinframes import (
     read_asdf,
     read_frames_yaml,
     read_joint_trajectory,
+    read_rosbag,
     read_scene,
     read_urdf,
 )
@@ -42,4 +43,5 @@ READERS = {
     "csv": Reader(read_joint_trajectory, "motion.csv"),
     "npz": Reader(read_joint_trajectory, "motion.npz"),
     "asdf": Reader(read_asdf, "tree.asdf"),
+    "rosbag": Reader(read_rosbag, "run.bag"),
 }

@@ -2,7 +2,8 @@
 
 A scene reads other files (``layers[].file``, ``robots[].urdf``, ``robots[].trajectory``,
 relative to the scene's folder; docs/scene-format.md), and a frames.yaml reads the
-``tile_maps.yaml`` beside it; every other format is one file. A file that cannot be found
+``tile_maps.yaml`` beside it; a ROS 2 bag folder is its ``metadata.yaml`` and the storage
+files it names; every other format is one file. A file that cannot be found
 has the checksum ``"missing"``, so creating it later changes the run's checksums too.
 """
 
@@ -16,7 +17,9 @@ from typing import Any
 
 import yaml
 
+from ..errors import PinframesError
 from ..formats.limits import current_limits
+from ..formats.rosbag import bag_files
 
 __all__ = ["MISSING", "RunInputs", "checksums", "run_inputs"]
 
@@ -42,6 +45,8 @@ def run_inputs(path: Path) -> RunInputs:
     """The inputs of the run whose file is ``path``, each once (layers that name each other
     in a circle are left for the reader to refuse)."""
     root = path.resolve()
+    if root.is_dir():
+        return RunInputs(_folder_files(root), False)
     is_scene, pending = _named_files(root)
     files = {root: None}
     pending.reverse()  # (a file, whether to look into it for the files it names), last first
@@ -53,6 +58,15 @@ def run_inputs(path: Path) -> RunInputs:
         if look_inside:
             pending.extend(reversed(_named_files(file)[1]))
     return RunInputs(list(files), is_scene)
+
+
+def _folder_files(folder: Path) -> list[Path]:
+    """The files of a bag folder (the folder itself if its metadata cannot be read: reading
+    the run will fail and say why)."""
+    try:
+        return bag_files(folder)
+    except PinframesError:
+        return [folder]
 
 
 def _named_files(file: Path) -> tuple[bool, list[tuple[Path, bool]]]:

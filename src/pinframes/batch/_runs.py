@@ -1,11 +1,11 @@
 """Which runs a batch computes: files, glob patterns, or a runs list (CSV).
 
 A run is one input file of any format pinframes reads (a scene with its trajectories, an
-ASDF file, ...) and a run id that names it in the output. Run ids come from the paths: the
-path relative to the folder all runs share, without the suffix; when every run file has the
-same name (``campaign/r001/scene.yaml``, ``campaign/r002/scene.yaml``) the folder alone
-(``r001``). A runs list (``.csv``) gives the ids itself: a header ``run,file`` and one line
-per run, files relative to the list's folder.
+ASDF file, a ROS bag, ...), or a ROS 2 bag folder, and a run id that names it in the output.
+Run ids come from the paths: the path relative to the folder all runs share, without the
+suffix; when every run file has the same name (``campaign/r001/scene.yaml``,
+``campaign/r002/scene.yaml``) the folder alone (``r001``). A runs list (``.csv``) gives the
+ids itself: a header ``run,file`` and one line per run, files relative to the list's folder.
 """
 
 from __future__ import annotations
@@ -55,10 +55,11 @@ def find_runs(specs: Iterable[str | os.PathLike[str]]) -> list[Run]:
             matches = sorted(glob.glob(text, recursive=True))
             if not matches:
                 raise ReadError("this pattern matches no file", file=text)
-            found.extend(Path(match) for match in matches if Path(match).is_file())
+            found.extend(Path(match) for match in matches
+                         if Path(match).is_file() or _is_bag_folder(Path(match)))
         elif text.lower().endswith(RUNS_LIST_SUFFIX):
             listed.extend(_read_runs_list(Path(text)))
-        elif Path(text).is_file():
+        elif Path(text).is_file() or _is_bag_folder(Path(text)):
             found.append(Path(text))
         else:
             raise ReadError("is a folder, not a file" if Path(text).is_dir() else
@@ -66,6 +67,11 @@ def find_runs(specs: Iterable[str | os.PathLike[str]]) -> list[Run]:
     runs = listed + _named_by_path(found)
     _require_unique(runs)
     return runs
+
+
+def _is_bag_folder(path: Path) -> bool:
+    """A ROS 2 bag folder: read as one input, like a file."""
+    return path.is_dir() and (path / "metadata.yaml").is_file()
 
 
 def _named_by_path(paths: list[Path]) -> list[Run]:

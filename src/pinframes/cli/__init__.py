@@ -62,6 +62,9 @@ def _parser() -> argparse.ArgumentParser:
                          help="print the traceback of an error (default: off)")
     for options, default in ((parser, None), (verbose, argparse.SUPPRESS)):
         _add_limit_options(options, default)
+        options.add_argument("--robot-description", metavar="URDF", default=default,
+                             help="for a ROS bag: the robot's URDF file (default: the last "
+                             "message on the bag's /robot_description)")
     subparsers = parser.add_subparsers(title="subcommands", metavar="SUBCOMMAND", required=True)
     for module in _SUBCOMMANDS:
         module.add_parser(subparsers, [verbose])

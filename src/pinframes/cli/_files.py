@@ -13,9 +13,15 @@ from ..tree import FrameTree
 __all__ = ["read_tree", "require_frames", "write_tree"]
 
 
-def read_tree(path: str | Path) -> FrameTree:
-    """Read the tree in ``path``, in the format told from the file."""
-    tree: FrameTree = read(path)
+def read_tree(path: str | Path, robot_description: str | None = None) -> FrameTree:
+    """Read the tree in ``path``, in the format told from the file; ``robot_description``
+    (``--robot-description``) is the URDF of the robot in a ROS bag."""
+    if robot_description is None:
+        tree: FrameTree = read(path)
+        return tree
+    if detect_format(path) != "rosbag":
+        raise FileFormatError("--robot-description is for ROS bags", file=path)
+    tree = read(path, robot_description=robot_description)
     return tree
 
 

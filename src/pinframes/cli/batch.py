@@ -60,6 +60,10 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run the batch; exit status 1 when a run has no poses."""
+    if args.robot_description is not None:
+        raise UnsupportedFeatureError("pinframes batch reads each bag's own "
+                                      "/robot_description; --robot-description is for the "
+                                      "commands that read one file", field="robot_description")
     try:
         from ..batch import MANIFEST_NAME, run_batch
     except ImportError as exc:

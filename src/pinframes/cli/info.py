@@ -1,4 +1,5 @@
-"""``pinframes info FILE``: the tree, with each frame's kind, time span and reference time."""
+"""``pinframes info FILE``: the tree, with each frame's kind, time span and reference time;
+for a ROS bag also its topics (used and ignored), time span and unused joint states."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from ..formats.rosbag import ROSBAG_METADATA_KEY
 from ..tree import FrameTree
 from ..values.timeconv import format_timestamp_iso
 from ..values.timeline import source_reference
@@ -24,8 +26,10 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         description="Print the tree of frames in FILE with each frame's kind (static, "
         "moving, robot joint), the time span of its keyframes or joint samples (seconds "
         "after its reference time) and that reference time, then the subsystems (weldx) "
-        "merged into the tree.")
-    parser.add_argument("file", metavar="FILE", help="scene, frames.yaml, ASDF or URDF file")
+        "merged into the tree; for a ROS bag, its topics (used and ignored), the time span "
+        "of the stamps used and the joint states no joint took.")
+    parser.add_argument("file", metavar="FILE", help="scene, frames.yaml, ASDF or URDF file, "
+                        "or a ROS bag (.bag, .mcap, .db3 or a ROS 2 bag folder)")
     parser.add_argument("--format", "-f", choices=("text", "json"), default="text",
                         help="a table to read, or JSON for programs (default: text)")
     parser.set_defaults(run=run)
@@ -33,7 +37,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Print the description of the tree."""
-    tree = read_tree(args.file)
+    tree = read_tree(args.file, args.robot_description)
     if args.format == "json":
         sys.stdout.write(json.dumps(describe_json(tree), indent=1) + "\n")
     else:
@@ -71,12 +75,15 @@ def describe_json(tree: FrameTree) -> dict[str, Any]:
             entry["time_span_s"] = [times[0] / 1e9, times[-1] / 1e9]
             entry["reference_time"] = _timestamp(source_reference(reference, tree.reference_time))
         frames.append(entry)
-    return {
+    described = {
         "name": tree.name, "root": tree.root, "reference_time": _timestamp(tree.reference_time),
         "frames": frames,
         "subsystems": [{"name": s.name, "root": s.root, "members": list(s.members),
                         "parent": s.parent} for s in tree.subsystems],
     }
+    if ROSBAG_METADATA_KEY in tree.metadata:
+        described["rosbag"] = tree.metadata[ROSBAG_METADATA_KEY]
+    return described
 
 
 def _timestamp(stamp: np.datetime64 | None) -> str | None:
@@ -101,7 +108,27 @@ def describe(tree: FrameTree) -> str:
         inside = "" if subsystem.parent is None else f", merged into {subsystem.parent}"
         lines.append(f"subsystem {subsystem.name}: root {subsystem.root}, "
                      f"{len(subsystem.members)} frames{inside}")
+    if ROSBAG_METADATA_KEY in tree.metadata:
+        lines += _bag_lines(tree.metadata[ROSBAG_METADATA_KEY])
     return "\n".join(lines) + "\n"
+
+
+def _bag_lines(bag: dict[str, Any]) -> list[str]:
+    """The bag a tree was read from: kind, time span, topics used and ignored."""
+    span = bag["time_span"]
+    lines = [f"{bag['kind']} {bag['file']}: "
+             + (f"stamps {span[0]} .. {span[1]}" if span else "nothing moves")]
+    for used in (True, False):
+        topics = [topic for topic in bag["topics"] if (topic["use"] is not None) == used]
+        label = "topics used:   " if used else "topics ignored:"
+        for number, topic in enumerate(topics):
+            use = f": {topic['use']}" if used else ""
+            lines.append(f"{label if number == 0 else ' ' * len(label)} {topic['name']} "
+                         f"({topic['type']}, {topic['messages']} messages){use}")
+    if bag["joint_states_not_used"]:
+        lines.append("joint states not used (no robot description drives them): "
+                     + ", ".join(bag["joint_states_not_used"]))
+    return lines
 
 
 def _walk(tree: FrameTree, name: str, prefix: str, child_prefix: str):

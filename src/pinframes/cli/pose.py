@@ -48,7 +48,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Evaluate and write the poses."""
-    tree = read_tree(args.file)
+    tree = read_tree(args.file, args.robot_description)
     require_frames(tree, args.file, args.frame, args.relative_to)
     relative_to = args.relative_to
     if relative_to is None:

@@ -44,7 +44,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Build and write the page."""
-    tree = read_tree(args.file)
+    tree = read_tree(args.file, args.robot_description)
     paths = None if args.path is None else dict(args.path)
     require_frames(tree, args.file, args.relative_to, *(args.frames or []),
                    *(paths or {}), *(paths or {}).values())

@@ -24,6 +24,7 @@ from ._registry import (
     write,
 )
 from .frames_yaml import read_frames_yaml, write_frames_yaml
+from .rosbag import read_rosbag
 from .scene import SCENE_FORMAT_KEY, read_scene, write_scene
 from .trajectory_files import (
     JOINT_TRAJECTORY,
@@ -77,6 +78,11 @@ def _is_frames_yaml(peek: Peek, writing: bool) -> bool:
     return isinstance(content, dict) and "frames" in content
 
 
+def _is_bag(peek: Peek, writing: bool) -> bool:
+    """A ROS 2 bag folder has its metadata.yaml (bag files are told by content)."""
+    return not peek.path.is_dir() or (peek.path / "metadata.yaml").is_file()
+
+
 register_format(FileFormat("asdf", "ASDF", (".asdf",), _read_asdf, _write_asdf,
                            ("schema", "key")))
 register_format(FileFormat("urdf", "URDF", (".urdf",), read_urdf, write_urdf,
@@ -91,4 +97,9 @@ register_format(FileFormat("csv", "CSV", (".csv",), read_csv_trajectory,
                            kind=JOINT_TRAJECTORY))
 register_format(FileFormat("npz", "NPZ", (".npz",), read_npz_trajectory,
                            kind=JOINT_TRAJECTORY))
+# ROS bags: files told by their magic bytes (formats/_content.py), ROS 2 bag folders by
+# their metadata.yaml; read with rosbags (the [ros] extra), never written
+register_format(FileFormat("rosbag", "ROS bag", (".bag", ".mcap", ".db3"), read_rosbag,
+                           recognise=_is_bag, folders=True,
+                           unrecognised="a ROS 2 bag folder holds a metadata.yaml"))
 register_robot_format("urdf", mount_urdf)

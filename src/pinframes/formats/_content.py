@@ -1,6 +1,7 @@
 """Telling a tree file's format by its content, for :func:`~pinframes.formats.detect_format`.
 
-The first bytes tell ASDF (``#ASDF``) and XML (a URDF when its root element is ``<robot>``).
+The first bytes tell ASDF (``#ASDF``), ROS bags (a ROS 1 bag, MCAP or SQLite file: their magic
+bytes) and XML (a URDF when its root element is ``<robot>``).
 Other text is YAML, and the YAML formats' own tests tell it apart (a scene has the
 ``pinframes_scene`` key, a frames.yaml the ``frames`` key or a name starting with
 ``frames``). A file of any other kind is a :class:`~pinframes.errors.FileFormatError` that
@@ -16,6 +17,7 @@ from typing import Any
 
 from ..errors import FileFormatError
 from .reading import read_bytes
+from .rosbag import bag_kind_of_head
 
 __all__ = ["format_by_content"]
 
@@ -35,7 +37,10 @@ def format_by_content(path: Path, candidates: Sequence[Any],
                       yaml_test: Callable[[Any], str | None]) -> str:
     """The name of the format among ``candidates`` (registered tree formats) that the file
     at ``path`` holds; ``yaml_test(candidates)`` names the YAML format or None."""
-    head = read_bytes(path)[:_HEAD_BYTES]
+    head = read_bytes(path, _HEAD_BYTES)
+    bag = bag_kind_of_head(head)
+    if bag is not None:
+        return _pick("rosbag", f"a {bag} file", path, candidates)
     body = head.removeprefix(b"\xef\xbb\xbf").lstrip()
     if body.startswith(b"#ASDF"):
         return _pick("asdf", "an ASDF file", path, candidates)
@@ -61,7 +66,7 @@ def format_by_content(path: Path, candidates: Sequence[Any],
     if b"," in first_line and b":" not in first_line:
         raise _other(path, "a CSV table (a joint trajectory .csv goes in a scene's "
                      "robots[].trajectory; pinframes pose writes poses as CSV)", candidates)
-    yaml_format = yaml_test([e for e in candidates if e.name not in ("asdf", "urdf")])
+    yaml_format = yaml_test([e for e in candidates if e.name not in ("asdf", "urdf", "rosbag")])
     if yaml_format is not None:
         return yaml_format
     reasons = " nor ".join(f"a {e.title} ({e.unrecognised})" for e in candidates

@@ -31,8 +31,9 @@ def path_argument(path: object, field: str = "path") -> str:
     return file
 
 
-def read_regular_file(path: object) -> bytes:
-    """The bytes of the regular file at ``path``.
+def read_regular_file(path: object, size: int = -1) -> bytes:
+    """The bytes of the regular file at ``path`` (its first ``size`` bytes if
+    ``size >= 0``).
 
     Raises
     ------
@@ -57,7 +58,7 @@ def read_regular_file(path: object) -> bytes:
         _refuse_irregular(mode, file)
     with open(descriptor, "rb") as handle:
         try:
-            return handle.read()
+            return handle.read(size)
         except OSError as exc:
             raise ReadError(f"cannot read: {exc.strerror or exc}", file=file) from None
 

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..errors import FileFormatError
+from ..errors import FileFormatError, ReadError
 from ._content import format_by_content
 from ._paths import check_regular_file, path_argument
 from ._yaml_loader import load_yaml
@@ -75,6 +75,9 @@ class FileFormat:
         Why a file is not this format, for the message when no format recognises it.
     kind : str
         ``"tree"``, or another kind of file (``"joint trajectory"``).
+    folders : bool
+        Whether ``read`` also takes a folder (a ROS 2 bag); ``recognise`` is then asked
+        whether a folder is one.
     """
 
     name: str
@@ -86,6 +89,7 @@ class FileFormat:
     recognise: Callable[[Peek, bool], bool] | None = None
     unrecognised: str = ""
     kind: str = TREE
+    folders: bool = False
 
 
 _FORMATS: dict[str, FileFormat] = {}
@@ -125,6 +129,8 @@ def detect_format(
     suffix = path.suffix.lower()
     allowed = [entry for entry in _FORMATS.values() if entry.kind == kind
                and (among is None or entry.name in among)]
+    if kind == TREE and not writing and path.is_dir():
+        return _folder_format(path, allowed)
     if kind == TREE and not writing and path.is_file():
         peek = Peek(path)
         return format_by_content(path, allowed, lambda yaml_formats: next(
@@ -155,8 +161,10 @@ def read(path: str | os.PathLike[str], format: str | None = None, **options: Any
     :class:`pinframes.Limits`) bounds the read, for every format.
     """
     with using_limits(options.pop("limits", None)):
-        check_regular_file(path)
-        entry = file_format(format) if format is not None else file_format(detect_format(path))
+        entry = file_format(format) if format is not None else None
+        if not (entry is None or entry.folders) or not Path(path_argument(path)).is_dir():
+            check_regular_file(path)
+        entry = entry or file_format(detect_format(path))
         if entry.read is None:
             raise FileFormatError(f"pinframes does not read {entry.title} files", file=path)
         return entry.read(path, **options)
@@ -187,6 +195,18 @@ def formats_taking(option: str) -> list[FileFormat]:
     """The tree formats whose writer takes ``option``."""
     return [entry for entry in _FORMATS.values()
             if entry.kind == TREE and option in entry.write_options]
+
+
+def _folder_format(path: Path, allowed: Sequence[FileFormat]) -> str:
+    """The format that reads the folder ``path``: the first registered that reads folders
+    and whose ``recognise`` test takes this one."""
+    peek = Peek(path)
+    readers = [entry for entry in allowed if entry.folders]
+    for entry in readers:
+        if entry.recognise is None or entry.recognise(peek, False):
+            return entry.name
+    why = "; ".join(entry.unrecognised for entry in readers if entry.unrecognised)
+    raise ReadError("is a folder, not a file" + (f" ({why})" if why else ""), file=path)
 
 
 def _check_path(path: object) -> None:

@@ -10,8 +10,8 @@ from ._paths import read_regular_file
 __all__ = ["read_bytes", "read_text"]
 
 
-def read_bytes(path: str | os.PathLike[str]) -> bytes:
-    """The bytes of the file at ``path``.
+def read_bytes(path: str | os.PathLike[str], size: int = -1) -> bytes:
+    """The bytes of the file at ``path`` (its first ``size`` bytes if ``size >= 0``).
 
     Raises
     ------
@@ -21,7 +21,7 @@ def read_bytes(path: str | os.PathLike[str]) -> bytes:
     ArgumentTypeError
         ``path`` is not a text path (``str`` or ``os.PathLike``).
     """
-    return read_regular_file(path)
+    return read_regular_file(path, size)
 
 
 def read_text(path: str | os.PathLike[str]) -> str:

@@ -1,10 +1,11 @@
 """URDF in and out: robots as frames and joints of a :class:`~pinframes.FrameTree`."""
 
-from ._mount import URDF_METADATA_KEY, mount_robot, mount_urdf
+from ._mount import DRIVEN_JOINT_TYPES, URDF_METADATA_KEY, mount_robot, mount_urdf
 from ._parse import JointDescription, RobotDescription, parse_urdf
 from ._read_write import joint_state_path, read_urdf, write_urdf
 
 __all__ = [
+    "DRIVEN_JOINT_TYPES",
     "URDF_METADATA_KEY",
     "JointDescription",
     "RobotDescription",

@@ -14,12 +14,13 @@ from ._parse import RobotDescription, parse_urdf
 if TYPE_CHECKING:
     from ...tree import FrameTree
 
-__all__ = ["URDF_METADATA_KEY", "mount_robot", "mount_urdf"]
+__all__ = ["DRIVEN_JOINT_TYPES", "URDF_METADATA_KEY", "mount_robot", "mount_urdf"]
 
 URDF_METADATA_KEY = "urdf"
 """Key of the per-frame (and per-tree) metadata that keeps URDF details for export."""
 
-_DRIVEN_KINDS = ("revolute", "continuous", "prismatic")
+DRIVEN_JOINT_TYPES = ("revolute", "continuous", "prismatic")
+"""URDF joint types that stay joints (the others become frames at their origin)."""
 
 
 def mount_urdf(
@@ -70,7 +71,7 @@ def mount_robot(
         _keep_link(tree, root_frame, robot, robot.root_link, None, prefix)
         for joint in robot.joints:
             child = prefix + joint.child
-            if joint.type in _DRIVEN_KINDS:
+            if joint.type in DRIVEN_JOINT_TYPES:
                 mimic = None if joint.mimic is None else Mimic(prefix + joint.mimic[0],
                                                                joint.mimic[1], joint.mimic[2])
                 driven = Joint(prefix + joint.name, joint.type, joint.axis, joint.lower,

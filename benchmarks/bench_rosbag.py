@@ -1,0 +1,153 @@
+"""Reading recorded tf from ROS bags: ``pinframes.read_rosbag`` against rosbags' own reader and
+deserialiser (issue 29's goal: at most 2x, and linear in the transforms).
+
+Cases: bags of 10^5 and 10^6 transforms (10 frames moving in ``world``, one
+``geometry_msgs/TransformStamped`` per ``tf2_msgs/TFMessage`` as a ``TransformBroadcaster``
+sends them, 100 Hz per frame), written by rosbags as a ROS 2 MCAP bag and a ROS 1 bag.
+pinframes reads the whole tree (messages, decoding, tf2's rules, the moving frames);
+the reference is rosbags alone, ``AnyReader`` + ``deserialize`` of every message, keeping the
+message objects (no tree). Per transform the two sizes should cost the same (linear). Both
+thread settings, each in a child process (``_machine.py``).
+
+Run: ``python benchmarks/bench_rosbag.py [--quick]`` (quick: 10^5 transforms only, 3 rounds
+instead of 5; 10^6 transforms are timed in one round); the bags are written first into a
+temporary folder (about 20 s per 10^6 transforms on a quiet machine).
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+from rosbags.highlevel import AnyReader
+from rosbags.rosbag1 import Writer as Ros1Writer
+from rosbags.rosbag2 import StoragePlugin
+from rosbags.rosbag2 import Writer as Ros2Writer
+from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+
+import pinframes
+from _machine import describe_machine, interleaved, print_table, row, run_in_settings
+
+FRAMES = 10
+SIZES = (100_000, 1_000_000)
+TF = "tf2_msgs/msg/TFMessage"
+REFERENCE = "rosbags read+deserialise"
+
+
+def write_bags(folder: Path, transforms: int) -> dict[str, Path]:
+    """An MCAP (ROS 2) and a ROS 1 bag of ``transforms`` transforms; their paths."""
+    rng = np.random.default_rng(transforms)
+    translations = rng.normal(size=(transforms, 3))
+    quaternions = rng.normal(size=(transforms, 4))
+    quaternions /= np.linalg.norm(quaternions, axis=1, keepdims=True)
+    stamps = 1_700_000_000 * 10**9 + (np.arange(transforms) // FRAMES) * 10_000_000
+    bags = {}
+    for storage in ("mcap", "ros1"):
+        if storage == "ros1":
+            store = get_typestore(Stores.ROS1_NOETIC)
+            store.register(get_types_from_msg("geometry_msgs/TransformStamped[] transforms", TF))
+            path = folder / f"tf_{transforms}.bag"
+            writer = Ros1Writer(path)
+            serialise = store.serialize_ros1
+        else:
+            store = get_typestore(Stores.ROS2_HUMBLE)
+            path = folder / f"tf_{transforms}_mcap"
+            writer = Ros2Writer(path, version=9, storage_plugin=StoragePlugin.MCAP)
+            serialise = store.serialize_cdr
+        types = store.types
+        header_fields = types["std_msgs/msg/Header"].__dataclass_fields__
+        with writer:
+            connection = writer.add_connection("/tf", TF, typestore=store)
+            for index in range(transforms):
+                stamp = int(stamps[index])
+                header = {"stamp": types["builtin_interfaces/msg/Time"](
+                    sec=stamp // 10**9, nanosec=stamp % 10**9), "frame_id": "world"}
+                if "seq" in header_fields:
+                    header["seq"] = index
+                message = types[TF](transforms=[types["geometry_msgs/msg/TransformStamped"](
+                    header=types["std_msgs/msg/Header"](**header),
+                    child_frame_id=f"frame_{index % FRAMES}",
+                    transform=types["geometry_msgs/msg/Transform"](
+                        translation=types["geometry_msgs/msg/Vector3"](*translations[index]),
+                        rotation=types["geometry_msgs/msg/Quaternion"](*quaternions[index])))])
+                writer.write(connection, stamp, serialise(message, TF))
+        bags[storage] = path
+    return bags
+
+
+def rosbags_alone(path: Path) -> list[object]:
+    """Every message of the bag deserialised by rosbags, with the types the bag carries."""
+    with AnyReader([path], default_typestore=get_typestore(Stores.LATEST)) as reader:
+        return [reader.deserialize(raw, connection.msgtype)
+                for connection, _, raw in reader.messages(reader.connections)]
+
+
+def largest_difference(tree: pinframes.FrameTree, messages: list) -> float:
+    """The largest difference between frame_0's keyframes in ``tree`` and its transforms as
+    rosbags deserialised them (sorted by stamp): metres, and 1 - |q . q'| for rotations."""
+    rows = sorted((t.header.stamp.sec * 10**9 + t.header.stamp.nanosec,
+                   (t.transform.translation.x, t.transform.translation.y,
+                    t.transform.translation.z),
+                   (t.transform.rotation.x, t.transform.rotation.y, t.transform.rotation.z,
+                    t.transform.rotation.w))
+                  for message in messages for t in message.transforms
+                  if t.child_frame_id == "frame_0")
+    pose = tree.local_pose("frame_0")
+    translations = np.array([row[1] for row in rows])
+    quaternions = np.array([row[2] for row in rows])
+    dots = np.abs(np.einsum("ij,ij->i", pose.quaternion, quaternions))
+    return float(max(np.abs(pose.translation - translations).max(), (1 - dots).max()))
+
+
+def one_round(case: str, calls: dict) -> list[dict]:
+    """Each call timed once (the bag was read once before: its pages are cached)."""
+    seconds = {}
+    for name, call in calls.items():
+        start = time.perf_counter()
+        call()
+        seconds[name] = time.perf_counter() - start
+    return [row(case, name, value, ratio=value / seconds[REFERENCE])
+            for name, value in seconds.items()]
+
+
+def child(bag_table: dict[str, dict[str, str]], quick: bool) -> None:
+    rows = []
+    for transforms, bags in bag_table.items():
+        for storage, path in bags.items():
+            error = largest_difference(pinframes.read_rosbag(path), rosbags_alone(Path(path)))
+            calls = {REFERENCE: lambda p=Path(path): rosbags_alone(p),
+                     "pinframes.read_rosbag": lambda p=path: pinframes.read_rosbag(p)}
+            case = f"{storage}, {int(transforms):,} transforms"
+            if int(transforms) <= 100_000:
+                measured = interleaved(case, calls, 3 if quick else 5, reference=REFERENCE)
+            else:  # a minute or more per call on a shared machine: one round, no warm-up
+                measured = one_round(case, calls)
+            for entry in measured:
+                entry["note"] = f"{entry['seconds'] / int(transforms) * 1e6:.2f} us/transform"
+                entry["error"] = error if entry["method"] != REFERENCE else None
+            rows += measured
+    print(json.dumps(rows))
+
+
+def main() -> None:
+    if "--child" in sys.argv:
+        table = json.loads(sys.argv[sys.argv.index("--bags") + 1])
+        child(table, "--quick" in sys.argv)
+        return
+    quick = "--quick" in sys.argv
+    print(describe_machine())
+    with tempfile.TemporaryDirectory() as scratch:
+        table = {}
+        for transforms in SIZES[:1] if quick else SIZES:
+            bags = write_bags(Path(scratch), transforms)
+            table[str(transforms)] = {storage: str(path) for storage, path in bags.items()}
+        arguments = ["--bags", json.dumps(table)] + (["--quick"] if quick else [])
+        print_table(run_in_settings(__file__, arguments), reference=REFERENCE)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,135 @@
+"""A frame tree from the tracks of a bag's frames, its robot description and joint states.
+
+The robot (URDF) is mounted at the frame named as its root link: where tf gives that frame
+a parent, the robot hangs there at the pose tf gives it; otherwise the root link is the
+tree's root. tf frames of the robot's other links are what ``robot_state_publisher``
+republished from the same joint states: they are left out (one warning), the URDF and the
+joint states place those links. Frames of tf below a link (a camera on the flange) hang on
+that link. The result must have one root and no cycle.
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections import deque
+from pathlib import Path
+
+import numpy as np
+
+from ...errors import BagWarning, TreeStructureError
+from ...tree import FrameTree
+from ...values.pose import Pose
+from ..urdf import DRIVEN_JOINT_TYPES, RobotDescription, mount_robot
+from ._joint_states import JointSamples
+from ._tf_tracks import FrameTrack
+
+__all__ = ["assemble_tree", "reference_stamp"]
+
+
+def reference_stamp(tracks: dict[str, FrameTrack], joints: dict[str, JointSamples]
+                    ) -> int | None:
+    """The earliest stamp (ns since the epoch) of the moving frames and the joints used,
+    or None when nothing moves."""
+    stamps = [int(track.stamps_ns[0]) for track in tracks.values() if not track.static]
+    stamps += [int(samples.stamps_ns[0]) for samples in joints.values()]
+    return min(stamps) if stamps else None
+
+
+def assemble_tree(name: str, tracks: dict[str, FrameTrack], robot: RobotDescription | None,
+                  joints: dict[str, JointSamples], file: Path) -> FrameTree:
+    """The tree of ``tracks`` and ``robot`` (its joints driven by ``joints``, only those it
+    drives), with the earliest stamp used as its reference time."""
+    links = set(robot.links) if robot is not None else set()
+    root_link = robot.root_link if robot is not None else None
+    republished = [child for child in tracks if child in links and child != root_link]
+    if republished:
+        shown = ", ".join(repr(link) for link in republished[:5])
+        warnings.warn(BagWarning(
+            f"{file}: ignored the tf transforms of {len(republished)} links the robot "
+            f"description has (robot_state_publisher republishes them; the URDF and the "
+            f"joint states place them): {shown}" + (" ..." if len(republished) > 5 else "")),
+            stacklevel=4)
+    parent_of = {child: track.parent for child, track in tracks.items()
+                 if child not in links or child == root_link}
+    if robot is not None:
+        parent_of.update((joint.child, joint.parent) for joint in robot.joints)
+    root = _single_root(parent_of, root_link, file)
+    driven = _driven_joints(robot)
+    if robot is not None:
+        _warn_unused(joints, driven, file)
+    joints = {name: samples for name, samples in joints.items() if name in driven}
+    reference = reference_stamp({c: t for c, t in tracks.items() if c in parent_of}, joints)
+    reference_time = None if reference is None else np.datetime64(reference, "ns")
+    tree = FrameTree(root, name=name, reference_time=reference_time)
+    for frame in _parents_first(root, parent_of, file):
+        if frame == root_link and robot is not None:
+            track = tracks.get(frame)
+            pose = None if track is None else _pose(track, reference)
+            mount_robot(tree, robot, parent_of.get(frame), pose, "")
+        elif frame not in links and frame != root:
+            tree.add(frame, parent_of[frame], _pose(tracks[frame], reference))
+    for joint, samples in joints.items():
+        tree.set_joint_trajectory(samples.stamps_ns.astype("datetime64[ns]"),
+                                  samples.positions[:, None], [joint])
+    return tree
+
+
+def _single_root(parent_of: dict[str, str], root_link: str | None, file: Path) -> str:
+    frames = set(parent_of) | set(parent_of.values())
+    if root_link is not None:
+        frames.add(root_link)
+    roots = sorted(frames - set(parent_of))
+    if len(roots) > 1:
+        raise TreeStructureError(
+            f"the frames form {len(roots)} trees, with the roots {', '.join(map(repr, roots))}"
+            "; tf2 keeps unconnected trees apart, a frame tree has one root (publish the "
+            "transforms that join them, or read the bag's topics separately)", file=file)
+    if not roots:
+        raise TreeStructureError("the frames' parents form a cycle: "
+                                 + ", ".join(map(repr, sorted(frames)[:10])), file=file)
+    return roots[0]
+
+
+def _parents_first(root: str, parent_of: dict[str, str], file: Path) -> list[str]:
+    """Every frame, each after its parent; frames not below ``root`` lie on a cycle."""
+    children: dict[str, list[str]] = {}
+    for child, parent in parent_of.items():
+        children.setdefault(parent, []).append(child)
+    order, queue = [], deque([root])
+    while queue:
+        frame = queue.popleft()
+        order.append(frame)
+        queue.extend(children.get(frame, ()))
+    if len(order) < len(parent_of) + 1:
+        cycle = sorted(set(parent_of) - set(order))
+        raise TreeStructureError("the frames' parents form a cycle: "
+                                 + ", ".join(map(repr, cycle[:10])), file=file)
+    return order
+
+
+def _pose(track: FrameTrack, reference: int | None) -> Pose:
+    """The pose of a track in its parent: static, or keyframed counting from the tree's
+    reference time."""
+    if track.static or reference is None:
+        return Pose(track.translations[-1], track.quaternions[-1])
+    return Pose(track.translations, track.quaternions,
+                times=(track.stamps_ns - reference).astype("timedelta64[ns]"),
+                reference_time=np.datetime64(reference, "ns"))
+
+
+def _driven_joints(robot: RobotDescription | None) -> set[str]:
+    """The joints of ``robot`` that joint states drive (not fixed, not mimic)."""
+    if robot is None:
+        return set()
+    return {joint.name for joint in robot.joints
+            if joint.type in DRIVEN_JOINT_TYPES and joint.mimic is None}
+
+
+def _warn_unused(joints: dict[str, JointSamples], driven: set[str], file: Path) -> None:
+    unused = [name for name in joints if name not in driven]
+    if unused:
+        shown = ", ".join(repr(name) for name in unused[:5])
+        warnings.warn(BagWarning(f"{file}: joint states of {len(unused)} joints the robot "
+                                 f"description does not drive (fixed, mimic or not in it) are "
+                                 f"not used: {shown}" + (" ..." if len(unused) > 5 else "")),
+                      stacklevel=5)

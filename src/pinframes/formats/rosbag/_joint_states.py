@@ -1,0 +1,84 @@
+"""``sensor_msgs/JointState`` messages as samples per joint (SPEC 10).
+
+Each message names the joints it carries (``name[]``, ``position[]`` in radians or metres)
+at ``header.stamp``; messages may name a subset. Each joint is sampled at the stamps of the
+messages that name it, sorted by stamp; of two samples of a joint at one stamp the later
+received wins. A message whose ``position`` is empty or not as long as ``name`` is skipped
+(``robot_state_publisher`` skips it too), and so is a position that is NaN or infinite
+(the transforms made from it would be refused by tf2): one warning for each kind.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Iterable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ...errors import BagWarning
+from ..limits import current_limits, exceeded
+
+__all__ = ["JointSamples", "joint_samples"]
+
+
+@dataclass(frozen=True)
+class JointSamples:
+    """One joint's samples: strictly increasing stamps (ns since the epoch) and positions
+    (radians or metres)."""
+
+    stamps_ns: NDArray[np.int64]
+    positions: NDArray[np.float64]
+
+
+def joint_samples(messages: Iterable[object], file: Path) -> dict[str, JointSamples]:
+    """The samples of every joint named in ``messages`` (deserialised JointStates in
+    receive order), joints in order of first appearance."""
+    stamps: dict[str, list[int]] = {}
+    positions: dict[str, list[float]] = {}
+    skipped = 0
+    not_finite: list[str] = []
+    for message in messages:
+        names = list(message.name)  # type: ignore[attr-defined]
+        values = np.asarray(message.position, np.float64)  # type: ignore[attr-defined]
+        if values.shape[0] != len(names):
+            skipped += 1
+            continue
+        stamp = message.header.stamp  # type: ignore[attr-defined]
+        stamp_ns = int(stamp.sec) * 1_000_000_000 + int(stamp.nanosec)
+        for name, value in zip(names, values.tolist(), strict=True):
+            if not math.isfinite(value):
+                not_finite.append(name)
+                continue
+            stamps.setdefault(name, []).append(stamp_ns)
+            positions.setdefault(name, []).append(value)
+    if skipped:
+        warnings.warn(BagWarning(f"{file}: skipped {skipped:,} joint states whose position "
+                                 "list is empty or not as long as their name list"),
+                      stacklevel=4)
+    if not_finite:
+        warnings.warn(BagWarning(f"{file}: skipped {len(not_finite):,} joint positions that "
+                                 f"are NaN or infinite (first: joint {not_finite[0]!r})"),
+                      stacklevel=4)
+    samples = {}
+    repeated = []
+    for name in stamps:
+        times = np.asarray(stamps[name], np.int64)
+        values = np.asarray(positions[name], np.float64)
+        order = np.argsort(times, kind="stable")
+        times, values = times[order], values[order]
+        last = np.flatnonzero(np.append(times[1:] != times[:-1], True))
+        if last.shape[0] < times.shape[0]:
+            repeated.append(name)
+        if last.shape[0] > current_limits().max_samples:
+            raise exceeded("max_samples", f"{last.shape[0]:,} joint states",
+                           field="joint").located(file=file, frame=name)
+        samples[name] = JointSamples(times[last], values[last])
+    if repeated:
+        warnings.warn(BagWarning(f"{file}: {len(repeated)} joints with two samples at one "
+                                 f"stamp (the later received is kept): "
+                                 + ", ".join(map(repr, repeated[:5]))), stacklevel=4)
+    return samples

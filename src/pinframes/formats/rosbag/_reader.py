@@ -1,0 +1,184 @@
+"""``read_rosbag``: a ROS 1, ROS 2 or MCAP bag as a frame tree, with tf2's semantics."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from ...errors import ArgumentTypeError, FileFormatError, PinframesError
+from ...tree import FrameTree
+from ...values.timeconv import format_timestamp_iso
+from ..limits import Limits, current_limits, exceeded, using_limits
+from ..urdf import RobotDescription, parse_urdf
+from ._assembly import assemble_tree, reference_stamp
+from ._joint_states import joint_samples
+from ._messages import DESCRIPTION_TYPES, JOINT_STATE_TYPES, TF_TYPES, check_type, deserialise
+from ._storage import OpenBag
+from ._tf_messages import CorruptMessage, decode_tf_messages
+from ._tf_tracks import frame_tracks
+
+__all__ = ["ROSBAG_METADATA_KEY", "read_rosbag"]
+
+ROSBAG_METADATA_KEY = "rosbag"
+"""Key of the tree metadata that says what was read from the bag (``pinframes info``)."""
+
+
+def read_rosbag(
+    path: str | os.PathLike[str], *, robot_description: str | os.PathLike[str] | None = None,
+    tf_topics: Sequence[str] = ("/tf", "/tf_static"),
+    joint_states_topic: str | None = "/joint_states",
+    description_topic: str | None = "/robot_description", limits: Limits | None = None,
+) -> FrameTree:
+    """Read the frame tree recorded in a ROS bag, as tf2 would see it.
+
+    Parameters
+    ----------
+    path : path
+        A ROS 1 ``.bag``, an MCAP file, a ROS 2 bag folder (with ``metadata.yaml``) or its
+        ``.db3`` file; told by content, not by name.
+    robot_description : path or str or None
+        A URDF file or its XML text; None: the last message on ``description_topic``.
+    tf_topics : sequence of str
+        Topics of ``tf2_msgs/TFMessage``; those whose names end in ``_static`` hold static
+        transforms (they hold for all time), the others keyframes at ``header.stamp``.
+    joint_states_topic : str or None
+        ``sensor_msgs/JointState`` that drive the robot's joints (radians, metres).
+    description_topic : str or None
+        ``std_msgs/String`` holding the robot's URDF.
+    limits : pinframes.Limits or None
+        ``max_samples`` bounds the keyframes of a frame and the samples of a joint,
+        ``max_decompressed_bytes`` the bytes of the messages read; the URDF is read
+        under the XML limits.
+
+    Returns
+    -------
+    FrameTree
+        Named after the bag; its reference time is the earliest stamp used (ns since the
+        epoch, UTC); ``tree.metadata["rosbag"]`` says which topics were used and ignored and
+        which joint states no joint took.
+
+    Raises
+    ------
+    FileFormatError
+        A truncated or corrupt bag, an unknown storage, a folder without metadata, a topic
+        of the wrong type, or no tf messages and no robot description at all.
+    TreeStructureError
+        A frame published under two parents (named with the first time of each), or the
+        frames form several trees (their roots named).
+    UnsupportedFeatureError
+        The ``rosbags`` package is not installed (``pip install 'pinframes[ros]'``).
+    """
+    if isinstance(tf_topics, str):
+        raise ArgumentTypeError(f"expected a list of topics, got the string {tf_topics!r}",
+                                field="tf_topics")
+    with using_limits(limits):
+        with OpenBag(path) as bag:
+            return _read(bag, robot_description, tuple(tf_topics), joint_states_topic,
+                         description_topic)
+
+
+def _read(bag: OpenBag, robot_description: str | os.PathLike[str] | None,
+          tf_topics: tuple[str, ...], joint_states_topic: str | None,
+          description_topic: str | None) -> FrameTree:
+    uses: dict[str, str] = {}
+    for topic in tf_topics:
+        if topic in bag.topics:
+            check_type(bag, bag.topics[topic], TF_TYPES)
+            uses[topic] = "tf static" if topic.endswith("_static") else "tf"
+    if joint_states_topic in bag.topics:
+        check_type(bag, bag.topics[joint_states_topic], JOINT_STATE_TYPES)
+        uses[joint_states_topic] = "joint states"
+    if robot_description is None and description_topic in bag.topics:
+        check_type(bag, bag.topics[description_topic], DESCRIPTION_TYPES)
+        uses[description_topic] = "robot description"
+    raw = _raw_messages(bag, list(uses))
+    tf_raw = [(topic, received, data) for topic, received, data in raw
+              if uses[topic] in ("tf", "tf static")]
+    columns = _decoded(bag, tf_raw)
+    static_messages = np.array([uses[topic] == "tf static" for topic, _, _ in tf_raw], bool)
+    tracks = frame_tracks(columns, static_messages[columns.message_index], bag.path)
+    robot = _robot(bag, robot_description, [(topic, received, data) for topic, received, data
+                                            in raw if uses[topic] == "robot description"])
+    if not tracks and robot is None:
+        raise FileFormatError(
+            f"no tf messages on {', '.join(tf_topics) or 'no topic'} and no robot "
+            f"description; the bag's topics: {', '.join(bag.topics) or 'none'}", file=bag.path)
+    states = [_deserialised(bag, topic, received, data) for topic, received, data in raw
+              if uses[topic] == "joint states"]
+    joints = joint_samples(states, bag.path)
+    tree = assemble_tree(bag.path.stem if bag.path.suffix else bag.path.name, tracks, robot,
+                         joints if robot is not None else {}, bag.path)
+    tree.metadata[ROSBAG_METADATA_KEY] = _summary(bag, uses, tracks, joints, tree,
+                                                  robot is not None)
+    return tree
+
+
+def _raw_messages(bag: OpenBag, topics: list[str]) -> list[tuple[str, int, bytes]]:
+    """The messages of ``topics`` in receive order, within ``max_decompressed_bytes``."""
+    budget = current_limits().max_decompressed_bytes
+    messages, total = [], 0
+    for message in bag.messages(topics):
+        total += len(message[2])
+        if total > budget:
+            raise exceeded("max_decompressed_bytes", f"the messages of {', '.join(topics)} "
+                           f"take more than {total:,} bytes").located(file=bag.path)
+        messages.append(message)
+    return messages
+
+
+def _decoded(bag: OpenBag, tf_raw: list[tuple[str, int, bytes]]) -> Any:
+    try:
+        return decode_tf_messages([data for _, _, data in tf_raw], bag.ros_version)
+    except CorruptMessage as exc:
+        topic, received, _ = tf_raw[exc.index]
+        raise FileFormatError(f"a corrupt tf message received at {_iso(received)}: "
+                              f"{exc.reason}", file=bag.path, field=topic) from None
+
+
+def _deserialised(bag: OpenBag, topic: str, received: int, data: bytes) -> Any:
+    """A JointState or String message; a corrupt one names the topic and time."""
+    try:
+        return deserialise(bag.ros_version, data, bag.topics[topic].message_type)
+    except Exception as exc:  # rosbags' SerdeError and what its generated code raises
+        raise FileFormatError(f"a corrupt message received at {_iso(received)}: {exc}",
+                              file=bag.path, field=topic) from None
+
+
+def _robot(bag: OpenBag, given: str | os.PathLike[str] | None,
+           recorded: list[tuple[str, int, bytes]]) -> RobotDescription | None:
+    """The robot description given, or the last one recorded (None without either)."""
+    if given is not None:
+        return parse_urdf(given)
+    if not recorded:
+        return None
+    topic, received, data = recorded[-1]
+    text = _deserialised(bag, topic, received, data).data
+    try:
+        return parse_urdf(text)
+    except PinframesError as exc:
+        raise FileFormatError(f"the robot description is not a URDF: {exc.message}",
+                              file=bag.path, field=topic) from None
+
+
+def _summary(bag: OpenBag, uses: dict[str, str], tracks: dict, joints: dict,
+             tree: FrameTree, with_robot: bool) -> dict[str, Any]:
+    """What ``pinframes info`` shows of a bag besides the tree."""
+    first = reference_stamp(tracks, joints if with_robot else {})
+    stamps = [int(t.stamps_ns[-1]) for t in tracks.values() if not t.static]
+    stamps += [int(s.stamps_ns[-1]) for s in joints.values()] if with_robot else []
+    return {
+        "file": os.fspath(bag.path), "kind": bag.kind,
+        "topics": [{"name": topic.name, "type": topic.message_type, "messages": topic.count,
+                    "use": uses.get(topic.name)} for topic in bag.topics.values()],
+        "time_span": None if first is None else [_iso(first), _iso(max(stamps))],
+        "joint_states_not_used": [name for name in joints
+                                  if name not in tree.joints or not with_robot
+                                  or tree.joint_trajectory(name) is None],
+    }
+
+
+def _iso(stamp_ns: int) -> str:
+    return format_timestamp_iso(np.datetime64(int(stamp_ns), "ns"))
