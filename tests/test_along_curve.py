@@ -93,6 +93,8 @@ def test_times_may_be_absolute_and_speed_may_be_a_pint_length():
          "either speed"),
         ([[0, 0, 0], [1, 0, 0]], [0, 0, 1], {"speed": 0.0}, "speed", "positive"),
         ([[0, 0, 0], [1, 0, 0]], [0, 0, 1], {"speed": float("nan")}, "speed", "positive"),
+        ([[0, 0, 0], [1, 0, 0]], [0, 0, 1], {"speed": True}, "speed", "positive"),
+        ([[0, 0, 0], [1, 0, 0]], [0, 0, 1], {"speed": "1"}, "speed", "positive"),
         ([[0, 0, 0], [np.nan, 0, 0]], [0, 0, 1], {"speed": 1.0}, "points", "finite"),
         ([0, 0, 0], [0, 0, 1], {"speed": 1.0}, "points", "(N, 3)"),
     ],

@@ -225,8 +225,8 @@ class Pose:
             raise InvalidPoseError("give either speed (m/s) or times (one per point)",
                                    field="speed")
         if speed is not None:
-            if not isinstance(speed, (int, float, np.floating, np.integer)) or not (
-                    np.isfinite(speed) and speed > 0):
+            if (isinstance(speed, bool) or not isinstance(speed, (int, float, np.number))
+                    or not (np.isfinite(speed) and speed > 0)):
                 raise InvalidPoseError(f"expected a positive speed in m/s, got {speed!r}",
                                        field="speed")
             times = length_along_polyline(path) / float(speed)
