@@ -114,3 +114,20 @@ def test_relative_to_must_name_one_frame_per_frame():
     with pytest.raises(TreeStructureError, match="relative_to"):
         tree.poses(["a", "world"], relative_to=["world"])
     assert len(tree.poses([], relative_to="world")) == 0
+
+
+def test_a_robot_whose_joints_have_no_samples_holds_still_beside_a_moving_frame():
+    """Without times, a path through joints without samples is static: alone it gives
+    static poses; beside a moving frame it repeats over that frame's timeline."""
+    tree = FrameTree()
+    tree.attach_urdf(ROBOT, "world", prefix="robot/")
+    with pytest.warns(UserWarning, match="no samples"):
+        alone = tree.poses(["robot/flange", "robot/link_2"], relative_to="world")
+    assert alone.translation.shape == (2, 3) and alone.times is None
+    np.testing.assert_allclose(alone.matrix[0], tree.pose("robot/flange", "world").matrix,
+                               rtol=0, atol=1e-12)
+    tree.add("car", "world", Pose([[0, 0, 0], [2, 0, 0]], times=[0, 1]))
+    both = tree.poses(["robot/flange", "car"], relative_to="world")
+    np.testing.assert_array_equal(both.times, tree.pose("car", "world").times)
+    np.testing.assert_allclose(both.matrix[0], np.repeat(alone.matrix[:1], 2, axis=0),
+                               rtol=0, atol=1e-12)

@@ -1,4 +1,4 @@
-"""Generate the visual geometry of the bundled welding cell: URDFs and STL meshes.
+"""Generate the visual and collision geometry of the bundled welding cell: URDFs and STL meshes.
 
 Run from the repository root::
 
@@ -8,6 +8,11 @@ It writes into ``geometry/`` beside itself (or into ``--out DIR``), the same byt
 run. Everything is made here from boxes, cylinders and tubes; nothing is copied. Each URDF
 has one link and no joint: the scene mounts it on a frame of the cell (``scene.yaml``,
 ``robots``), so it moves with that frame. Lengths in metres.
+
+Collision geometry is made of primitives (what coal measures exactly and fastest): the
+fixtures and the faceplate collide as they look; the pipe is a solid cylinder of its outer
+diameter and length; the torch is three cylinders along its body and neck, the neck ending
+where the drawn neck ends, 15 mm before the wire tip.
 
 - ``fixtures.urdf`` (on ``world``): the robot's riser and the positioner's headstock housing.
 - ``faceplate.urdf`` (on ``positioner``): the turning faceplate with three chuck jaws.
@@ -92,18 +97,33 @@ def stl_bytes(vertices: np.ndarray, faces: np.ndarray, name: str) -> bytes:
     return header + struct.pack("<I", len(faces)) + records.tobytes()
 
 
-def urdf(name: str, visuals: list[str], materials: dict[str, str]) -> str:
+def urdf(name: str, visuals: list[str], materials: dict[str, str],
+         collisions: list[str]) -> str:
     colours = "".join(f'  <material name="{key}"><color rgba="{rgba}"/></material>\n'
                       for key, rgba in materials.items())
-    body = "".join(f"    <visual>\n{v}    </visual>\n" for v in visuals)
+    body = "".join(f"    <visual>\n{v}    </visual>\n" for v in visuals) + "".join(
+        f"    <collision>\n{c}    </collision>\n" for c in collisions)
     return (f'<?xml version="1.0"?>\n<!-- written by models/welding_cell/make_geometry.py -->\n'
             f'<robot name="{name}">\n{colours}  <link name="{name}">\n{body}  </link>\n'
             "</robot>\n")
 
 
 def visual(origin: str, geometry: str, material: str) -> str:
-    return (f"      <origin {origin}/>\n      <geometry>{geometry}</geometry>\n"
-            f'      <material name="{material}"/>\n')
+    return collision(origin, geometry) + f'      <material name="{material}"/>\n'
+
+
+def collision(origin: str, geometry: str) -> str:
+    return f"      <origin {origin}/>\n      <geometry>{geometry}</geometry>\n"
+
+
+def cylinder_between(start: np.ndarray, end: np.ndarray, radius: float) -> str:
+    """A collision cylinder from ``start`` to ``end`` (both in the y-z plane of the link)."""
+    axis = end - start
+    roll = np.arctan2(-axis[1], axis[2]) + 0.0  # turns its z axis onto ``axis`` (no -0)
+    middle = (start + end) / 2
+    return collision(f'xyz="{middle[0]:.6f} {middle[1]:.6f} {middle[2]:.6f}" '
+                     f'rpy="{roll:.9f} 0 0"',
+                     f'<cylinder radius="{radius}" length="{np.linalg.norm(axis):.6f}"/>')
 
 
 def files() -> dict[str, bytes | str]:
@@ -118,31 +138,34 @@ def files() -> dict[str, bytes | str]:
     torch = merge(tube(np.array([0, 0, 0.0]), np.array([0, 0, 0.06]), 0.035, sections=32),
                   tube(np.array([0, 0, 0.06]), NECK_START_IN_FLANGE, 0.022, sections=32),
                   tube(NECK_START_IN_FLANGE, neck_end, 0.011, sections=24))
-    jaws = [visual(f'xyz="{0.13 * np.cos(a):.6f} {0.13 * np.sin(a):.6f} 0.03" '
-                   f'rpy="0 0 {a:.6f}"', '<box size="0.07 0.04 0.06"/>', "machine_grey")
+    jaws = [(f'xyz="{0.13 * np.cos(a):.6f} {0.13 * np.sin(a):.6f} 0.03" rpy="0 0 {a:.6f}"',
+             '<box size="0.07 0.04 0.06"/>', "machine_grey")
             for a in 2 * np.pi * np.arange(3) / 3 + np.pi / 2]
+    fixtures = [
+        # riser under robot_base (world 0, 0.4, 0.3): 0.3 m high
+        ('xyz="0 0.4 0.15" rpy="0 0 0"', '<box size="0.45 0.45 0.3"/>', "machine_grey"),
+        # headstock housing behind the faceplate (turning axis at z 0.85 along +y)
+        ('xyz="1.0 -0.55 0.5" rpy="0 0 0"', '<box size="0.55 0.4 1.0"/>', "machine_blue"),
+        ('xyz="1.0 -0.33 0.85" rpy="1.5707963267948966 0 0"',
+         '<cylinder radius="0.12" length="0.06"/>', "machine_grey"),
+    ]
+    faceplate = [('xyz="0 0 -0.01" rpy="0 0 0"', '<cylinder radius="0.22" length="0.04"/>',
+                  "machine_grey"), *jaws]
     return {
-        "fixtures.urdf": urdf("fixtures", [
-            # riser under robot_base (world 0, 0.4, 0.3): 0.3 m high
-            visual('xyz="0 0.4 0.15" rpy="0 0 0"', '<box size="0.45 0.45 0.3"/>',
-                   "machine_grey"),
-            # headstock housing behind the faceplate (turning axis at z 0.85 along +y)
-            visual('xyz="1.0 -0.55 0.5" rpy="0 0 0"', '<box size="0.55 0.4 1.0"/>',
-                   "machine_blue"),
-            visual('xyz="1.0 -0.33 0.85" rpy="1.5707963267948966 0 0"',
-                   '<cylinder radius="0.12" length="0.06"/>', "machine_grey"),
-        ], grey),
-        "faceplate.urdf": urdf("faceplate", [
-            visual('xyz="0 0 -0.01" rpy="0 0 0"', '<cylinder radius="0.22" length="0.04"/>',
-                   "machine_grey"),
-            *jaws,
-        ], grey),
+        "fixtures.urdf": urdf("fixtures", [visual(*piece) for piece in fixtures], grey,
+                              [collision(*piece[:2]) for piece in fixtures]),
+        "faceplate.urdf": urdf("faceplate", [visual(*piece) for piece in faceplate], grey,
+                               [collision(*piece[:2]) for piece in faceplate]),
         "pipe.urdf": urdf("pipe", [
             visual('xyz="0 0 0" rpy="0 0 0"', '<mesh filename="meshes/pipe.stl"/>', "steel")],
-            steel),
+            steel, [collision('xyz="0 0 0" rpy="0 0 0"',
+                              f'<cylinder radius="{PIPE_RADIUS}" length="0.58"/>')]),
         "torch.urdf": urdf("torch", [
             visual('xyz="0 0 0" rpy="0 0 0"', '<mesh filename="meshes/torch.stl"/>',
-                   "torch_black")], {"torch_black": "0.12 0.12 0.13 1.0"}),
+                   "torch_black")], {"torch_black": "0.12 0.12 0.13 1.0"}, [
+            cylinder_between(np.array([0, 0, 0.0]), np.array([0, 0, 0.06]), 0.035),
+            cylinder_between(np.array([0, 0, 0.06]), NECK_START_IN_FLANGE, 0.022),
+            cylinder_between(NECK_START_IN_FLANGE, neck_end, 0.011)]),
         "meshes/pipe.stl": stl_bytes(*pipe, "pipe"),
         "meshes/torch.stl": stl_bytes(*torch, "torch"),
     }

@@ -9,6 +9,7 @@ from .errors import (
     FrameExistsError,
     FrameNotFoundError,
     FramesYamlWarning,
+    GeometryError,
     InvalidDataError,
     InvalidPoseError,
     InvalidTimeError,
@@ -29,8 +30,9 @@ from .formats.pose_files import write_poses
 from .formats.rosbag import read_rosbag
 from .formats.scene import read_scene, write_scene
 from .formats.urdf import read_urdf, write_urdf
-from .kinematics import FrameJacobian, PinocchioTree, Snapshot, Velocity, WeldProcess
+from .kinematics import Clearance, FrameJacobian, PinocchioTree, Snapshot, Velocity, WeldProcess
 from .tree import FrameTree
+from .values.geometry import FrameGeometry, Shape
 from .values.joint import Joint, Mimic
 from .values.joint_trajectory import JointTrack, JointTrajectory
 from .values.pose import Pose
@@ -45,13 +47,16 @@ __all__ = [
     "ArgumentTypeError",
     "BagWarning",
     "BrokenMimicWarning",
+    "Clearance",
     "ExtrapolationError",
     "FileFormatError",
     "FrameExistsError",
+    "FrameGeometry",
     "FrameJacobian",
     "FrameNotFoundError",
     "FrameTree",
     "FramesYamlWarning",
+    "GeometryError",
     "InvalidDataError",
     "InvalidPoseError",
     "InvalidTimeError",
@@ -69,6 +74,7 @@ __all__ = [
     "PoseStack",
     "ReadError",
     "ReferenceTimeError",
+    "Shape",
     "Snapshot",
     "SpatialData",
     "Subsystem",

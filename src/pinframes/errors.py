@@ -24,6 +24,7 @@ __all__ = [
     "FrameExistsError",
     "FrameNotFoundError",
     "FramesYamlWarning",
+    "GeometryError",
     "InvalidDataError",
     "InvalidPoseError",
     "InvalidTimeError",
@@ -140,6 +141,11 @@ class FileFormatError(PinframesError, ValueError):
 
 class UnsupportedFeatureError(PinframesError, ValueError):
     """Valid input that pinframes deliberately does not handle (said in the message)."""
+
+
+class GeometryError(PinframesError, ValueError):
+    """Geometry a query needs and cannot have: a frame that is no URDF link, a link without
+    shapes of the kind asked for, a malformed shape, a mesh file missing or unreadable."""
 
 
 class WriteError(PinframesError, OSError):

@@ -21,10 +21,7 @@ from ..values.timeconv import (
     timestamp_ns,
 )
 
-__all__ = ["add_time_arguments", "evaluate_poses", "in_chunks", "pose_velocity",
-           "requested_times", "terminal_stderr"]
-
-Result = TypeVar("Result")
+from typing import Any, TextIO, TypeVar
 
 CHUNK_SIZE = 20_000
 """Times evaluated per call; the progress bar moves once per chunk."""
@@ -57,6 +54,13 @@ def add_time_arguments(parser: argparse.ArgumentParser) -> None:
 def requested_times(args: argparse.Namespace, tree: FrameTree, frame: str,
                     relative_to: str) -> TimeAxis | None:
     """The times asked for by the time options (None: every sample on the path)."""
+    return times_from_options(args, lambda: tree.sample_times(frame, relative_to))
+
+
+def times_from_options(args: argparse.Namespace,
+                       default_times: Callable[[], TimeAxis | None]) -> TimeAxis | None:
+    """The times asked for by the time options; None when none are given. A grid without
+    ``--start`` or ``--stop`` ends where ``default_times()`` (the query's own times) ends."""
     grid = args.start is not None or args.stop is not None or args.step is not None
     if args.times is not None and grid:
         raise InvalidTimeError("give either --times or --start/--stop/--step, not both",
@@ -71,7 +75,7 @@ def requested_times(args: argparse.Namespace, tree: FrameTree, frame: str,
     if step <= 0:
         raise InvalidTimeError(f"must be a positive duration, got {args.step!r}",
                                field="--step")
-    samples = tree.sample_times(frame, relative_to)
+    samples = default_times()
     if samples is None and (args.start is None or args.stop is None):
         raise InvalidTimeError("nothing on this path moves, so give both --start and --stop",
                                field="--step")
@@ -134,7 +138,7 @@ def in_chunks(query: Callable[[np.ndarray], Result], times: TimeAxis,
     ``progress`` (a terminal) when there is more than one chunk."""
     values = times.as_numpy()
     count = values.shape[0]
-    bar = _ProgressBar(progress, count) if progress is not None and count > CHUNK_SIZE else None
+    bar = ProgressBar(progress, count) if progress is not None and count > CHUNK_SIZE else None
     parts = []
     for start in range(0, count, CHUNK_SIZE):
         parts.append(query(values[start:start + CHUNK_SIZE]))
@@ -168,7 +172,7 @@ def _concatenate(parts: list[Pose]) -> Pose:
                 reference_time=reference)
 
 
-class _ProgressBar:
+class ProgressBar:
     """``[#######.......]  45%  9000/20000 samples`` redrawn in place on a terminal."""
 
     def __init__(self, stream: TextIO, total: int) -> None:

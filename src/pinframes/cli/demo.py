@@ -16,6 +16,7 @@ from ..plotting import new_figure, plot_frames, plotting_available, robot_frames
 from ..tree import FrameTree
 from ..values.pose import Pose
 from ..view import write_view
+from ._cell_clearance import clearance_lines
 from ._demo_process import DEFAULT_SEAM, demo_process, plot_process, process_table
 from ._evaluate import evaluate_poses, pose_velocity, terminal_stderr
 from ._files import read_tree, require_frames
@@ -147,6 +148,7 @@ def run(args: argparse.Namespace) -> int:
     sys.stdout.write(summary.table())
     if process is not None:
         sys.stdout.write(process_table(process, len("seam length travelled")))
+    sys.stdout.write(clearance_lines(tree))
     print(f"pinframes: wrote {', '.join(map(str, written))}", file=sys.stderr)
     for line in missing:
         print(f"pinframes: {line}", file=sys.stderr)

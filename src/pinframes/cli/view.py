@@ -8,6 +8,7 @@ import sys
 from ..view import PACKAGE_PATH_VARIABLE, write_view
 from ._evaluate import add_time_arguments, requested_times
 from ._files import read_tree, require_frames
+from .clearance import frame_names
 
 __all__ = ["add_parser", "run"]
 
@@ -36,6 +37,14 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         help="folder to look for package:// and relative mesh files in "
                         f"(repeatable; searched before {PACKAGE_PATH_VARIABLE} and the URDF's "
                         "folder; default: none)")
+    parser.add_argument("--clearance", nargs=2, metavar=("A", "B"),
+                        help="mark the closest pair between the collision geometry of A and B "
+                        "at every time (as pinframes clearance; several names or patterns "
+                        "comma-separated): a dot on each closest point, the segment between "
+                        "them, the distance beside the time (default: none)")
+    parser.add_argument("--exclude", nargs=2, action="append", default=[], metavar=("A", "B"),
+                        help="a pair --clearance leaves out, either order (repeatable; "
+                        "default: none)")
     add_time_arguments(parser)
     parser.add_argument("-o", "--output", metavar="OUT.html", required=True,
                         help="HTML file to write")
@@ -52,8 +61,12 @@ def run(args: argparse.Namespace) -> int:
     drawn = args.frames or tree.frames
     moving = next((frame for frame in drawn if tree.sample_times(frame, relative_to)), drawn[0])
     times = requested_times(args, tree, moving, relative_to)
+    clearance = None if args.clearance is None else (
+        frame_names(tree, args.clearance[0]), frame_names(tree, args.clearance[1]))
     size = write_view(tree, args.output, times=times, time_ref=args.time_ref,
                       relative_to=relative_to, frames=args.frames, paths=paths,
-                      collision=args.collision, package_dirs=args.package_dir)
+                      collision=args.collision, package_dirs=args.package_dir,
+                      clearance=clearance,
+                      clearance_exclude=[tuple(pair) for pair in args.exclude])
     print(f"pinframes: wrote {args.output} ({size / 1e6:.1f} MB)", file=sys.stderr)
     return 0

@@ -12,6 +12,7 @@ moves are its interpolation scheme's (:mod:`pinframes.values.interpolation`).
 """
 
 from ._description import TreeDescription, paths_to_common_ancestor
+from .clearance import Clearance, clearance_times, evaluate_clearance
 from .jacobian import FrameJacobian, evaluate_jacobian
 from .pinocchio_tree import PinocchioTree
 from .pose import default_times, evaluate_pose
@@ -21,13 +22,16 @@ from .velocity import Velocity, evaluate_velocity
 from .weld_process import WeldProcess, evaluate_weld_process
 
 __all__ = [
+    "Clearance",
     "FrameJacobian",
     "PinocchioTree",
     "Snapshot",
     "TreeDescription",
     "Velocity",
     "WeldProcess",
+    "clearance_times",
     "default_times",
+    "evaluate_clearance",
     "evaluate_jacobian",
     "evaluate_pose",
     "evaluate_poses",

@@ -2,13 +2,17 @@
 
 from __future__ import annotations
 
+import os
+from collections.abc import Iterable, Mapping
 from typing import Any
 
 import numpy as np
 import pinocchio as pin
 from numpy.typing import NDArray
 
+from ..values.geometry import FrameGeometry
 from ..values.se3 import samples_first
+from ._collision_objects import ShapeLoader
 from ._description import TreeDescription
 from ._model import compile_model
 from ._path import model_sources
@@ -37,14 +41,48 @@ class PinocchioTree:
     >>> data = compiled.model.createData()                    # doctest: +SKIP
     >>> q = compiled.configurations([0.0, 0.5])[1]            # doctest: +SKIP
     >>> pin.framesForwardKinematics(compiled.model, data, q)  # doctest: +SKIP
+    >>> shapes = compiled.geometry_model("collision")         # doctest: +SKIP
+    >>> shapes.addAllCollisionPairs()                         # doctest: +SKIP
     """
 
-    def __init__(self, tree: TreeDescription) -> None:
+    def __init__(self, tree: TreeDescription,
+                 geometry: Mapping[str, FrameGeometry] | None = None) -> None:
         self._tree = tree
+        self._geometry = dict(geometry or {})
         self._compiled = compile_model(tree, tree.root, tree.frames)
         self.model: pin.Model = self._compiled.model
         self.frame_ids = dict(self._compiled.frame_ids)
         self.joint_ids = self._compiled.joint_ids
+
+    def geometry_model(self, kind: str = "collision",
+                       package_dirs: Iterable[str | os.PathLike[str]] = ()) -> pin.GeometryModel:
+        """The URDF links' ``kind`` geometry as a ``pinocchio.GeometryModel`` on this model.
+
+        One ``GeometryObject`` per ``<collision>`` (or ``<visual>``) element of every link
+        that has any, named ``FRAME_INDEX`` (``robot/link_2_0``), hanging on the link's frame
+        (``parentFrame``, ``parentJoint`` and the placement in that joint), with the coal
+        object ``pinocchio.buildGeomFromUrdf`` would build (meshes found as
+        ``FrameTree.clearance`` finds them, in ``package_dirs`` first). No collision pairs
+        are set: ``addAllCollisionPairs()`` or ``addCollisionPair`` choose them. A mesh
+        that is missing or unreadable is a :class:`~pinframes.errors.GeometryError`.
+        """
+        loader = ShapeLoader(kind, package_dirs)
+        shapes = pin.GeometryModel()
+        for frame, recorded in self._geometry.items():
+            if not recorded.shapes(kind) and not recorded.unreadable_shapes(kind):
+                continue
+            frame_id = self.frame_ids[frame]
+            on_frame = self.model.frames[frame_id]
+            for index, shape in enumerate(loader.shapes(frame, recorded)):
+                placement = on_frame.placement * pin.SE3(shape.rotation, shape.translation)
+                piece = pin.GeometryObject(  # meshPath BOX, CYLINDER, SPHERE as Pinocchio's
+                    f"{frame}_{index}", on_frame.parentJoint, frame_id, placement,
+                    shape.geometry, shape.mesh_path or shape.shape.kind.upper(),
+                    np.array(shape.shape.scale))
+                if shape.shape.rgba is not None:
+                    piece.meshColor = np.array(shape.shape.rgba)
+                shapes.addGeometryObject(piece)
+        return shapes
 
     def configurations(self, times: Any = None, time_ref: Any = None) -> NDArray[np.float64]:
         """Configurations ``q``, shape ``(T, nq)``, at ``times`` (rules of ``FrameTree.pose``).

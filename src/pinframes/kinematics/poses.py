@@ -65,27 +65,33 @@ def evaluate_poses(
         anchor_b = anchor_names[code % len(anchor_names)]
         betweens.append((anchor_a, anchor_b, evaluate_pose(tree, anchor_a, anchor_b, times,
                                                            time_ref, extrapolation)))
-    timeline = betweens[0][2]
-    for anchor_a, anchor_b, between in betweens[1:]:
-        _check_same_timeline(timeline, between, anchor_a, anchor_b)
-    samples = len(timeline)
+    # a path through joints without samples, queried without times, holds still: it
+    # repeats over the timeline of the paths that move (or the result is static)
+    timed = [entry for entry in betweens if entry[2]._times is not None]
+    shared = timed[0][2] if timed else None
+    for anchor_a, anchor_b, between in timed[1:]:
+        _check_same_timeline(timed[0][2], between, anchor_a, anchor_b)
+    samples = 1 if shared is None else len(shared)
     translation = np.empty((count, samples, 3))
     rotation = np.empty((count, samples, 3, 3))
     moving_pairs = np.flatnonzero(moving)
     for group, (_, _, between) in enumerate(betweens):
         pairs = moving_pairs[members == group]
         # inv(P_b) @ M(t) @ P_a for every pair of the group and every time
-        rotation_m = between.rotation
+        rotation_m = np.broadcast_to(between.rotation, (samples, 3, 3))
+        translation_m = np.broadcast_to(between.translation, (samples, 3))
         placed = np.matmul(rotation_m[None], rotation_a[pairs, None])
         rotation[pairs] = np.matmul(rotation_b_t[pairs, None], placed)
         moved = np.einsum("tij,pj->pti", rotation_m, translation_a[pairs])
-        moved += between.translation[None] - translation_b[pairs, None]
+        moved += translation_m[None] - translation_b[pairs, None]
         translation[pairs] = np.einsum("pij,ptj->pti", rotation_b_t[pairs], moved)
     static = np.flatnonzero(~moving)
     rotation[static] = np.matmul(rotation_b_t[static], rotation_a[static])[:, None]
     translation[static] = np.einsum("nij,nj->ni", rotation_b_t[static],
                                     translation_a[static] - translation_b[static])[:, None]
-    return PoseStack(rotation, translation, timeline._times, timeline.reference_time)
+    if shared is None:
+        return PoseStack(rotation[:, 0], translation[:, 0])
+    return PoseStack(rotation, translation, shared._times, shared.reference_time)
 
 
 def _check_same_timeline(first: Pose, other: Pose, anchor_a: str, anchor_b: str) -> None:

@@ -1,7 +1,7 @@
 """Seeing a frame tree: robot geometry from URDFs and an animated 3-D page of a whole run."""
 
+from ..kinematics.mesh_files import PACKAGE_PATH_VARIABLE
 from ._geometry import GeometryWarning, LinkGeometry, load_geometry
-from ._mesh_files import PACKAGE_PATH_VARIABLE
 from ._page import MAX_PAGE_SAMPLES, view_html, write_view
 
 __all__ = ["MAX_PAGE_SAMPLES", "PACKAGE_PATH_VARIABLE", "GeometryWarning", "LinkGeometry",

@@ -19,8 +19,8 @@ import numpy as np
 
 from ..errors import UnsupportedFeatureError
 from ..formats.urdf import URDF_METADATA_KEY
+from ..kinematics.mesh_files import HOW_TO_SEARCH, MeshFiles, package_search_dirs
 from ..tree import FrameTree
-from ._mesh_files import HOW_TO_SEARCH, MeshFiles, package_search_dirs
 
 __all__ = ["GeometryWarning", "LinkGeometry", "load_geometry"]
 

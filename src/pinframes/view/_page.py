@@ -55,6 +55,8 @@ def view_html(
     package_dirs: Iterable[str | os.PathLike[str]] = (),
     geometry: Sequence[LinkGeometry] | None = None,
     title: str | None = None,
+    clearance: tuple[Any, Any] | None = None,
+    clearance_exclude: Iterable[tuple[str, str]] = (),
 ) -> str:
     """An animated 3-D page of ``tree``: geometry, frames and paths over ``times``.
 
@@ -81,6 +83,12 @@ def view_html(
         Geometry already loaded (default: :func:`load_geometry` of the tree).
     title : str, optional
         The page's title (default: the tree's name).
+    clearance : (a, b), optional
+        Mark the closest pair of :meth:`FrameTree.clearance` ``(a, b)`` (collision geometry,
+        at the page's times): a dot on each closest point, the segment between them, and
+        the distance and the two frames beside the time shown.
+    clearance_exclude : iterable of (str, str)
+        Pairs the clearance leaves out (``exclude=`` of :meth:`FrameTree.clearance`).
     """
     relative_to = tree.root if relative_to is None else relative_to
     frames = list(tree.frames if frames is None else frames)
@@ -112,6 +120,11 @@ def view_html(
                                           "drawn too", frame=frame, field="paths")
         scene.add_path(frame, drawn_in, _pose(tree, frame, drawn_in, values, time_ref)
                        .translation.reshape(-1, 3))
+    marked = None
+    if clearance is not None:
+        marked = _closest_pair(tree, clearance, clearance_exclude, package_dirs, relative_to,
+                               values, time_ref, seconds)
+        scene.add_closest_pair(*marked[:2], seconds, 0.006 * extent[2])
     commands = list(scene.commands)
     if (animation := scene.animation_command()) is not None:
         commands.append(animation)
@@ -120,7 +133,28 @@ def view_html(
     return _html(title or tree.name or "pinframes", commands, {
         "labels": labels, "start": start, "duration": float(seconds[-1]),
         "centre": extent[0].tolist(), "radius": float(extent[2]),
-        "drawnIn": relative_to})
+        "drawnIn": relative_to, "clearance": None if marked is None else marked[2]})
+
+
+def _closest_pair(tree: FrameTree, sides: tuple[Any, Any],
+                  exclude: Iterable[tuple[str, str]],
+                  package_dirs: Iterable[str | os.PathLike[str]], relative_to: str,
+                  values: Any, time_ref: Any, seconds: np.ndarray
+                  ) -> tuple[np.ndarray, np.ndarray, dict[str, Any]]:
+    """The clearance's closest points per page sample, in the drawing frame, and what the
+    page shows beside the time: per sample the distance (mm) and the pair."""
+    a, b = sides
+    result = tree.clearance(a, b, times=values, time_ref=time_ref, exclude=list(exclude),
+                            package_dirs=package_dirs)
+    root_in_drawing = _pose(tree, tree.root, relative_to, values, time_ref)
+    # (T, 3): one point per time through a moving pose, or each point through a static one
+    points = [root_in_drawing.transform_points(points)
+              for points in (result.point_a, result.point_b)]
+    names, pairs = np.unique(result.closest, return_inverse=True)
+    return points[0], points[1], {
+        "seconds": seconds.tolist(), "names": names.tolist(),
+        "pairs": pairs.reshape(-1, 2).tolist(),
+        "distanceMm": np.round(1000 * result.distance, 3).tolist()}
 
 
 def _page_times(tree: FrameTree, frames: list[str], relative_to: str, times: Any,

@@ -3,7 +3,9 @@
 Every frame of the tree is a group ``/pinframes/frames/<name>`` placed in the drawing frame
 (``relative_to``); its axes and its link geometry hang below it, so moving the group moves
 them. A path of frame A drawn in frame B hangs below B's group and moves with it. Groups
-that move get an animation track (position and quaternion per sample, float32).
+that move get an animation track (position and quaternion per sample, float32). The closest
+pair of a clearance is marked under ``/pinframes/clearance``: a dot on each closest point and
+the segment between them (a unit segment, stretched by a scale track).
 """
 
 from __future__ import annotations
@@ -17,9 +19,12 @@ from ..errors import UnsupportedFeatureError
 from ..values.rotations import quaternion_from_matrix
 from ._geometry import LinkGeometry
 
-__all__ = ["SceneCommands", "msgpack", "node_path"]
+__all__ = ["CLEARANCE_PATH", "SceneCommands", "msgpack", "node_path"]
 
 _ROOT = ("pinframes", "frames")
+CLEARANCE_PATH = "/pinframes/clearance"
+"""The group of the closest pair's marks: dots ``a`` and ``b`` and the ``segment``."""
+_CLEARANCE_COLOUR = 0xE8200C
 _FLOAT32 = 0x17  # msgpack extension code that meshcat's viewer reads as a Float32Array
 
 
@@ -79,6 +84,38 @@ class SceneCommands:
         self.commands.append(_set_object(path, {"type": "Line", "geometry": geometry,
                                                 "material": material}))
 
+    def add_closest_pair(self, point_a: np.ndarray, point_b: np.ndarray, times_s: np.ndarray,
+                         dot_radius: float) -> None:
+        """The closest points of a clearance (shapes (n, 3), metres in the drawing frame) as
+        two dots and the segment between them, moving per sample at ``times_s``."""
+        for name, points in (("a", point_a), ("b", point_b)):
+            matrices = np.broadcast_to(np.eye(4), (len(points), 4, 4)).copy()
+            matrices[:, :3, 3] = points
+            self._add_moving(f"{CLEARANCE_PATH}/{name}", _dot(dot_radius), matrices, times_s)
+        apart = point_b - point_a
+        length = np.linalg.norm(apart, axis=1)
+        direction = np.where(length[:, None] > 1e-12, apart / np.maximum(length, 1e-300)[:, None],
+                             [1.0, 0.0, 0.0])
+        matrices = np.broadcast_to(np.eye(4), (len(point_a), 4, 4)).copy()
+        matrices[:, :3, :3] = _turning_x_to(direction)
+        matrices[:, :3, 3] = point_a
+        # the unit segment along x, stretched to the distance (a tiny one at contact)
+        self._add_moving(f"{CLEARANCE_PATH}/segment", _unit_segment(), matrices, times_s,
+                         np.maximum(length, 1e-9))
+
+    def _add_moving(self, path: str, obj: dict[str, Any], matrices: np.ndarray,
+                    times_s: np.ndarray, stretch: np.ndarray | None = None) -> None:
+        """``obj`` at ``path``, placed by ``matrices`` (n, 4, 4) per sample and stretched
+        along its x axis by ``stretch`` (n,)."""
+        first = matrices[0].copy()
+        if stretch is not None:
+            first[:3, 0] *= stretch[0]
+        self.commands.append(_set_object(path, obj))
+        self.commands.append({"type": "set_transform", "path": path,
+                              "matrix": _column_major(first)})
+        if len(matrices) > 1:
+            self.animations.append(_track(path, matrices, times_s, stretch))
+
     def animation_command(self) -> dict[str, Any] | None:
         """The one ``set_animation`` command (paused at the start), or None if nothing moves."""
         if not self.animations:
@@ -87,15 +124,46 @@ class SceneCommands:
                 "options": {"play": False, "repetitions": 1}}
 
 
-def _track(path: str, matrices: np.ndarray, times_s: np.ndarray) -> dict[str, Any]:
-    """A three.js clip moving the group at ``path`` through ``matrices`` (fps 1: seconds)."""
+def _track(path: str, matrices: np.ndarray, times_s: np.ndarray,
+           stretch: np.ndarray | None = None) -> dict[str, Any]:
+    """A three.js clip moving the group at ``path`` through ``matrices`` (fps 1: seconds),
+    and scaling it along x by ``stretch``."""
     times = _float32(times_s)
     positions = _float32(matrices[:, :3, 3].reshape(-1))
     quaternions = quaternion_from_matrix(matrices[:, :3, :3])  # x, y, z, w as three.js
-    return {"path": path, "clip": {"fps": 1, "name": "default", "tracks": [
-        {"name": ".position", "type": "vector3", "times": times, "values": positions},
-        {"name": ".quaternion", "type": "quaternion", "times": times,
-         "values": _float32(quaternions.reshape(-1))}]}}
+    tracks = [{"name": ".position", "type": "vector3", "times": times, "values": positions},
+              {"name": ".quaternion", "type": "quaternion", "times": times,
+               "values": _float32(quaternions.reshape(-1))}]
+    if stretch is not None:
+        scales = np.ones((len(stretch), 3))
+        scales[:, 0] = stretch
+        tracks.append({"name": ".scale", "type": "vector3", "times": times,
+                       "values": _float32(scales.reshape(-1))})
+    return {"path": path, "clip": {"fps": 1, "name": "default", "tracks": tracks}}
+
+
+def _turning_x_to(direction: np.ndarray) -> np.ndarray:
+    """Rotations (n, 3, 3) whose x axis is the unit ``direction`` (n, 3)."""
+    helper = np.where(np.abs(direction[:, 2:3]) < 0.9, [0.0, 0.0, 1.0], [1.0, 0.0, 0.0])
+    y = np.cross(helper, direction)
+    y /= np.linalg.norm(y, axis=1, keepdims=True)
+    return np.stack([direction, y, np.cross(direction, y)], axis=2)
+
+
+def _dot(radius: float) -> dict[str, Any]:
+    return {"type": "Mesh",
+            "geometry": {"type": "SphereGeometry", "radius": radius, "widthSegments": 16,
+                         "heightSegments": 12},
+            "material": {"type": "MeshBasicMaterial", "color": _CLEARANCE_COLOUR}}
+
+
+def _unit_segment() -> dict[str, Any]:
+    ends = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]], np.float32)
+    return {"type": "Line",
+            "geometry": {"type": "BufferGeometry",
+                         "data": {"attributes": {"position": _attribute(ends)}}},
+            "material": {"type": "LineBasicMaterial", "color": _CLEARANCE_COLOUR,
+                         "linewidth": 3}}
 
 
 def _set_object(path: str, obj: dict[str, Any]) -> dict[str, Any]:

@@ -1,5 +1,6 @@
 // pinframes page: builds the meshcat scene from the embedded commands and adds the
-// controls: play/pause, a time slider, the time shown, frame and link names on or off.
+// controls: play/pause, a time slider, the time shown, frame and link names on or off, and
+// the closest pair of a clearance when the page marks one.
 // window.pinframes.seek(seconds) and .ready serve scripted use (the browser tests).
 (function () {
   "use strict";
@@ -33,7 +34,8 @@
     '<input id="pinframes-slider" type="range" min="0" step="any">' +
     '<span id="pinframes-time"></span>' +
     '<label><input id="pinframes-frame-names" type="checkbox" checked> frame names</label>' +
-    '<label><input id="pinframes-link-names" type="checkbox"> link names</label>';
+    '<label><input id="pinframes-link-names" type="checkbox"> link names</label>' +
+    '<span id="pinframes-clearance"></span>';
   document.body.appendChild(bar);
   const play = document.getElementById("pinframes-play");
   const slider = document.getElementById("pinframes-slider");
@@ -46,9 +48,29 @@
   function currentTime() {
     return animator.actions.length ? animator.time : 0;
   }
+  // the closest pair of a clearance, if the page marks one: its distance and frames at the
+  // last sample at or before t
+  const clearance = data.clearance;
+  const closest = document.getElementById("pinframes-clearance");
+  function showClearance(t) {
+    if (!clearance) return;
+    const seconds = clearance.seconds;
+    let low = 0, high = seconds.length - 1;
+    while (low < high) {
+      const middle = (low + high + 1) >> 1;
+      if (seconds[middle] <= t + 1e-9) low = middle; else high = middle - 1;
+    }
+    const pair = clearance.pairs[low];
+    const distance = clearance.distanceMm[low];
+    closest.textContent = "closest: " + distance.toFixed(1) + " mm, " +
+      clearance.names[pair[0]] + " \u2013 " + clearance.names[pair[1]] +
+      (distance <= 0 ? " (contact)" : "");
+    closest.className = distance <= 0 ? "pinframes-contact" : "";
+  }
   function showTime(t) {
     shown.textContent = "t = " + t.toFixed(3) + " s of " + duration.toFixed(3) +
       " s (start " + data.start + ")";
+    showClearance(t);
   }
   function seek(t) {
     t = Math.max(0, Math.min(duration, t));

@@ -6,6 +6,7 @@ import os
 from typing import TYPE_CHECKING, Any
 
 from ...errors import ArgumentTypeError, FrameExistsError, FrameNotFoundError, near_misses
+from ...values.geometry import GEOMETRY_METADATA_KEY
 from ...values.joint import Joint, Mimic
 from ...values.pose import Pose
 from ..limits import Limits
@@ -98,10 +99,13 @@ def _absolute(source: str) -> str:
 
 def _keep_link(tree: FrameTree, frame: str, robot: RobotDescription, link: str, joint,
                prefix: str) -> None:
-    """Remember what export needs and pinframes does not interpret."""
+    """Remember what export needs and pinframes does not interpret, and the link's geometry
+    (for clearance queries and the 3-D page)."""
     kept: dict[str, Any] = {"robot": prefix + robot.root_link, "link": link,
                             "link_xml": robot.links[link]}
     if joint is not None:
         kept["joint"] = {"name": prefix + joint.name, "type": joint.type,
                          "extra_xml": joint.extra_xml, "axis": joint.axis}
-    tree.frame_metadata(frame)[URDF_METADATA_KEY] = kept
+    metadata = tree.frame_metadata(frame)
+    metadata[URDF_METADATA_KEY] = kept
+    metadata[GEOMETRY_METADATA_KEY] = robot.geometry[link]

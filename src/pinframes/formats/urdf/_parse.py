@@ -11,10 +11,13 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import BrokenMimicWarning, FileFormatError
+from ...values.geometry import FrameGeometry
 from ...values.pose import Pose
 from ..limits import Limits, current_limits, exceeded, reader_with_limits
 from ..reading import read_text
 from ._bounded_xml import parse_bounded_xml
+from ._geometry import link_geometry, named_colours
+from ._numbers import numbers
 
 __all__ = ["URDF_JOINT_TYPES", "JointDescription", "RobotDescription", "parse_urdf"]
 
@@ -48,7 +51,8 @@ class JointDescription:
 
 @dataclass(frozen=True)
 class RobotDescription:
-    """A parsed URDF: its links (with their XML kept as written) and joints, root first."""
+    """A parsed URDF: its links (with their XML kept as written) and joints, root first,
+    and the collision and visual geometry of every link."""
 
     name: str
     source: str
@@ -56,6 +60,7 @@ class RobotDescription:
     links: dict[str, tuple[str, ...]]
     joints: tuple[JointDescription, ...]
     extra_xml: tuple[str, ...] = field(default=())
+    geometry: dict[str, FrameGeometry] = field(default_factory=dict)
 
 
 @reader_with_limits
@@ -88,7 +93,16 @@ def parse_urdf(urdf: str | os.PathLike[str], *, strict: bool = False,
     ordered, root_link = _check_tree(links, joints, source)
     ordered = _without_broken_mimics(ordered, source, strict)
     _check_mimics(ordered, source)
-    return RobotDescription(name, source, root_link, links, tuple(ordered), tuple(extra))
+    colours = named_colours(root, source)
+    geometry = {link: link_geometry(element, link, source, colours)
+                for link, element in _link_elements(root)}
+    return RobotDescription(name, source, root_link, links, tuple(ordered), tuple(extra),
+                            geometry)
+
+
+def _link_elements(root: ET.Element) -> list[tuple[str, ET.Element]]:
+    """Every ``<link>`` with its name (names checked by :func:`_elements`)."""
+    return [(element.get("name", ""), element) for element in root.iterfind("link")]
 
 
 def _elements(root: ET.Element, source: str
@@ -279,17 +293,8 @@ def _child_attribute(element: ET.Element, tag: str, attribute: str, source: str,
 
 def _vector(element: ET.Element | None, attribute: str, source: str, joint: str, field: str,
             default: tuple[float, float, float]) -> tuple[float, float, float]:
-    text = None if element is None else element.get(attribute)
-    if text is None:
-        return default
-    try:
-        values = tuple(float(part) for part in text.split())
-    except ValueError:
-        values = ()
-    if len(values) != 3 or not all(np.isfinite(values)):
-        raise FileFormatError(f"expected three finite numbers, got {text!r}", file=source,
-                              frame=joint, field=field)
-    return values
+    x, y, z = numbers(element, attribute, 3, source, joint, field, default)
+    return x, y, z
 
 
 def _number(element: ET.Element | None, attribute: str, source: str, joint: str

@@ -9,8 +9,9 @@ against, in this order,
 3. the URDF's own folder and its ancestors.
 
 A search folder may be a package itself (its name is ``PKG``) or hold packages as its
-sub-folders (``folder/PKG``), as ``ROS_PACKAGE_PATH`` entries do. It serves yourdfpy as its
-``filename_handler``; names that cannot be found map to ``""``, which yourdfpy skips.
+sub-folders (``folder/PKG``), as ``ROS_PACKAGE_PATH`` entries do. The clearance query finds
+its meshes here, and so does the 3-D page (for which it also serves yourdfpy as its
+``filename_handler``: names that cannot be found map to ``""``, which yourdfpy skips).
 """
 
 from __future__ import annotations

@@ -1,0 +1,135 @@
+"""``pinframes clearance FILE A B``: the smallest distance between two sets of links per time."""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import sys
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..formats.clearance_files import CLEARANCE_FILE_FORMATS, clearance_text
+from ..kinematics import Clearance
+from ..kinematics.mesh_files import PACKAGE_PATH_VARIABLE
+from ..tree import FrameTree
+from ..values.geometry import GEOMETRY_KINDS
+from ..values.timeconv import TimeAxis
+from ._evaluate import (
+    ProgressBar,
+    add_time_arguments,
+    terminal_stderr,
+    times_from_options,
+)
+from ._files import read_tree
+from ._output import write_text
+
+__all__ = ["add_parser", "clearance_summary", "frame_names", "run"]
+
+CHUNK_SIZE = 2_000
+"""Samples per call; the progress bar moves once per chunk (a sample costs 0.05-1 ms)."""
+
+
+def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
+    """Register the ``clearance`` subcommand."""
+    parser = subparsers.add_parser(
+        "clearance", parents=parents,
+        help="smallest distance between the geometry of two sets of links, per time",
+        description="The smallest distance between the URDF collision geometry of the links "
+        "A and those B at every time (coal, as Pinocchio's computeDistances), the pair "
+        "of links it is between and their closest points. One summary line goes to "
+        "standard error (smallest distance, the pair, when; the first contact or 'no "
+        "contact'), the table to standard output or -o: columns time_s, distance_m "
+        "(negative: overlap), frame_a, frame_b, point_a_x_m .. point_b_z_m (metres in the "
+        "root's axes).")
+    parser.add_argument("file", metavar="FILE", help="scene, frames.yaml, ASDF or URDF file")
+    for name, side in (("a", "one side"), ("b", "the other side")):
+        parser.add_argument(name, metavar=name.upper(),
+                            help=f"{side}: a frame, a glob pattern over frames ('robot/*'), "
+                            "or several of them separated by commas")
+    parser.add_argument("--exclude", nargs=2, action="append", default=[],
+                        metavar=("A", "B"), help="do not check the pairs of these frames or "
+                        "patterns, either order (repeatable; default: none)")
+    parser.add_argument("--geometry", choices=GEOMETRY_KINDS, default="collision",
+                        help="which URDF geometry of the links (default: collision)")
+    parser.add_argument("--package-dir", action="append", default=[], metavar="DIR",
+                        help="folder to look for package:// and relative mesh files in "
+                        f"(repeatable; searched before {PACKAGE_PATH_VARIABLE} and the URDF's "
+                        "folder; default: none)")
+    add_time_arguments(parser)
+    parser.add_argument("--format", "-f", choices=CLEARANCE_FILE_FORMATS,
+                        help="table format (default: from the -o file name, else csv)")
+    parser.add_argument("-o", "--output", metavar="OUT",
+                        help="write the table to this file (default: standard output)")
+    parser.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Evaluate, print the summary and write the table."""
+    tree = read_tree(args.file)
+    a, b = frame_names(tree, args.a), frame_names(tree, args.b)
+    options = {"geometry": args.geometry, "package_dirs": args.package_dir,
+               "exclude": [tuple(pair) for pair in args.exclude]}
+    times = times_from_options(args, lambda: tree.clearance_times(a, b,
+                                                                  geometry=args.geometry))
+    result = _in_chunks(tree, a, b, times, args.time_ref, options)
+    print(f"pinframes: {clearance_summary(result)}", file=sys.stderr)
+    suffix = Path(args.output).suffix.lstrip(".").lower() if args.output else ""
+    fmt = args.format or (suffix if suffix in CLEARANCE_FILE_FORMATS else "csv")
+    write_text(clearance_text(result, fmt), args.output)
+    return 0
+
+
+def clearance_summary(result: Clearance, counts: bool = True) -> str:
+    """``smallest clearance 12.3 mm between A and B at 4.500 s; first contact at ...``, with
+    the numbers of samples and frames when ``counts``."""
+    index = result.smallest
+    first, second = result.closest[index]
+    seconds = result.seconds
+    when = "" if seconds is None else f" at {seconds[index]:.3f} s"
+    contact = result.first_contact
+    touching = "no contact" if contact is None else (
+        "in contact" if seconds is None else f"first contact at {contact:.3f} s")
+    summary = (f"smallest clearance {1000 * result.distance[index]:.1f} mm between {first} "
+               f"and {second}{when}; {touching}")
+    if not counts:
+        return summary
+    return (f"{summary} ({len(result)} samples, {len(result.frames_a)} x "
+            f"{len(result.frames_b)} frames)")
+
+
+def frame_names(tree: FrameTree, text: str) -> list[str]:
+    """The frame named ``text``, else the comma-separated names and patterns in it."""
+    return [text] if text in tree else [name.strip() for name in text.split(",")]
+
+
+def _in_chunks(tree: FrameTree, a: list[str], b: list[str], times: TimeAxis | None,
+               time_ref: Any, options: dict[str, Any]) -> Clearance:
+    """``tree.clearance`` in chunks of :data:`CHUNK_SIZE` samples, with a progress bar on a
+    terminal."""
+    if times is None:
+        times = tree.clearance_times(a, b, geometry=options["geometry"])
+        if times is None:
+            return tree.clearance(a, b, **options)
+        time_ref = times.reference
+    values = times.as_numpy()
+    count = values.shape[0]
+    stream = terminal_stderr()
+    bar = ProgressBar(stream, count) if stream is not None and count > CHUNK_SIZE else None
+    parts = []
+    for start in range(0, count, CHUNK_SIZE):
+        parts.append(tree.clearance(a, b, times=values[start:start + CHUNK_SIZE],
+                                    time_ref=time_ref, **options))
+        if bar is not None:
+            bar.update(min(start + CHUNK_SIZE, count))
+    if bar is not None:
+        bar.close()
+    if len(parts) == 1:
+        return parts[0]
+    def joined(name: str) -> np.ndarray:
+        return np.concatenate([getattr(part, name) for part in parts])
+
+    return dataclasses.replace(parts[0], distance=joined("distance"), closest=joined("closest"),
+                               point_a=joined("point_a"), point_b=joined("point_b"),
+                               times=joined("times"))

@@ -1,0 +1,273 @@
+"""``FrameTree.clearance``: the smallest distance between two sets of link geometries, per sample.
+
+Every frame's pose in the root comes from the pose queries (:mod:`.poses`), on one timeline
+that follows the rules of ``pose()`` for all the moving things on the frames' paths. The
+distance of a pair of shapes is coal's ``distance`` on the objects of
+:mod:`._collision_objects` (what ``pinocchio.computeDistances`` computes on the same URDF).
+
+Most pairs are far apart most of the time, so each shape carries a sphere that holds it: at
+every sample the pairs are visited in the order of the distance between their spheres (a
+lower bound of the pair's distance), and the visit stops at the first pair whose bound is not
+below the smallest distance found. The pairs skipped cannot be closer, so the answer is the
+one every pair would give.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import coal
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import GeometryError
+from ..values.geometry import FrameGeometry
+from ..values.timeconv import TimeAxis
+from ._collision_objects import CollisionShape, ShapeLoader
+from ._description import TreeDescription
+from ._path import prepare_path
+from ._times import plan_timeline
+from .poses import evaluate_poses
+
+__all__ = ["Clearance", "clearance_times", "evaluate_clearance"]
+
+FloatArray = NDArray[np.float64]
+
+CHUNK = 1 << 14
+"""Samples whose frame poses and sphere bounds are computed at once (about 2 kB per sample
+and frame, shape and pair together)."""
+
+
+@dataclass(frozen=True)
+class Clearance:
+    """The smallest distance between the geometries of two sets of links, per sample.
+
+    Attributes
+    ----------
+    distance : ndarray, shape (T,)
+        Metres: the smallest distance over every pair of links (one of ``frames_a``, one of
+        ``frames_b``); negative when two primitives overlap (minus the penetration depth;
+        coal reports 0 for meshes that touch or overlap).
+    closest : ndarray of str, shape (T, 2)
+        The frames of that pair: one of ``frames_a``, then one of ``frames_b``.
+    point_a, point_b : ndarray, shape (T, 3)
+        The closest points of the pair's geometries (on the ``frames_a`` side, then on the
+        ``frames_b`` side), metres in the axes and origin of the tree's root.
+    times : ndarray of timedelta64[ns] or None
+        Sample times after :attr:`reference_time`, as ``pose()`` chooses them; None when
+        nothing moves and no times were given (then ``T`` is 1).
+    reference_time : numpy.datetime64 or None
+        What :attr:`times` count from.
+    frames_a, frames_b : tuple of str
+        The frames whose geometry was checked on each side.
+    excluded : tuple of (str, str)
+        The pairs of frames left out (``exclude=``).
+    geometry : {"collision", "visual"}
+        Which URDF geometry was used.
+    """
+
+    distance: FloatArray
+    closest: NDArray[np.str_]
+    point_a: FloatArray
+    point_b: FloatArray
+    times: NDArray[np.timedelta64] | None
+    reference_time: np.datetime64 | None
+    frames_a: tuple[str, ...]
+    frames_b: tuple[str, ...]
+    excluded: tuple[tuple[str, str], ...]
+    geometry: str
+
+    def __len__(self) -> int:
+        return int(self.distance.shape[0])
+
+    @property
+    def seconds(self) -> FloatArray | None:
+        """:attr:`times` as float seconds (None for a static result)."""
+        return None if self.times is None else self.times.astype(np.int64) / 1e9
+
+    @property
+    def in_contact(self) -> NDArray[np.bool_]:
+        """Per sample: whether the closest pair touches or overlaps (distance <= 0)."""
+        return self.distance <= 0.0
+
+    @property
+    def first_contact(self) -> float | None:
+        """The first sample time (seconds) at which the distance is <= 0, or None; 0.0 for a
+        static result in contact."""
+        touching = np.flatnonzero(self.in_contact)
+        if touching.size == 0:
+            return None
+        seconds = self.seconds
+        return 0.0 if seconds is None else float(seconds[touching[0]])
+
+    @property
+    def smallest(self) -> int:
+        """The index of the sample with the smallest distance (the first, on a tie)."""
+        return int(np.argmin(self.distance))
+
+
+def evaluate_clearance(
+    tree: TreeDescription, geometry: Mapping[str, FrameGeometry | None],
+    frames_a: Sequence[str], frames_b: Sequence[str], excluded: Iterable[tuple[str, str]],
+    kind: str, package_dirs: Iterable[str | os.PathLike[str]], times: Any, time_ref: Any,
+    extrapolation: str,
+) -> Clearance:
+    """``tree.clearance(...)`` for frames already named and checked.
+
+    ``geometry`` holds the recorded geometry of every frame of ``frames_a`` and
+    ``frames_b``; ``excluded`` the frame pairs (either order) not to check.
+    """
+    loader = _loader(tree, kind, package_dirs)
+    frames = list(dict.fromkeys([*frames_a, *frames_b]))
+    shapes = [shape for frame in frames for shape in loader.shapes(frame, geometry[frame])]
+    skipped = {frozenset(pair) for pair in excluded}
+    pairs = _shape_pairs(shapes, set(frames_a), set(frames_b), skipped)
+    if not len(pairs):
+        raise GeometryError("a and b leave no pair of two different frames to check (a frame "
+                            "is never checked against itself; see also exclude)", field="b")
+    poses, timeline_times, reference = _frame_poses(tree, frames, times, time_ref,
+                                                    extrapolation)
+    count = poses.translation.shape[1]
+    frame_index = {frame: position for position, frame in enumerate(frames)}
+    owners = np.array([frame_index[shape.frame] for shape in shapes], dtype=np.intp)
+    distance = np.empty(count)
+    closest = np.empty((count, 2), dtype=np.intp)
+    point_a, point_b = np.empty((count, 3)), np.empty((count, 3))
+    for start in range(0, count, CHUNK):
+        part = slice(start, min(count, start + CHUNK))
+        rotation, translation = _placed_shapes(poses.rotation[:, part],
+                                               poses.translation[:, part], shapes, owners)
+        _closest_pairs(shapes, pairs, rotation, translation, distance[part], closest[part],
+                       point_a[part], point_b[part])
+    names = np.array([shape.frame for shape in shapes], dtype=np.str_)
+    return Clearance(distance, names[closest], point_a, point_b, timeline_times, reference,
+                     tuple(dict.fromkeys(frames_a)), tuple(dict.fromkeys(frames_b)),
+                     tuple(tuple(pair) for pair in excluded),  # type: ignore[misc]
+                     kind)
+
+
+def _loader(tree: TreeDescription, kind: str,
+            package_dirs: Iterable[str | os.PathLike[str]]) -> ShapeLoader:
+    """The shape loader of this tree version for ``kind`` and these search folders (meshes
+    are read once per version)."""
+    folders = tuple(os.fspath(folder) for folder in package_dirs)
+    key = ("clearance shapes", kind, os.environ.get("ROS_PACKAGE_PATH", ""), *folders)
+    loader = tree.cached(key)
+    if loader is None:
+        loader = ShapeLoader(kind, folders)
+        tree.store(key, loader)
+    return loader
+
+
+def _shape_pairs(shapes: list[CollisionShape], side_a: set[str], side_b: set[str],
+                 skipped: set[frozenset[str]]) -> NDArray[np.intp]:
+    """Shape index pairs ``(i, j)``: ``i`` on a frame of ``side_a``, ``j`` of ``side_b``, on
+    different frames, not ``skipped``; each unordered pair once."""
+    seen: set[frozenset[int]] = set()
+    pairs = []
+    for i, first in enumerate(shapes):
+        if first.frame not in side_a:
+            continue
+        for j, second in enumerate(shapes):
+            if (second.frame not in side_b or second.frame == first.frame
+                    or frozenset((first.frame, second.frame)) in skipped
+                    or frozenset((i, j)) in seen):
+                continue
+            seen.add(frozenset((i, j)))
+            pairs.append((i, j))
+    return np.array(pairs, dtype=np.intp).reshape(-1, 2)
+
+
+def clearance_times(tree: TreeDescription, frames: Sequence[str]) -> TimeAxis | None:
+    """The times a clearance between ``frames`` evaluates at when given none: every
+    keyframe and joint sample time on their paths from the root; None if nothing moves."""
+    offsets, reference = _timeline(tree, list(frames), None, None)
+    return None if offsets is None else TimeAxis(offsets, reference)
+
+
+def _timeline(tree: TreeDescription, frames: list[str], times: Any, time_ref: Any
+              ) -> tuple[NDArray[np.int64] | None, np.datetime64 | None]:
+    """The one timeline of every moving thing on the paths from the root to ``frames``
+    (the rules of ``pose()``): offsets (ns) and reference time."""
+    sources = {source.name: source for frame in frames
+               for source in prepare_path(tree, frame, tree.root).sources}
+    timeline = plan_timeline(tree, list(sources.values()), times, time_ref)
+    return timeline.result_offsets, timeline.reference
+
+
+def _frame_poses(tree: TreeDescription, frames: list[str], times: Any, time_ref: Any,
+                 extrapolation: str) -> tuple[Any, NDArray[np.timedelta64] | None,
+                                              np.datetime64 | None]:
+    """Every frame's pose in the root, ``(F, T, 3, 3)`` and ``(F, T, 3)``, on the one
+    timeline of all the moving things on their paths; with that timeline's times and
+    reference time."""
+    offsets, reference = _timeline(tree, frames, times, time_ref)
+    if offsets is None:
+        poses = evaluate_poses(tree, frames, [tree.root] * len(frames), None, None,
+                               extrapolation)
+        return _with_sample_axis(poses), None, None
+    # every frame's path on this one timeline: the same times and reference time
+    sample_times = offsets.astype("timedelta64[ns]")
+    poses = evaluate_poses(tree, frames, [tree.root] * len(frames), sample_times, reference,
+                           extrapolation)
+    return poses, sample_times, reference
+
+
+def _with_sample_axis(poses: Any) -> Any:
+    """A static :class:`PoseStack` (``(F, 3, 3)``) as one sample (``(F, 1, 3, 3)``)."""
+    return type(poses)(poses.rotation[:, None], poses.translation[:, None])
+
+
+def _placed_shapes(rotation: FloatArray, translation: FloatArray, shapes: list[CollisionShape],
+                   owners: NDArray[np.intp]) -> tuple[FloatArray, FloatArray]:
+    """Every shape in the root at every sample: ``(S, n, 3, 3)`` and ``(S, n, 3)``."""
+    shape_rotation = np.array([shape.rotation for shape in shapes])
+    shape_translation = np.array([shape.translation for shape in shapes])
+    frame_rotation = rotation[owners]
+    placed_rotation = np.einsum("snij,sjk->snik", frame_rotation, shape_rotation)
+    placed_translation = (np.einsum("snij,sj->sni", frame_rotation, shape_translation)
+                          + translation[owners])
+    return placed_rotation, placed_translation
+
+
+def _closest_pairs(
+    shapes: list[CollisionShape], pairs: NDArray[np.intp], rotation: FloatArray,
+    translation: FloatArray, distance: FloatArray, closest: NDArray[np.intp],
+    point_a: FloatArray, point_b: FloatArray,
+) -> None:
+    """Fill the outputs (views of one chunk of ``n`` samples) with each sample's closest pair.
+
+    ``rotation``/``translation`` place every shape in the root at every sample.
+    """
+    centres = np.array([shape.centre for shape in shapes])
+    radii = np.array([shape.radius for shape in shapes])
+    # each shape's sphere centre in the root: (S, n, 3)
+    placed_centres = np.einsum("snij,sj->sni", rotation, centres) + translation
+    first, second = pairs[:, 0], pairs[:, 1]
+    bounds = (np.linalg.norm(placed_centres[first] - placed_centres[second], axis=2)
+              - (radii[first] + radii[second])[:, None]).T  # (n, P)
+    order = np.argsort(bounds, axis=1, kind="stable")
+    request = coal.DistanceRequest()
+    geometries = [shape.geometry for shape in shapes]
+    for sample, (visit, bound) in enumerate(zip(order.tolist(), bounds.tolist(),
+                                                strict=True)):
+        best, best_result, best_pair = np.inf, None, 0
+        for pair in visit:
+            if bound[pair] >= best:
+                break
+            i, j = int(first[pair]), int(second[pair])
+            result = coal.DistanceResult()
+            found = coal.distance(
+                geometries[i], coal.Transform3s(rotation[i, sample], translation[i, sample]),
+                geometries[j], coal.Transform3s(rotation[j, sample], translation[j, sample]),
+                request, result)
+            if found < best:
+                best, best_result, best_pair = found, result, pair
+        assert best_result is not None  # the first pair is always computed
+        distance[sample] = best
+        closest[sample] = pairs[best_pair]
+        point_a[sample] = best_result.getNearestPoint1()
+        point_b[sample] = best_result.getNearestPoint2()
