@@ -21,7 +21,10 @@ from ..values.timeconv import (
     timestamp_ns,
 )
 
-from typing import Any, TextIO, TypeVar
+__all__ = ["ProgressBar", "add_time_arguments", "evaluate_poses", "in_chunks", "pose_velocity",
+           "requested_times", "terminal_stderr", "times_from_options"]
+
+Result = TypeVar("Result")
 
 CHUNK_SIZE = 20_000
 """Times evaluated per call; the progress bar moves once per chunk."""
