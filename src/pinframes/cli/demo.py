@@ -161,9 +161,10 @@ def run(args: argparse.Namespace) -> int:
 
 def _reached_row(tree: FrameTree, tool: str, table: str) -> str:
     """A row for the summary ``table``: of the samples at which ``solve_joints`` puts
-    ``tool`` on the cell's ``torch_target``, how many it reaches ("" without that frame)."""
-    if TARGET_FRAME not in tree or tool not in tree:
-        return ""
+    ``tool`` on the cell's ``torch_target``, how many it reaches ("" without that frame or
+    without robot joints)."""
+    if TARGET_FRAME not in tree or tool not in tree or not tree.joints:
+        return ""  # no target, or no joints to solve (the cell written as ASDF keeps none)
     solution = tree.solve_joints(tool, TARGET_FRAME)
     name, value = table.splitlines()[0].split("  ", 1)
     column = len(name) + len(value) - len(value.lstrip())  # where the table's values start
