@@ -71,14 +71,17 @@ class PlainNumpy:
         curve = frames["seam_point"]["curve"]
         arc = curve["arc"]
         angles = np.linspace(0.0, arc["angle"], arc["count"])
-        step = angles[1] - angles[0]
-        # the seam point's frame at each point turns about y (the arc's axis) by the
-        # tangent's angle; at the two ends by the end chord's, half a step inside
-        self.frame_angles = angles.copy()
-        self.frame_angles[[0, -1]] = [step / 2, angles[-1] - step / 2]
         centre = np.array(arc["centre_xyz"])
         start = np.array(arc["start_xyz"]) - centre
         self.points = centre + ref.rodrigues(np.array(arc["axis_xyz"]), angles) @ start
+        # the seam point's frame at each point turns about y (the arc's axis) by the
+        # tangent's angle; at the two ends by that of the parabola through the last three
+        # points (equal chords: 4 p1 - 3 p0 - p2), x = (cos a, 0, -sin a)
+        self.frame_angles = angles.copy()
+        p = self.points
+        for index, direction in ((0, 4 * p[1] - 3 * p[0] - p[2]),
+                                 (-1, 3 * p[-1] - 4 * p[-2] + p[-3])):
+            self.frame_angles[index] = np.arctan2(-direction[2], direction[0])
         self.point_times = np.linspace(0.0, curve["duration_s"], arc["count"])
 
     def angles(self, times: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -6,51 +6,86 @@ import pytest
 from pinframes import InvalidPoseError, Pose
 
 
+def parabola_direction(points):
+    """Unit direction at ``points[0]`` of the parabola through three points, parametrised by
+    the length along their chords: numpy's quadratic fit, differentiated at 0."""
+    points = np.asarray(points, dtype=float)
+    lengths = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0),
+                                                              axis=1))])
+    slope = np.array([np.polyfit(lengths, points[:, axis], 2)[1] for axis in range(3)])
+    return slope / np.linalg.norm(slope)
+
+
+def across(normal, x):
+    """The unit part of ``normal`` perpendicular to the unit ``x``."""
+    z = np.asarray(normal, dtype=float) - np.dot(normal, x) * x
+    return z / np.linalg.norm(z)
+
+
 def test_axes_and_times_of_a_bent_line_by_hand():
     # (0,0,0) -> (3,4,0) -> (3,4,12): segment lengths 5 and 12, at 2 m/s 2.5 s and 6 s
     points = [[0, 0, 0], [3, 4, 0], [3, 4, 12]]
     pose = Pose.along_curve(points, [[0, 0, 1], [0, 0, 1], [1, 0, 0]], speed=2.0)
     np.testing.assert_allclose(pose.seconds, [0.0, 2.5, 8.5], atol=1e-12)
     np.testing.assert_allclose(pose.translation, points, atol=0)
-    # x: one-sided at the ends, the neighbours' difference (3, 4, 12) / 13 in the middle
-    first_x, middle_x = np.array([0.6, 0.8, 0.0]), np.array([3.0, 4.0, 12.0]) / 13
-    np.testing.assert_allclose(pose.rotation[0, :, 0], first_x, atol=1e-15)
-    np.testing.assert_allclose(pose.rotation[1, :, 0], middle_x, atol=1e-15)
-    # z: the normal (0, 0, 1) without its part along x; y = z x x
-    np.testing.assert_allclose(pose.rotation[0], [[0.6, -0.8, 0], [0.8, 0.6, 0], [0, 0, 1]],
-                               atol=1e-15)
+    # x inside: the neighbours' difference (3, 4, 12) / 13; at the ends the parabola through
+    # the three points, by hand (66, 88, -25) at the start and (-36, -48, 145) at the end
+    first_x = np.array([66.0, 88.0, -25.0]) / np.sqrt(66**2 + 88**2 + 25**2)
+    middle_x = np.array([3.0, 4.0, 12.0]) / 13
+    last_x = np.array([-36.0, -48.0, 145.0]) / np.sqrt(36**2 + 48**2 + 145**2)
+    np.testing.assert_allclose(first_x, parabola_direction(points), atol=1e-12)
+    np.testing.assert_allclose(-last_x, parabola_direction(points[::-1]), atol=1e-12)
+    np.testing.assert_allclose(pose.rotation[:, :, 0], [first_x, middle_x, last_x], atol=1e-15)
+    # z: the normal without its part along x; y = z x x
     middle_z = np.array([-36.0, -48.0, 25.0]) / 65  # (0,0,1) - (12/13) x, made unit
     np.testing.assert_allclose(pose.rotation[1, :, 2], middle_z, atol=1e-15)
+    for index, (x, normal) in enumerate([(first_x, [0, 0, 1]), (last_x, [1, 0, 0])]):
+        z = across(normal, x)
+        np.testing.assert_allclose(pose.rotation[-index, :, 2], z, atol=1e-15)
+        np.testing.assert_allclose(pose.rotation[-index, :, 1], np.cross(z, x), atol=1e-15)
     np.testing.assert_allclose(pose.rotation[1, :, 1], np.cross(middle_z, middle_x),
                                atol=1e-15)
-    np.testing.assert_allclose(pose.rotation[2], [[0, 0, 1], [0, -1, 0], [1, 0, 0]], atol=0)
+
+
+def test_two_points_travel_along_their_chord():
+    pose = Pose.along_curve([[1, 1, 0], [1, 3, 0]], [0, 0, 1], speed=0.5)
+    np.testing.assert_allclose(pose.seconds, [0.0, 4.0])
+    np.testing.assert_allclose(pose.rotation, [[[0, -1, 0], [1, 0, 0], [0, 0, 1]]] * 2,
+                               atol=0)
 
 
 def test_the_last_normal_is_refused_along_the_travel_direction():
-    # the last point travels straight up: (0, 0, 1) is parallel to it there, and only there
+    # equal steps: the last direction is (3 p3 - 4 p2 + p1) / 2 = (-1, 0, 3) / 2, and a
+    # normal along it is refused there, and only there
+    points = [[0, 0, 0], [1, 0, 0], [2, 0, 0], [2, 0, 1]]
     with pytest.raises(InvalidPoseError) as caught:
-        Pose.along_curve([[0, 0, 0], [3, 4, 0], [3, 4, 12]], [[0, 0, 1], [0, 0, 1], [0, 0, 1]],
-                         speed=1.0)
-    assert caught.value.field == "normals[2]"
+        Pose.along_curve(points, [[0, 0, 1]] * 3 + [[-1, 0, 3]], speed=1.0)
+    assert caught.value.field == "normals[3]"
     assert "parallel" in str(caught.value)
 
 
 def test_a_circle_gets_its_tangent_and_outward_normal_between_points():
     """Inside a uniformly sampled circle the central difference is the exact tangent, and
-    between points the axes turn by SLERP: the tangent of the time's angle."""
+    between points the axes turn by SLERP: the tangent of the time's angle. At the ends the
+    parabola through three points misses the tangent by step**3 / 4 radians."""
     radius, count = 0.5, 13
     angles = np.linspace(0.0, np.pi, count)
     outward = np.column_stack([np.cos(angles), np.sin(angles), np.zeros(count)])
-    pose = Pose.along_curve(radius * outward, outward, times=np.linspace(0.0, 6.0, count))
+    points = radius * outward
+    pose = Pose.along_curve(points, outward, times=np.linspace(0.0, 6.0, count))
     tangent = np.column_stack([-np.sin(angles), np.cos(angles), np.zeros(count)])
     np.testing.assert_allclose(pose.rotation[1:-1, :, 0], tangent[1:-1], atol=1e-15)
     np.testing.assert_allclose(pose.rotation[1:-1, :, 2], outward[1:-1], atol=1e-15)
     np.testing.assert_allclose(pose.rotation[1:-1, :, 1], [[0, 0, 1]] * (count - 2),
                                atol=1e-15)  # y = outward x tangent = +z
-    # at the ends x is the chord: the tangent at the middle of the first / last segment
+    # at the ends, equal chords: 4 p1 - 3 p0 - p2 (and the same from the other end)
     step = np.pi / (count - 1)
-    np.testing.assert_allclose(pose.rotation[0, :, 0], [-np.sin(step / 2), np.cos(step / 2), 0],
-                               atol=1e-15)
+    for index, (p0, p1, p2), sign in ((0, points[:3], 1.0), (-1, points[::-1][:3], -1.0)):
+        direction = sign * (4 * p1 - 3 * p0 - p2)
+        np.testing.assert_allclose(pose.rotation[index, :, 0],
+                                   direction / np.linalg.norm(direction), atol=1e-15)
+        miss = np.arccos(np.clip(pose.rotation[index, :, 0] @ tangent[index], -1, 1))
+        assert step**3 / 4 * 0.95 < miss < step**3 / 4 * 1.05
     between = pose.at([1.25])  # halfway between points 2 and 3 (0.5 s apart)
     middle = 2.5 * step
     np.testing.assert_allclose(between.rotation[0, :, 0], [-np.sin(middle), np.cos(middle), 0],

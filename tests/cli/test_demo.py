@@ -65,7 +65,8 @@ def test_bundled_scene_matches_cell_description():
 
 def check_arc_frame(pose, curve):
     """A frame along an arc of cell_design.yaml: points on the arc at equal steps of time, x
-    the tangent (the chord at the two ends), z away from the centre."""
+    the tangent (at the two ends the parabola's through the last three points: equal chords,
+    4 p1 - 3 p0 - p2), z away from the centre."""
     arc = curve["arc"]
     count, axis = arc["count"], np.array(arc["axis_xyz"])
     centre, start = np.array(arc["centre_xyz"]), np.array(arc["start_xyz"])
@@ -76,7 +77,8 @@ def check_arc_frame(pose, curve):
                                   np.round(np.linspace(0.0, curve["duration_s"], count) * 1e9))
     np.testing.assert_allclose(pose.translation, points, atol=1e-14)
     tangents = np.cross(axis, points - centre)
-    tangents[0], tangents[-1] = points[1] - points[0], points[-1] - points[-2]
+    tangents[0] = 4 * points[1] - 3 * points[0] - points[2]
+    tangents[-1] = 3 * points[-1] - 4 * points[-2] + points[-3]
     tangents /= np.linalg.norm(tangents, axis=1)[:, None]
     np.testing.assert_allclose(pose.rotation[:, :, 0], tangents, atol=1e-12)
     outward = (points - centre) / np.linalg.norm(points - centre, axis=1)[:, None]
@@ -132,8 +134,7 @@ def test_demo_prints_summary_and_writes_csv_and_png(run_cli, tmp_path):
     design_speed = 1000 * seam_length / DURATION
     assert design_speed * 0.999 <= span("travel speed", "mm/s")[0]
     assert span("travel speed", "mm/s")[1] <= design_speed * 1.001
-    # at the two ends seam_point's x is the end chord, 0.045 deg off the tangent
-    assert 9.95 <= span("travel angle", "deg")[0] <= span("travel angle", "deg")[1] <= 10.05
+    assert span("travel angle", "deg") == (10.0, 10.0)
     assert span("work angle", "deg") == (90.0, 90.0)
     for name in ("offset along", "offset across", "offset normal"):
         assert span(name, "mm") == (0.0, 0.0)

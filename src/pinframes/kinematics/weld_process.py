@@ -102,9 +102,12 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
     same_times, same_ref = torch_in_seam.times, torch_in_seam.reference_time
     if same_times is not None and same_ref is not None:
         same_times = same_ref + same_times
+    # in the torch's own axes (no second pose query), then turned into the seam's by the
+    # rotation of the torch in the seam: R_ts R_tw^T = R_sw^T
     velocity = evaluate_velocity(tree, torch, workpiece, same_times, same_ref, extrapolation,
-                                 seam)
+                                 torch)
     _require_same_count(len(velocity), origin.shape[0], torch, workpiece, seam)
+    along_seam = np.einsum("tj,tj->t", rotation[:, 0, :], velocity.linear)
     wire = rotation[:, :, 2]  # the torch z axis in seam axes
     ctwd = None
     if contact_tip is not None:
@@ -116,7 +119,7 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
         with np.errstate(divide="ignore", invalid="ignore"):
             ctwd = np.where(toward_work > 0.0, tip[:, 2] / toward_work, np.nan)
     return WeldProcess(
-        travel_speed=np.ascontiguousarray(velocity.linear[:, 0]),
+        travel_speed=along_seam,
         travel_angle=np.arcsin(np.clip(wire[:, 0], -1.0, 1.0)),
         work_angle=np.arctan2(-wire[:, 2], -wire[:, 1]),
         offset=origin,

@@ -1,8 +1,10 @@
 """Frames along a curve: the axes of a seam frame at each point of a polyline.
 
 At point ``i`` of a polyline ``points`` (N, 3), metres: x is the travel direction (the
-central difference ``points[i + 1] - points[i - 1]``; one-sided at the two ends), z is the
-given normal made perpendicular to x, and y = z x x. :meth:`pinframes.Pose.along_curve`
+central difference ``points[i + 1] - points[i - 1]``; at the two ends the one-sided
+difference of the same (second) order, the direction of the parabola through the first or
+last three points; the chord when there are only two), z is the given normal made
+perpendicular to x, and y = z x x. :meth:`pinframes.Pose.along_curve`
 turns these axes and the points into a moving pose.
 
 Bad input is an :class:`~pinframes.errors.InvalidPoseError` whose field names the point
@@ -34,8 +36,11 @@ def curve_rotations(points: FloatArray, normals: FloatArray) -> FloatArray:
     normal_stack = _normal_stack(normals, points.shape[0])
     travel = np.empty_like(points)
     travel[1:-1] = points[2:] - points[:-2]
-    travel[0] = points[1] - points[0]
-    travel[-1] = points[-1] - points[-2]
+    if points.shape[0] == 2:
+        travel[:] = points[1] - points[0]
+    else:
+        travel[0] = _one_sided(points[0], points[1], points[2])
+        travel[-1] = -_one_sided(points[-1], points[-2], points[-3])
     travel_norms = np.linalg.norm(travel, axis=1)
     if np.any(travel_norms == 0.0):
         index = int(np.argmax(travel_norms == 0.0))
@@ -58,6 +63,16 @@ def curve_rotations(points: FloatArray, normals: FloatArray) -> FloatArray:
                                field=f"normals[{index}]")
     z_axes = across / across_norms[:, None]
     return np.stack([x_axes, np.cross(z_axes, x_axes), z_axes], axis=-1)
+
+
+def _one_sided(first: FloatArray, second: FloatArray, third: FloatArray) -> FloatArray:
+    """The direction at ``first`` of the parabola through three points, parametrised by
+    the length along their chords (second order, as the central differences inside; for
+    equal chords ``4 second - 3 first - third``)."""
+    near = float(np.linalg.norm(second - first))
+    far = float(np.linalg.norm(third - second))
+    return ((near + far) / (near * far) * (second - first)
+            - near / (far * (near + far)) * (third - first))
 
 
 def length_along_polyline(points: FloatArray) -> FloatArray:

@@ -206,9 +206,10 @@ class Pose:
         """A pose moving along the polyline ``points`` (N, 3), metres (or a pint length):
         a seam frame.
 
-        Axes at each point: x the travel direction (central difference of the neighbours,
-        one-sided at the ends), z the point's ``normals`` row ((N, 3), or one (3,) normal for
-        all) made perpendicular to x, y = z x x. Give exactly one of ``speed`` (m/s: the
+        Axes at each point: x the travel direction (central difference of the neighbours;
+        at the ends the one-sided difference of the same order, the parabola through the
+        first or last three points), z the point's ``normals`` row ((N, 3), or one (3,)
+        normal for all) made perpendicular to x, y = z x x. Give exactly one of ``speed`` (m/s: the
         first point at time 0, each next one after its distance along the polyline) and
         ``times`` (one per point, strictly increasing; any time form, with
         ``reference_time`` as for :class:`Pose`). Between points the pose moves as every
