@@ -340,23 +340,32 @@ def test_robot_and_positioner_solved_together(tmp_path):
 
 
 # -- a free tool axis ------------------------------------------------------------------------
-def test_a_free_axis_matches_position_and_axis_and_ignores_the_spin():
+@pytest.mark.parametrize("axis", ["x", "z"])
+def test_a_free_axis_matches_position_and_axis_and_ignores_the_spin(axis):
+    """The tool spins about one of its axes at random from sample to sample: with that axis
+    free the arm keeps its own smooth motion. For "z" the tool is a frame on the flange whose
+    z axis is the flange's x axis (the last joint's), as a torch's wire is."""
     model = welding_robot()
+    index = "xyz".index(axis)
+    tool_in_flange = pin.SE3(np.eye(3) if axis == "x" else pin.utils.rotate("y", np.pi / 2),
+                             np.array([0.0, 0.0, 0.1]))
     trajectory = swinging(HOME, SWING, 300)
-    targets = frame_poses(model, "flange", trajectory)
-    spins = np.random.default_rng(7).uniform(-np.pi, np.pi, 300)  # about the tool's x axis
-    spun = [target * pin.SE3(pin.utils.rotate("x", spin), np.zeros(3))
+    targets = [flange * tool_in_flange for flange in frame_poses(model, "flange", trajectory)]
+    spins = np.random.default_rng(7).uniform(-np.pi, np.pi, 300)
+    spun = [target * pin.SE3(pin.utils.rotate(axis, spin), np.zeros(3))
             for target, spin in zip(targets, spins, strict=True)]
     tree = robot_tree()
-    solution = tree.solve_joints("robot/flange", as_pose(spun, np.arange(300) / RATE_HZ),
-                                 free_axis="x", seed=trajectory[0])
+    tree.add("tool", "robot/flange", Pose(tool_in_flange.translation, tool_in_flange.rotation))
+    solution = tree.solve_joints("tool", as_pose(spun, np.arange(300) / RATE_HZ),
+                                 free_axis=axis, seed=trajectory[0])
     assert solution.all_reached
     # without the spins the arm keeps its own smooth motion
     assert np.abs(np.diff(solution.positions, axis=0)).max() < 0.05
-    placements = frame_poses(model, "flange", solution.positions)
+    placements = [flange * tool_in_flange
+                  for flange in frame_poses(model, "flange", solution.positions)]
     position, _ = errors(placements, targets)
-    axes = np.array([p.rotation[:, 0] for p in placements])
-    wanted = np.array([t.rotation[:, 0] for t in spun])
+    axes = np.array([p.rotation[:, index] for p in placements])
+    wanted = np.array([t.rotation[:, index] for t in spun])
     angle = np.arctan2(np.linalg.norm(np.cross(axes, wanted), axis=1),
                        np.sum(axes * wanted, axis=1))
     assert position.max() <= TOLERANCE and angle.max() <= TOLERANCE
