@@ -8,16 +8,17 @@ link. Nothing here is used by :meth:`FrameTree.pose`: geometry is loaded only wh
 
 from __future__ import annotations
 
+import logging
 import os
-import warnings
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from ..errors import UnsupportedFeatureError
+from ..errors import UnsupportedFeatureError, warn_at_caller
 from ..formats.limits import Limits, current_limits, reader_with_limits
 from ..formats.urdf import URDF_METADATA_KEY
 from ..kinematics.mesh_files import (
@@ -99,12 +100,30 @@ def load_geometry(
     for root_frame, links in frames_of_links.items():
         source = robots.get(root_frame, {}).get("source")
         if source is None or source == "<urdf string>":
-            warnings.warn(f"robot at {root_frame!r} was attached from an XML string, not a "
-                          "file: its geometry is not loaded", GeometryWarning, stacklevel=2)
+            warn_at_caller(f"robot at {root_frame!r} was attached from an XML string, not a "
+                           "file: its geometry is not loaded", GeometryWarning)
             continue
-        geometry += _robot_geometry(Path(source), links, collision,
-                                    MeshFiles(Path(source), search_dirs))
+        with _without_yourdfpy_mesh_notes():
+            geometry += _robot_geometry(Path(source), links, collision,
+                                        MeshFiles(Path(source), search_dirs))
     return geometry
+
+
+class _MeshNotes(logging.Filter):
+    def filter(self, record: logging.LogRecord) -> bool:
+        return not record.getMessage().startswith("Can't find ")
+
+
+@contextmanager
+def _without_yourdfpy_mesh_notes() -> Iterator[None]:
+    """Drop yourdfpy's bare "Can't find FILE" log lines (on standard error, through logging's
+    last-resort handler) for meshes pinframes skips: a GeometryWarning already names them."""
+    logger, notes = logging.getLogger("yourdfpy.urdf"), _MeshNotes()
+    logger.addFilter(notes)
+    try:
+        yield
+    finally:
+        logger.removeFilter(notes)
 
 
 def _robot_geometry(urdf_path: Path, frames: dict[str, str], collision: bool,
@@ -218,8 +237,8 @@ def _colours(mesh: Any) -> np.ndarray:
 
 
 def _warn(urdf_path: Path, link: str, fname: str, problem: str, what: str = "mesh") -> None:
-    warnings.warn(GeometryWarning(f"{urdf_path}: link {link!r}: {what} {fname!r} {problem}; "
-                                  "the link is drawn without it"), stacklevel=5)
+    warn_at_caller(f"{urdf_path}: link {link!r}: {what} {fname!r} {problem}; the link is "
+                   "drawn without it", GeometryWarning)
 
 
 def _yourdfpy() -> Any:
