@@ -43,6 +43,7 @@ from .kinematics import (
     PinocchioTree,
     Snapshot,
     Velocity,
+    WeldProcess,
 )
 from .tree import FrameTree
 from .values.geometry import FrameGeometry, Shape
@@ -101,6 +102,7 @@ __all__ = [
     "TreeStructureError",
     "UnsupportedFeatureError",
     "Velocity",
+    "WeldProcess",
     "WriteError",
     "__version__",
     "read",
