@@ -19,6 +19,7 @@ from .errors import (
     PinframesError,
     ReadError,
     ReferenceTimeError,
+    TargetNotReachedError,
     TreeStructureError,
     UnsupportedFeatureError,
     WriteError,
@@ -30,7 +31,14 @@ from .formats.pose_files import write_poses
 from .formats.rosbag import read_rosbag
 from .formats.scene import read_scene, write_scene
 from .formats.urdf import read_urdf, write_urdf
-from .kinematics import Clearance, FrameJacobian, PinocchioTree, Snapshot, Velocity
+from .kinematics import (
+    Clearance,
+    FrameJacobian,
+    JointSolution,
+    PinocchioTree,
+    Snapshot,
+    Velocity,
+)
 from .tree import FrameTree
 from .values.geometry import FrameGeometry, Shape
 from .values.joint import Joint, Mimic
@@ -63,6 +71,7 @@ __all__ = [
     "Joint",
     "JointError",
     "JointLimitWarning",
+    "JointSolution",
     "JointTrack",
     "JointTrajectory",
     "JointWithoutSamplesWarning",
@@ -78,6 +87,7 @@ __all__ = [
     "Snapshot",
     "SpatialData",
     "Subsystem",
+    "TargetNotReachedError",
     "TimeAxis",
     "TreeStructureError",
     "UnsupportedFeatureError",

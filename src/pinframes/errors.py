@@ -34,6 +34,7 @@ __all__ = [
     "PinframesError",
     "ReadError",
     "ReferenceTimeError",
+    "TargetNotReachedError",
     "TreeStructureError",
     "UnsupportedFeatureError",
     "WriteError",
@@ -133,6 +134,11 @@ class ExtrapolationError(PinframesError, ValueError):
 
 class JointError(PinframesError, ValueError):
     """A robot joint that is unknown, mis-specified or driven with bad values."""
+
+
+class TargetNotReachedError(PinframesError, ValueError):
+    """A target that ``solve_joints(..., strict=True)`` could not reach within the joint
+    limits and tolerances (the message names the time and the residual errors)."""
 
 
 class FileFormatError(PinframesError, ValueError):

@@ -26,6 +26,8 @@ __all__ = ["PathSummary", "add_parser", "bundled_scene", "run", "summarize"]
 POSES_FILE = "torch_poses.csv"
 PLOT_FILE = "torch_path.png"
 VIEW_FILE = "cell.html"
+TARGET_FRAME = "torch_target"
+"""The bundled cell's design torch pose over the seam: the demo solves the robot onto it."""
 
 
 def bundled_scene() -> Path:
@@ -138,12 +140,26 @@ def run(args: argparse.Namespace) -> int:
     except UnsupportedFeatureError as exc:  # meshcat is not installed: the page is optional
         missing.append(f"no 3-D page: {exc}")
     print(f"{args.tool} relative to {args.workpiece} ({scene.name})")
-    sys.stdout.write(summary.table())
+    table = summary.table()
+    sys.stdout.write(table)
     sys.stdout.write(clearance_lines(tree))
+    sys.stdout.write(_reached_row(tree, args.tool, table))
     print(f"pinframes: wrote {', '.join(map(str, written))}", file=sys.stderr)
     for line in missing:
         print(f"pinframes: {line}", file=sys.stderr)
     return 0
+
+
+def _reached_row(tree: FrameTree, tool: str, table: str) -> str:
+    """A row for the summary ``table``: of the samples at which ``solve_joints`` puts
+    ``tool`` on the cell's ``torch_target``, how many it reaches ("" without that frame)."""
+    if TARGET_FRAME not in tree or tool not in tree:
+        return ""
+    solution = tree.solve_joints(tool, TARGET_FRAME)
+    name, value = table.splitlines()[0].split("  ", 1)
+    column = len(name) + len(value) - len(value.lstrip())  # where the table's values start
+    return (f"{'IK samples reached'.ljust(column)}  {int(solution.reached.sum())} of "
+            f"{len(solution)} ({tool} on {TARGET_FRAME}, solve_joints)\n")
 
 
 def _plot(tree: FrameTree, pose: Pose, velocity: Velocity, summary: PathSummary, tool: str,

@@ -25,7 +25,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import FileFormatError, InvalidTimeError, PinframesError
-from ..values.timeconv import parse_time_axis
+from ..values.timeconv import format_timestamp_iso, parse_time_axis
 from ._paths import path_argument
 from ._registry import detect_format, file_format
 from .limits import Limits, current_limits, exceeded, reader_with_limits
@@ -33,6 +33,7 @@ from .reading import read_bytes, read_text
 
 __all__ = [
     "JOINT_TRAJECTORY",
+    "joint_trajectory_csv",
     "read_csv_trajectory",
     "read_joint_trajectory",
     "read_npz_trajectory",
@@ -84,6 +85,27 @@ def read_joint_trajectory(
         raise FileFormatError(f"joint value at sample {row + 1} is not finite", file=path,
                               frame=names[column], field="positions")
     return times, positions, names
+
+
+def joint_trajectory_csv(times: np.ndarray, positions: NDArray[np.float64],
+                         joint_names: list[str] | tuple[str, ...], *,
+                         significant_digits: int | None = None) -> str:
+    """The text of a ``.csv`` joint trajectory file that :func:`read_joint_trajectory` reads.
+
+    ``times`` (T,) are float seconds (a ``time_s`` column) or ``datetime64`` (a ``time``
+    column of ISO timestamps); ``positions`` (T, n) radians or metres, one column per name.
+    Numbers are written to round-trip exactly, or with ``significant_digits``.
+    """
+    def number(value: float) -> str:
+        return repr(value) if significant_digits is None else f"{value:.{significant_digits}g}"
+
+    absolute = np.issubdtype(np.asarray(times).dtype, np.datetime64)
+    lines = [",".join(["time" if absolute else "time_s", *joint_names])]
+    stamps = ([format_timestamp_iso(stamp) for stamp in times] if absolute
+              else [number(float(time)) for time in times])
+    for stamp, row in zip(stamps, np.asarray(positions, dtype=float).tolist(), strict=True):
+        lines.append(",".join([stamp, *map(number, row)]))
+    return "\n".join(lines) + "\n"
 
 
 def read_csv_trajectory(

@@ -9,7 +9,7 @@ tree version naming the joints without samples).
 from __future__ import annotations
 
 import warnings
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -18,11 +18,12 @@ from numpy.typing import NDArray
 from ..errors import JointWithoutSamplesWarning
 from ..values.interpolation import Keyframes, Segments
 from ..values.joint import Joint
+from ..values.se3 import samples_first
 from ._description import TreeDescription
 from ._model import CompiledModel
 
-__all__ = ["CHUNK", "SegmentSearches", "sample_joint_values", "sample_joints",
-           "warn_joints_without_samples"]
+__all__ = ["CHUNK", "SegmentSearches", "sample_configurations", "sample_joint_values",
+           "sample_joints", "warn_joints_without_samples"]
 
 CHUNK = 1 << 12
 """Samples evaluated at once: the temporaries of a chunk (under 300 kB each) stay in the
@@ -71,6 +72,7 @@ def sample_joints(
     tree: TreeDescription, model: CompiledModel, keyframes: Sequence[Keyframes | None],
     times: NDArray[np.int64] | None, shifts: dict[str, int],
     searches: SegmentSearches | None = None,
+    held: Mapping[str, NDArray[np.float64] | float] | None = None,
 ) -> list[Any]:
     """Every joint of ``model`` at ``times`` (timeline basis, ns).
 
@@ -78,11 +80,13 @@ def sample_joints(
     samples last (``(3, 3, N)``, ``(3, N)``); a robot joint its value(s) (radians or metres):
     its trajectory, its mimic primary's, or 0. ``shifts`` holds, per source, what to
     subtract from a timeline time to land on its own time basis; ``searches`` may pass the
-    caller's :class:`SegmentSearches` of ``times`` (to reuse them for rates).
+    caller's :class:`SegmentSearches` of ``times`` (to reuse them for rates). ``held`` gives
+    joints (by name) values (one, or one per time) instead of their samples; their mimic
+    joints follow them.
     """
     if searches is None:
         searches = SegmentSearches(tree, times, shifts)
-    cache: dict[str, NDArray[np.float64] | float] = {}
+    cache: dict[str, NDArray[np.float64] | float] = dict(held or {})
     samples: list[Any] = []
     for joint, frames in zip(model.joints, keyframes, strict=True):
         if joint.joint is None:
@@ -92,6 +96,26 @@ def sample_joints(
         else:
             samples.append(sample_joint_values(tree, joint.joint, searches, cache))
     return samples
+
+
+def sample_configurations(
+    tree: TreeDescription, model: CompiledModel, times: NDArray[np.int64],
+    shifts: dict[str, int], held: Mapping[str, NDArray[np.float64] | float] | None = None,
+) -> NDArray[np.float64]:
+    """Pinocchio configurations ``q`` of ``model``, shape ``(N, nq)``, at ``times`` (timeline
+    basis, ns): each free-flyer the interpolated pose of its moving frame in the frame's
+    parent (``x y z qx qy qz qw``; the model holds the joint's placement), each robot joint
+    its value as :func:`sample_joints` gives it (with ``held``)."""
+    if not model.joints:
+        return np.zeros((times.shape[0], 0))
+    keyframes = [tree.local_poses[joint.frame].keyframes if joint.joint is None else None
+                 for joint in model.joints]
+    samples = sample_joints(tree, model, keyframes, times, shifts, held=held)
+    motions = [samples_first(sample) if joint.joint is None else None
+               for joint, sample in zip(model.joints, samples, strict=True)]
+    values = [None if joint.joint is None else np.broadcast_to(sample, times.shape)
+              for joint, sample in zip(model.joints, samples, strict=True)]
+    return model.configuration(motions, values)
 
 
 def sample_joint_values(

@@ -11,12 +11,11 @@ import pinocchio as pin
 from numpy.typing import NDArray
 
 from ..values.geometry import FrameGeometry
-from ..values.se3 import samples_first
 from ._collision_objects import ShapeLoader
 from ._description import TreeDescription
 from ._model import compile_model
 from ._path import model_sources
-from ._sampling import sample_joints
+from ._sampling import sample_configurations
 from ._times import basis_shifts, plan_timeline
 
 __all__ = ["PinocchioTree"]
@@ -97,14 +96,5 @@ class PinocchioTree:
         evaluation_times = timeline.evaluation_times
         if evaluation_times is None:
             evaluation_times = np.zeros(1, dtype=np.int64)
-        keyframes = [tree.local_poses[joint.frame].keyframes if joint.joint is None else None
-                     for joint in compiled.joints]
-        samples = sample_joints(tree, compiled, keyframes, evaluation_times,
-                                basis_shifts(sources, timeline))
-        motions = [samples_first(sample) if joint.joint is None else None
-                   for joint, sample in zip(compiled.joints, samples, strict=True)]
-        values = [None if joint.joint is None else np.broadcast_to(sample, evaluation_times.shape)
-                  for joint, sample in zip(compiled.joints, samples, strict=True)]
-        if not compiled.joints:
-            return np.zeros((evaluation_times.shape[0], 0))
-        return compiled.configuration(motions, values)
+        return sample_configurations(tree, compiled, evaluation_times,
+                                     basis_shifts(sources, timeline))

@@ -28,6 +28,7 @@ from ..errors import (
 from ..kinematics import (
     Clearance,
     FrameJacobian,
+    JointSolution,
     PinocchioTree,
     Snapshot,
     Velocity,
@@ -37,6 +38,7 @@ from ..kinematics import (
     evaluate_jacobian,
     evaluate_pose,
     evaluate_poses,
+    evaluate_solve_joints,
     evaluate_velocity,
     paths_to_common_ancestor,
     snapshot,
@@ -240,6 +242,71 @@ class TreeQueries(TreeStructure):
         self._require(relative_to, "relative_to")
         return evaluate_jacobian(self._frozen(), frame, relative_to, times, time_ref,
                                  extrapolation, joints)
+
+    def solve_joints(
+        self, frame: str, target: str | Pose, *, relative_to: str | None = None,
+        times: Any = None, time_ref: Any = None, joints: Sequence[str] | None = None,
+        free_axis: str | None = None, seed: Any = None, position_tolerance: float = 1e-6,
+        orientation_tolerance: float = 1e-6, strict: bool = False,
+    ) -> JointSolution:
+        """Joint values that put ``frame`` (a tool) on ``target`` at each time: inverse
+        kinematics along a path.
+
+        Parameters
+        ----------
+        frame : str
+            The tool frame, e.g. ``"torch_tcp"``.
+        target : str or Pose
+            A frame the tool must coincide with at each time (it may move, e.g. ride on a
+            turning positioner), or a :class:`Pose` (with times, or static) of the tool
+            wanted in ``relative_to``.
+        relative_to : str, optional
+            The frame a ``Pose`` target is given in (default: the root).
+        times, time_ref
+            As for :meth:`pose`. Default: every keyframe and joint sample of what moves on
+            the path from ``frame`` to the target (a ``Pose`` target's times too), except
+            the samples of the solved joints themselves.
+        joints : sequence of str, optional
+            The actuated joints to solve for (default: every robot joint between ``frame``
+            and the lowest common ancestor of the two frames). May name joints on the
+            target's side, e.g. a positioner attached as a URDF: then robot and positioner
+            are solved together. Mimic joints follow their primaries; every other joint
+            keeps its trajectory.
+        free_axis : {"x", "y", "z"}, optional
+            An axis of the tool about which its rotation is free (a welding torch): only
+            the position and that axis's direction must match, and the solver takes the
+            smallest joint motion, so the freedom keeps the motion continuous.
+        seed : mapping or sequence, optional
+            Joint values (radians or metres) the first sample starts from, by name (may
+            name some joints only) or one per solved joint. Default: the joints'
+            trajectories at the first time, else their rest values.
+        position_tolerance, orientation_tolerance : float
+            A sample is reached when the tool's origin is within this many metres of the
+            target's and its rotation within this many radians.
+        strict : bool
+            Raise :class:`~pinframes.errors.TargetNotReachedError`, naming the first time
+            not reached and its errors, instead of returning it as not reached.
+
+        Returns
+        -------
+        JointSolution
+            Per time, the joint values (within the URDF position limits; continuous joints
+            unbounded), the errors and whether the target was reached. Each sample starts
+            from the one before, so the solution stays on one branch. A sample out of reach
+            holds the closest configuration found, and the solver finds its way back when
+            the target comes back into reach. Apply it with ``set_joint_trajectory(
+            sol.seconds, sol.positions, joint_names=sol.joint_names)``.
+        """
+        self._require(frame, "frame")
+        if isinstance(target, str):
+            self._require(target, "target")
+        if relative_to is not None:
+            self._require(relative_to, "relative_to")
+        return evaluate_solve_joints(
+            self._frozen(), frame, target, relative_to=relative_to, times=times,
+            time_ref=time_ref, joints=joints, free_axis=free_axis, seed=seed,
+            position_tolerance=position_tolerance,
+            orientation_tolerance=orientation_tolerance, strict=strict)
 
     def sample_times(self, frame: str, relative_to: str | None = None) -> TimeAxis | None:
         """The times :meth:`pose` evaluates at when given none, without evaluating.

@@ -1,0 +1,116 @@
+"""``pinframes solve SCENE --frame F --target T``: the joint values that put a tool on a
+target frame at each time (``FrameTree.solve_joints``), as a joint trajectory CSV."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+import numpy as np
+
+from ..formats.trajectory_files import joint_trajectory_csv
+from ..formats.urdf import URDF_METADATA_KEY
+from ..kinematics import JointSolution
+from ..tree import FrameTree
+from ._evaluate import add_time_arguments, requested_times
+from ._files import read_tree, require_frames
+from ._output import write_text
+
+__all__ = ["add_parser", "csv_joint_names", "run", "summary"]
+
+
+def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
+    """Register the ``solve`` subcommand."""
+    parser = subparsers.add_parser(
+        "solve", parents=parents, help="joint values that put a tool frame on a target frame",
+        description="Solve for the robot joints that put --frame (a tool) on --target (a frame "
+        "of the tree, which may move) at each time, each sample starting from the one before, "
+        "within the URDF position limits. Writes a joint trajectory CSV (time_s, then one "
+        "column per joint, radians or metres) that a scene robot's 'trajectory' and "
+        "pinframes.read_joint_trajectory read: when the joints belong to one robot, columns "
+        "carry its URDF joint names (without the scene's prefix). Prints one summary line on "
+        "standard error. Exit status 0 even when samples are out of reach (the summary says "
+        "how many were reached); with --strict, 1 at the first one.")
+    parser.add_argument("file", metavar="SCENE", help="scene, frames.yaml, ASDF or URDF file")
+    parser.add_argument("--frame", required=True, metavar="F",
+                        help="the tool frame, e.g. torch_tcp")
+    parser.add_argument("--target", required=True, metavar="T",
+                        help="the frame the tool must coincide with at each time")
+    parser.add_argument("--free-axis", choices=("x", "y", "z"),
+                        help="an axis of the tool about which its rotation is free (a welding "
+                        "torch: z); only the position and that axis must match (default: the "
+                        "whole pose)")
+    parser.add_argument("--joints", nargs="+", metavar="J",
+                        help="the joints to solve for, as the tree names them (default: every "
+                        "robot joint between the tool and the lowest common ancestor of the "
+                        "two frames); may name a positioner's joints to solve both together")
+    parser.add_argument("--position-tolerance", type=float, default=1e-6, metavar="M",
+                        help="metres (default: 1e-6)")
+    parser.add_argument("--orientation-tolerance", type=float, default=1e-6, metavar="RAD",
+                        help="radians (default: 1e-6)")
+    parser.add_argument("--strict", action="store_true",
+                        help="fail at the first time the target is out of reach (default: "
+                        "keep the closest configuration there and go on)")
+    add_time_arguments(parser)
+    parser.add_argument("-o", "--output", metavar="OUT",
+                        help="write the CSV to this file (default: standard output)")
+    parser.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Solve, write the CSV, print the summary."""
+    tree = read_tree(args.file)
+    require_frames(tree, args.file, args.frame, args.target)
+    times = requested_times(args, tree, args.frame, args.target)
+    solution = tree.solve_joints(
+        args.frame, args.target, times=None if times is None else times.as_numpy(),
+        time_ref=args.time_ref, joints=args.joints,
+        free_axis=args.free_axis, position_tolerance=args.position_tolerance,
+        orientation_tolerance=args.orientation_tolerance, strict=args.strict)
+    moments = solution.absolute_times
+    write_text(joint_trajectory_csv(solution.seconds if moments is None else moments,
+                                    solution.positions, csv_joint_names(tree, solution)),
+               args.output)
+    print(f"pinframes: {summary(tree, solution)}", file=sys.stderr)
+    return 0
+
+
+def csv_joint_names(tree: FrameTree, solution: JointSolution) -> list[str]:
+    """The columns: the robot's URDF joint names when every solved joint belongs to the same
+    robot (as a scene's ``robots[].trajectory`` names them), else the tree's names."""
+    frames = {joint.name: frame for frame in tree.frames
+              if (joint := tree.joint_of(frame)) is not None}
+    robots = tree.metadata.get(URDF_METADATA_KEY, {})
+    prefixes = set()
+    for name in solution.joint_names:
+        kept = tree.frame_metadata(frames[name]).get(URDF_METADATA_KEY, {})
+        prefixes.add(robots.get(kept.get("robot"), {}).get("prefix"))
+    if len(prefixes) != 1:
+        return list(solution.joint_names)
+    prefix = prefixes.pop()
+    if not isinstance(prefix, str) or not all(name.startswith(prefix)
+                                              for name in solution.joint_names):
+        return list(solution.joint_names)
+    return [name[len(prefix):] for name in solution.joint_names]
+
+
+def summary(tree: FrameTree, solution: JointSolution) -> str:
+    """One line: samples, reached, the largest errors, the smallest distance to a limit."""
+    count, reached = len(solution), int(solution.reached.sum())
+    line = (f"{count} samples, {reached} reached; largest errors "
+            f"{solution.position_error.max():.2g} m, {solution.orientation_error.max():.2g} "
+            "rad")
+    joints = tree.joints
+    margins = []
+    for column, name in enumerate(solution.joint_names):
+        joint = joints[name]
+        values = solution.positions[:, column]
+        if joint.kind != "continuous" and joint.lower is not None:
+            margins.append((float(np.min(values - joint.lower)), name))
+        if joint.kind != "continuous" and joint.upper is not None:
+            margins.append((float(np.min(joint.upper - values)), name))
+    if margins:
+        margin, name = min(margins)
+        unit = "m" if joints[name].kind == "prismatic" else "rad"
+        line += f"; closest to a joint limit: {margin:.3g} {unit} ({name})"
+    return line

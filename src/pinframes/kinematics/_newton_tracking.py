@@ -1,0 +1,289 @@
+"""The solver loop of ``FrameTree.solve_joints``: damped Newton on Pinocchio, sample by sample.
+
+Each sample starts from a prediction: the previous solution carried on by the step between
+the last two (scaled by the ratio of the time steps), when both reached their targets; the
+first sample starts from the seed (:class:`TrackingHistory`). So the solution follows one
+branch (no elbow or wrist flips) and usually takes one Newton step per sample.
+
+An iteration sets the configuration, runs Pinocchio's ``forwardKinematics``, and measures the
+tool in the target (:mod:`._tool_error`); when both errors are within their tolerances the
+sample is reached. Otherwise ``computeFrameJacobian`` (``LOCAL``) gives the rows and
+:func:`._bounded_step.bounded_step` the step within the limits, at most
+:data:`LONGEST_STEP` per joint. A step that does not lower the error is taken back and tried
+again with more damping (Levenberg-Marquardt), less after one that does. A full Newton step
+(undamped, not shortened, within the limits) taken from errors within
+:func:`quadratic_region` lands within the tolerances: the sample is taken as solved there
+without measuring it again, and :mod:`._batch_check` measures such samples afterwards, many
+at once, and solves again the rare one that missed (:func:`solve_again`). A sample that is not
+reached after :data:`MAX_ITERATIONS`, or whose damping grows past :data:`MAX_DAMPING`, keeps
+the best configuration found (the closest within the limits); the next sample starts from
+the last solution that reached its target, then from that closest configuration: the solver
+finds its way back, onto the branch it left, when the target comes back into reach.
+
+Measured against a per-sample loop of pink with a QP solver (benchmarks/bench_ik.py): the
+QP pink solves per iteration costs more than this whole step; the limits need a QP only on
+the rare steps that cross them, which the active set of :mod:`._bounded_step` handles.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+import pinocchio as pin
+from numpy.typing import NDArray
+
+from ._bounded_step import LeastSquares, bounded_step
+from ._solved_joints import SolvedJoints
+from ._tool_error import AxisError, PoseError
+
+__all__ = ["LONGEST_STEP", "MAX_DAMPING", "MAX_ITERATIONS", "Tracked", "TrackingHistory",
+           "TrackingProblem", "quadratic_region", "solve_again", "track_targets"]
+
+FloatArray = NDArray[np.float64]
+
+MAX_ITERATIONS = 100
+"""Newton iterations at most per sample (a tracked sample takes one or two)."""
+
+LONGEST_STEP = 0.5
+"""Largest change of one joint in one iteration, radians or metres: far from the target, a
+Newton step is only a direction."""
+
+FIRST_DAMPING = 1e-6
+"""Damping of the first retried step (error units squared, after the tolerances scale the
+errors to 1)."""
+
+MAX_DAMPING = 1e8
+"""Damping past which a sample stops: the error no longer falls (a target out of reach)."""
+
+CURVATURE = 100.0
+"""Bound on how fast the tool's error departs from its linearisation, per metre or radian:
+a full Newton step from an error ``e`` leaves about ``CURVATURE * e**2``."""
+
+
+def quadratic_region(tolerance: float) -> float:
+    """The error (m or rad) below which a full Newton step leaves less than ``tolerance``."""
+    return math.sqrt(tolerance / CURVATURE)
+
+
+@dataclass(frozen=True)
+class TrackingProblem:
+    """One stretch of samples to solve.
+
+    Attributes
+    ----------
+    model, data : pinocchio.Model, pinocchio.Data
+        The compiled path, rooted at the lowest common ancestor of the two frames.
+    frame_id : int
+        Pinocchio frame id of the tool.
+    reference_id : int or None
+        Pinocchio frame id of the frame the target is given in; None when that is the
+        model's root (its placements are already in it).
+    configurations : ndarray, shape (N, nq)
+        Per sample, the model's configuration with everything that is not solved for.
+    targets : ndarray, shape (N, 7), or None
+        Per sample, the target in the reference frame as ``x y z qx qy qz qw`` (metres, unit
+        quaternion); None: the reference frame itself.
+    joints : SolvedJoints
+        The unknowns and their limits.
+    error : PoseError or AxisError
+        What must match.
+    position_tolerance, orientation_tolerance : float
+        Metres and radians.
+    step_ratios : ndarray, shape (N,)
+        Per sample, its time step over the previous one (for the prediction).
+    solver : LeastSquares
+        The linear algebra of the steps (kept from one stretch to the next).
+    """
+
+    model: pin.Model
+    data: pin.Data
+    frame_id: int
+    reference_id: int | None
+    configurations: FloatArray
+    targets: FloatArray | None
+    joints: SolvedJoints
+    error: PoseError | AxisError
+    position_tolerance: float
+    orientation_tolerance: float
+    step_ratios: FloatArray
+    solver: LeastSquares
+
+    @cached_property
+    def position_region(self) -> float:
+        """:func:`quadratic_region` of the position tolerance (m)."""
+        return quadratic_region(self.position_tolerance)
+
+    @cached_property
+    def orientation_region(self) -> float:
+        """:func:`quadratic_region` of the orientation tolerance (rad)."""
+        return quadratic_region(self.orientation_tolerance)
+
+
+@dataclass
+class Tracked:
+    """The solutions of a stretch: ``positions`` (N, n), ``position_error`` and
+    ``orientation_error`` (N,) in m and rad (NaN where not ``measured``), ``reached`` (N,)
+    (True where not ``measured``: a full Newton step from close by)."""
+
+    positions: FloatArray
+    position_error: FloatArray
+    orientation_error: FloatArray
+    reached: NDArray[np.bool_]
+    measured: NDArray[np.bool_]
+
+
+class TrackingHistory:
+    """What the next sample starts from: the seed, the last two solutions and whether they
+    reached their targets, and the last one that did.
+
+    Parameters
+    ----------
+    seed : ndarray, shape (n,)
+        Where the first sample starts.
+    """
+
+    def __init__(self, seed: FloatArray) -> None:
+        self.seed = seed
+        self.last_on_target = seed
+        self._recent: list[tuple[FloatArray, bool]] = []  # up to two, the latest last
+
+    @property
+    def last(self) -> FloatArray:
+        """The latest solution (the seed before the first)."""
+        return self._recent[-1][0] if self._recent else self.seed
+
+    @property
+    def after_a_miss(self) -> bool:
+        """Whether the latest sample did not reach its target."""
+        return bool(self._recent) and not self._recent[-1][1]
+
+    def start(self, ratio: float) -> FloatArray:
+        """The last solution carried on by the last step times ``ratio`` (the ratio of the
+        time steps), when both reached their targets; else the last solution (either may
+        lie a little outside the limits: the solver starts from the nearest values
+        within)."""
+        if len(self._recent) < 2 or not (self._recent[0][1] and self._recent[1][1]):
+            return self.last
+        last = self._recent[1][0]
+        step = last - self._recent[0][0]
+        if ratio != 1.0:
+            step *= ratio
+        step += last
+        return step
+
+    def add(self, theta: FloatArray, reached: bool) -> None:
+        """Record the solution of the sample just solved."""
+        self._recent = [*self._recent[-1:], (theta, reached)]
+        if reached:
+            self.last_on_target = theta
+
+
+def track_targets(problem: TrackingProblem, history: TrackingHistory,
+                  stop_when_unreached: bool = False) -> Tracked:
+    """Solve every sample of ``problem`` in order, from and into ``history``.
+
+    After a sample out of reach, the next starts from the last solution that reached its
+    target (back on the branch the motion left), and only when that fails from the closest
+    configuration before it; the better of the two counts. With ``stop_when_unreached`` the
+    loop ends after the first sample that is not reached (the results stop there).
+    """
+    ratios = problem.step_ratios.tolist()
+    solutions: list[tuple[FloatArray, float, float, bool]] = []
+    for index, ratio in enumerate(ratios):
+        if not history.after_a_miss:
+            solved = _solve_sample(problem, index, history.start(ratio), trust_newton=True)
+        else:
+            solved = _solve_sample(problem, index, history.last_on_target, trust_newton=True)
+            if not solved[3]:
+                closer = _solve_sample(problem, index, history.last, trust_newton=True)
+                if closer[3] or _cost(problem, closer) < _cost(problem, solved):
+                    solved = closer
+        solutions.append(solved)
+        history.add(solved[0], solved[3])
+        if stop_when_unreached and not solved[3]:
+            break
+    thetas, position_error, orientation_error, reached = zip(*solutions, strict=True)
+    errors = np.array(position_error)
+    return Tracked(np.array(thetas), errors, np.array(orientation_error),
+                   np.array(reached, dtype=bool), ~np.isnan(errors))
+
+
+def _cost(problem: TrackingProblem, solved: tuple[FloatArray, float, float, bool]) -> float:
+    """The errors of a measured solution, scaled by the tolerances, squared and summed."""
+    return ((solved[1] / problem.position_tolerance) ** 2
+            + (solved[2] / problem.orientation_tolerance) ** 2)
+
+
+def solve_again(problem: TrackingProblem, index: int, theta: FloatArray
+                ) -> tuple[FloatArray, float, float, bool]:
+    """Sample ``index`` solved from ``theta`` and measured: the solution, its position and
+    orientation errors (m, rad) and whether it is reached."""
+    return _solve_sample(problem, index, theta, trust_newton=False)
+
+
+def _solve_sample(problem: TrackingProblem, index: int, theta: FloatArray, trust_newton: bool
+                  ) -> tuple[FloatArray, float, float, bool]:
+    """Damped Newton from ``theta`` for sample ``index``: the solution (the best
+    configuration when the target is not reached), its position and orientation errors, and
+    whether it is reached. With ``trust_newton``, a full step from within the quadratic
+    region ends the sample unmeasured: errors NaN, reached True."""
+    model, data, joints, error = problem.model, problem.data, problem.joints, problem.error
+    frame_id, reference_id = problem.frame_id, problem.reference_id
+    base = problem.configurations[index]
+    target = None if problem.targets is None else pin.XYZQUATToSE3(problem.targets[index])
+    position_tolerance = problem.position_tolerance
+    orientation_tolerance = problem.orientation_tolerance
+    position_region = problem.position_region if trust_newton else -1.0
+    orientation_region = problem.orientation_region
+    limits = joints.limits
+    if not limits.contain(theta.tolist()):  # a prediction past a limit
+        theta = limits.clipped(theta)
+    best = theta
+    best_cost = best_position = best_orientation = math.inf
+    rows = residual = theta  # set on the first iteration
+    damping = 0.0
+    for _ in range(MAX_ITERATIONS):
+        q = joints.configuration(base, theta)
+        pin.forwardKinematics(model, data, q)
+        tool_in_reference = pin.updateFramePlacement(model, data, frame_id)
+        if reference_id is not None:
+            tool_in_reference = pin.updateFramePlacement(model, data, reference_id).actInv(
+                tool_in_reference)
+        tool_in_target = (tool_in_reference if target is None
+                          else target.actInv(tool_in_reference))
+        position, orientation, vector = error.measure(tool_in_target)
+        if position <= position_tolerance and orientation <= orientation_tolerance:
+            return theta, position, orientation, True
+        cost = (position / position_tolerance) ** 2 + (orientation / orientation_tolerance) ** 2
+        if cost < best_cost:
+            best, best_cost, best_position, best_orientation = theta, cost, position, orientation
+            damping = 0.0 if damping <= FIRST_DAMPING else damping / 10.0
+            rows = error.rows(joints.jacobian(_tool_jacobian(problem, q, tool_in_reference)))
+            residual = vector
+        else:  # take the step back, and damp it more
+            damping = max(10.0 * damping, FIRST_DAMPING)
+            if damping > MAX_DAMPING:
+                break
+        theta, full = bounded_step(problem.solver, rows, residual, best, limits, damping,
+                                   LONGEST_STEP)
+        if (full and damping == 0.0 and best_position <= position_region
+                and best_orientation <= orientation_region):
+            return theta, math.nan, math.nan, True
+    return best, best_position, best_orientation, False
+
+
+def _tool_jacobian(problem: TrackingProblem, q: FloatArray, tool_in_reference: pin.SE3
+                   ) -> FloatArray:
+    """The tool's ``LOCAL`` Jacobian (6, nv) relative to the reference frame: when solved
+    joints move the reference too, its motion (seen in the tool's axes) counts against."""
+    model, data = problem.model, problem.data
+    local = pin.ReferenceFrame.LOCAL
+    if not problem.joints.moves_reference:
+        return pin.computeFrameJacobian(model, data, q, problem.frame_id, local)
+    pin.computeJointJacobians(model, data, q)
+    tool = pin.getFrameJacobian(model, data, problem.frame_id, local)
+    reference = pin.getFrameJacobian(model, data, problem.reference_id, local)
+    return tool - tool_in_reference.inverse().action.dot(reference)

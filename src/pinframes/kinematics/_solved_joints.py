@@ -1,0 +1,220 @@
+"""The joints an inverse-kinematics solve moves: which they are, their limits, and how their
+values enter the Pinocchio configuration of a compiled path.
+
+The unknowns are the values ``theta`` (radians or metres) of ``n`` actuated joints. Every
+joint of the compiled model that one of them drives (itself, or a mimic joint following it
+through a chain of mimics) takes ``multiplier * theta + offset``; a continuous joint about an
+aligned axis is stored by Pinocchio as ``(cos, sin)``. Moving frames and the other joints keep
+their sampled values.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import ArgumentTypeError, JointError, near_misses
+from ..values.joint import Joint, mimic_chain
+from ._bounded_step import JointLimits
+from ._model import CompiledModel
+
+__all__ = ["SolvedJoints", "joints_moving_frame", "solved_joints"]
+
+FloatArray = NDArray[np.float64]
+
+
+class SolvedJoints:
+    """``n`` actuated joints solved for, and where their values go in a compiled model.
+
+    Attributes
+    ----------
+    names : tuple of str
+        The joints, in the order of ``theta``.
+    limits : JointLimits
+        Position limits of ``theta``: each joint's own, narrowed by those of the mimic joints
+        that follow it (continuous joints unbounded).
+    tangent : ndarray, shape (nv, n)
+        Velocity of the model per unit rate of each joint: the multipliers of the model
+        joints it drives, in their velocity slots. ``J @ tangent`` is a Jacobian in ``theta``.
+    moves_reference : bool
+        Whether a solved joint moves the reference frame (joints on the target's side).
+    """
+
+    def __init__(self, names: Sequence[str], model: CompiledModel, joints: Mapping[str, Joint],
+                 frame: str, reference: str) -> None:
+        self.names = tuple(names)
+        column_of = {name: column for column, name in enumerate(self.names)}
+        pinocchio_model = model.model
+        self.tangent = np.zeros((pinocchio_model.nv, len(self.names)))
+        linear: list[tuple[int, int, float, float]] = []  # (q slot, column, multiplier, offset)
+        turning: list[tuple[int, int, float, float]] = []  # (cos slot, column, mult., offset)
+        reference_side = set(pinocchio_model.supports[
+            pinocchio_model.frames[model.frame_ids[reference]].parentJoint])
+        self.moves_reference = False
+        for position, compiled in enumerate(model.joints):
+            if compiled.joint is None:
+                continue
+            column, multiplier, offset = _driver(compiled.joint, joints, column_of)
+            if column < 0:
+                continue
+            joint_id = position + 1  # Pinocchio's joint 0 is the universe
+            self.tangent[pinocchio_model.idx_vs[joint_id], column] = multiplier
+            slot = pinocchio_model.idx_qs[joint_id]
+            target = turning if pinocchio_model.nqs[joint_id] == 2 else linear
+            target.append((slot, column, multiplier, offset))
+            self.moves_reference |= joint_id in reference_side
+        self._linear = _columns(linear)
+        self._turning = _columns(turning)
+        self._slice = _plain_slice(linear, turning, len(self.names))
+        self._velocity_slice = _selected_slice(self.tangent)
+        self.limits = JointLimits(*_bounds(self.names, joints))
+
+    def configuration(self, base: FloatArray, theta: FloatArray) -> FloatArray:
+        """A copy of the configuration ``base`` (nq,) with the solved joints at ``theta``."""
+        q = base.copy()
+        if self._slice is not None:
+            q[self._slice] = theta
+            return q
+        slots, columns, multipliers, offsets = self._linear
+        q[slots] = multipliers * theta[columns] + offsets
+        slots, columns, multipliers, offsets = self._turning
+        if slots.shape[0]:
+            angles = multipliers * theta[columns] + offsets
+            q[slots] = np.cos(angles)
+            q[slots + 1] = np.sin(angles)
+        return q
+
+    def jacobian(self, model_jacobian: FloatArray) -> FloatArray:
+        """The Jacobian (6, n) in ``theta`` from one in the model's velocity (6, nv)."""
+        if self._velocity_slice is not None:
+            return model_jacobian[:, self._velocity_slice]
+        return model_jacobian.dot(self.tangent)
+
+
+def _driver(joint: Joint, joints: Mapping[str, Joint], column_of: Mapping[str, int]
+            ) -> tuple[int, float, float]:
+    """The column of the solved joint that drives ``joint`` (-1: none) and the
+    ``(multiplier, offset)`` with which: ``value = multiplier * theta + offset``."""
+    chain = mimic_chain(joint, joints)
+    multiplier, offset = 1.0, 0.0
+    for link in reversed(chain[:-1]):  # from the primary out to the joint
+        assert link.mimic is not None
+        multiplier, offset = (link.mimic.multiplier * multiplier,
+                              link.mimic.multiplier * offset + link.mimic.offset)
+    return column_of.get(chain[-1].name, -1), multiplier, offset
+
+
+def _columns(entries: list[tuple[int, int, float, float]]
+             ) -> tuple[NDArray[np.intp], NDArray[np.intp], FloatArray, FloatArray]:
+    slots, columns, multipliers, offsets = zip(*entries, strict=True) if entries else ((),) * 4
+    return (np.array(slots, dtype=np.intp), np.array(columns, dtype=np.intp),
+            np.array(multipliers, dtype=float), np.array(offsets, dtype=float))
+
+
+def _plain_slice(linear: list[tuple[int, int, float, float]],
+                 turning: list[tuple[int, int, float, float]], count: int) -> slice | None:
+    """The slice of ``q`` that holds ``theta`` as it is (consecutive slots, in order, no mimic
+    and no continuous joint), or None."""
+    if turning or len(linear) != count or not linear:
+        return None
+    start = linear[0][0]
+    for index, (slot, column, multiplier, offset) in enumerate(linear):
+        if slot != start + index or column != index or multiplier != 1.0 or offset != 0.0:
+            return None
+    return slice(start, start + count)
+
+
+def _selected_slice(tangent: FloatArray) -> slice | None:
+    """The slice of velocity slots that ``tangent`` selects as it is (the identity on
+    consecutive slots), or None."""
+    column = tangent[:, 0] if tangent.shape[1] else np.zeros(0)
+    if not np.any(column):
+        return None
+    start = int(np.argmax(column != 0.0))
+    count = tangent.shape[1]
+    plain = np.zeros_like(tangent)
+    plain[start:start + count] = np.eye(count)[:tangent.shape[0] - start]
+    return slice(start, start + count) if np.array_equal(tangent, plain) else None
+
+
+def _bounds(names: Sequence[str], joints: Mapping[str, Joint]) -> tuple[FloatArray, FloatArray]:
+    """Limits of each solved joint: its own, narrowed by its mimic followers' (a follower
+    at ``m * theta + c`` within ``[lower, upper]`` bounds ``theta`` by ``(lower - c) / m`` and
+    ``(upper - c) / m``, swapped when ``m < 0``). Continuous joints are unbounded."""
+    lower = np.full(len(names), -np.inf)
+    upper = np.full(len(names), np.inf)
+    column_of = {name: column for column, name in enumerate(names)}
+    for joint in joints.values():
+        if joint.kind == "continuous":
+            continue
+        column, multiplier, offset = _driver(joint, joints, column_of)
+        if column < 0 or multiplier == 0.0:
+            continue
+        sign = 1.0 if multiplier > 0 else -1.0
+        ends = [sign * -np.inf if joint.lower is None else (joint.lower - offset) / multiplier,
+                sign * np.inf if joint.upper is None else (joint.upper - offset) / multiplier]
+        low, high = min(ends), max(ends)
+        lower[column] = max(lower[column], low)
+        upper[column] = min(upper[column], high)
+    for column, name in enumerate(names):
+        if lower[column] > upper[column]:
+            raise JointError("its limits and those of the joints that mimic it leave no "
+                             f"value ({lower[column]:.6g} > {upper[column]:.6g})", frame=name,
+                             field="limit")
+    return lower, upper
+
+
+def joints_moving_frame(model: CompiledModel, joints: Mapping[str, Joint], frame: str
+                        ) -> list[str]:
+    """The actuated joints (mimic primaries) of the robot joints between ``frame`` and the
+    root of ``model``, from the root out."""
+    pinocchio_model = model.model
+    support = pinocchio_model.supports[pinocchio_model.frames[model.frame_ids[frame]].parentJoint]
+    names: list[str] = []
+    for joint_id in list(support)[1:]:
+        compiled = model.joints[joint_id - 1]
+        if compiled.joint is not None:
+            primary = mimic_chain(compiled.joint, joints)[-1].name
+            if primary not in names:
+                names.append(primary)
+    return names
+
+
+def solved_joints(model: CompiledModel, joints: Mapping[str, Joint], requested: object,
+                  frame: str, reference: str) -> SolvedJoints:
+    """The joints to solve: ``requested`` (names), or every joint that moves ``frame``
+    relative to ``reference`` from ``frame``'s side of the path.
+
+    Raises :class:`~pinframes.errors.JointError` (field ``joints``) for a name that is no
+    joint, a mimic joint, a repeat, a joint that moves neither frame, or nothing to solve.
+    """
+    movers = joints_moving_frame(model, joints, frame) + joints_moving_frame(
+        model, joints, reference)
+    if requested is None:
+        names = joints_moving_frame(model, joints, frame)
+        if not names:
+            raise JointError(f"no robot joint moves {frame!r} relative to {reference!r}",
+                             frame=frame, field="joints")
+        return SolvedJoints(names, model, joints, frame, reference)
+    if isinstance(requested, str) or not isinstance(requested, Sequence):
+        raise ArgumentTypeError(f"expected a list of joint names, got {requested!r}",
+                                frame=frame, field="joints")
+    names = list(requested)
+    if not names:
+        raise JointError("no joints to solve for", frame=frame, field="joints")
+    for name in names:
+        if not isinstance(name, str) or name not in joints:
+            raise JointError(f"no joint named {name!r} in the tree"
+                             + near_misses(name, joints, "joint"), frame=frame, field="joints")
+        mimic = joints[name].mimic
+        if mimic is not None:
+            raise JointError(f"joint {name!r} mimics {mimic.joint!r} and follows it; solve "
+                             "for that joint", frame=frame, field="joints")
+        if name not in movers:
+            raise JointError(f"joint {name!r} moves neither {frame!r} nor {reference!r}",
+                             frame=frame, field="joints")
+    if len(set(names)) != len(names):
+        raise JointError("joint names repeat", frame=frame, field="joints")
+    return SolvedJoints(names, model, joints, frame, reference)

@@ -1,0 +1,278 @@
+"""``FrameTree.solve_joints``: joint values that put a tool frame on a target, per sample
+(inverse kinematics along a path).
+
+The path from the tool to the frame the target is given in is prepared as for a pose query
+(:mod:`._path`: a Pinocchio model rooted at their lowest common ancestor) and its times
+planned (:mod:`._times`) from every moving thing on it but the solved joints, whose samples
+are what is being solved for. Per chunk of samples, everything that is not solved for is
+sampled into Pinocchio configurations (:func:`._sampling.sample_configurations`), then
+:mod:`._newton_tracking` solves sample after sample, each from the one before.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import ArgumentTypeError, InvalidDataError, JointError, TargetNotReachedError
+from ..values.pose import Pose
+from ..values.rotations import quaternion_from_matrix
+from ..values.se3 import Transform
+from ..values.timeline import TimedSource
+from ._batch_check import measure_solutions
+from ._bounded_step import LeastSquares
+from ._description import TreeDescription
+from ._model import CompiledModel
+from ._newton_tracking import (
+    Tracked,
+    TrackingHistory,
+    TrackingProblem,
+    solve_again,
+    track_targets,
+)
+from ._path import PreparedPath, prepare_path
+from ._sampling import CHUNK, sample_configurations
+from ._solved_joints import SolvedJoints, solved_joints
+from ._times import basis_shifts, plan_timeline
+from ._tool_error import AXES, AxisError, PoseError
+from .joint_solution import JointSolution
+
+__all__ = ["evaluate_solve_joints"]
+
+FloatArray = NDArray[np.float64]
+
+_TARGET_SOURCE = "<target pose>"
+"""Name of a time-dependent target pose among the timeline's sources."""
+
+
+def evaluate_solve_joints(
+    tree: TreeDescription, frame: str, target: str | Pose, *, relative_to: str | None,
+    times: Any, time_ref: Any, joints: Any, free_axis: str | None, seed: Any,
+    position_tolerance: float, orientation_tolerance: float, strict: bool,
+) -> JointSolution:
+    """``tree.solve_joints(...)``; ``frame`` (and a target frame name) already checked."""
+    reference, target_pose = _reference(tree, frame, target, relative_to)
+    error = _tool_error(free_axis, frame)
+    tolerances = (_tolerance(position_tolerance, "position_tolerance", frame),
+                  _tolerance(orientation_tolerance, "orientation_tolerance", frame))
+    path = prepare_path(tree, frame, reference)
+    if path.model is None:
+        raise JointError(f"no robot joint moves {frame!r} relative to {reference!r}",
+                         frame=frame, field="joints")
+    model = path.model
+    solved = _solved_joints(tree, model, joints, frame, reference)
+    held = {name: 0.0 for name in solved.names}
+    sources = [source for source in path.sources if source.name not in held]
+    if target_pose is not None and target_pose.is_time_dependent:
+        target_times = target_pose.times
+        assert target_times is not None
+        sources.append(TimedSource(_TARGET_SOURCE, target_times.astype(np.int64),
+                                   target_pose.reference_time))
+    timeline = plan_timeline(tree, sources, times, time_ref)
+    moments = timeline.evaluation_times
+    if moments is None:  # nothing moves: one sample
+        moments = np.zeros(1, dtype=np.int64)
+    offsets = timeline.result_offsets
+    if offsets is None:
+        offsets = np.zeros(1, dtype=np.int64)
+    shifts = basis_shifts([*path.sources, *sources], timeline)
+    start = _seed(tree, solved, seed, int(moments[0]), shifts, frame)
+    ratios = _step_ratios(moments)
+    history = TrackingHistory(start)
+    reference_id = _reference_id(model, reference)
+    solver = LeastSquares()
+    parts: list[Tracked] = []
+    for begin in range(0, moments.shape[0], CHUNK):
+        part = slice(begin, begin + CHUNK)
+        targets = _targets(target_pose, moments[part], shifts.get(_TARGET_SOURCE, 0))
+        problem = TrackingProblem(
+            model.model, model.data, model.frame_ids[frame], reference_id,
+            sample_configurations(tree, model, moments[part], shifts, held),
+            None if targets is None else _xyz_quaternions(targets),
+            solved, error, tolerances[0], tolerances[1], ratios[part], solver)
+        tracked = track_targets(problem, history, stop_when_unreached=strict)
+        _measure_the_rest(tree, path, moments[part], shifts, targets, problem, tracked)
+        parts.append(tracked)
+        if strict and not tracked.reached.all():
+            _raise_unreached(parts, offsets, timeline.reference, tolerances, frame)
+    return JointSolution(
+        solved.names, np.concatenate([part.positions for part in parts]),
+        offsets.astype("timedelta64[ns]"), timeline.reference,
+        np.concatenate([part.position_error for part in parts]),
+        np.concatenate([part.orientation_error for part in parts]),
+        np.concatenate([part.reached for part in parts]))
+
+
+def _solved_joints(tree: TreeDescription, model: CompiledModel, joints: Any, frame: str,
+                   reference: str) -> SolvedJoints:
+    """:func:`solved_joints`, prepared once per tree version and request."""
+    if joints is None or (isinstance(joints, (list, tuple))
+                          and all(isinstance(name, str) for name in joints)):
+        key = ("solve_joints", frame, reference,
+               *(("every joint",) if joints is None else ("named", *joints)))
+        cached = tree.cached(key)
+        if cached is None:
+            cached = solved_joints(model, tree.joints_by_name, joints, frame, reference)
+            tree.store(key, cached)
+        assert isinstance(cached, SolvedJoints)
+        return cached
+    return solved_joints(model, tree.joints_by_name, joints, frame, reference)
+
+
+def _reference(tree: TreeDescription, frame: str, target: str | Pose, relative_to: str | None
+               ) -> tuple[str, Pose | None]:
+    """The frame the target is given in, and the target pose in it (None: that frame)."""
+    if isinstance(target, str):
+        if relative_to is not None:
+            raise ArgumentTypeError("relative_to is for a Pose target; a target frame is its "
+                                    "own reference", frame=frame, field="relative_to")
+        return target, None
+    if isinstance(target, Pose):
+        return (tree.root if relative_to is None else relative_to), target
+    raise ArgumentTypeError(f"expected a frame name or a Pose, got {type(target).__name__}",
+                            frame=frame, field="target")
+
+
+def _tool_error(free_axis: Any, frame: str) -> PoseError | AxisError:
+    if free_axis is None:
+        return PoseError()
+    if free_axis not in AXES:
+        raise ArgumentTypeError(f"expected one of {', '.join(AXES)} or None, got {free_axis!r}",
+                                frame=frame, field="free_axis")
+    return AxisError(free_axis)
+
+
+def _tolerance(value: Any, field: str, frame: str) -> float:
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        number = math.nan
+    if isinstance(value, (str, bytes, bool)) or not (0.0 < number < math.inf):
+        raise InvalidDataError(f"expected a positive number, got {value!r}", frame=frame,
+                               field=field)
+    return number
+
+
+def _seed(tree: TreeDescription, solved: SolvedJoints, seed: Any, first: int,
+          shifts: dict[str, int], frame: str) -> FloatArray:
+    """Joint values of the first sample's start: ``seed`` (a mapping by name, possibly
+    partial, or one value per joint), else each joint's trajectory at the first time, else
+    its rest value; defaults are put within the limits, a given seed must be."""
+    names = solved.names
+    defaults = np.empty(len(names))
+    for column, name in enumerate(names):
+        trajectory = tree.joint_trajectories.get(name)
+        defaults[column] = (tree.joints_by_name[name].rest_value if trajectory is None else
+                            trajectory.value_at(first - shifts.get(name, 0)))
+    start = solved.limits.clipped(defaults)
+    if seed is None:
+        return start
+    given: dict[int, Any]
+    if isinstance(seed, Mapping):
+        unknown = [name for name in seed if name not in names]
+        if unknown:
+            raise JointError(f"seed names {unknown[0]!r}, which is not solved for (joints: "
+                             f"{', '.join(names)})", frame=frame, field="seed")
+        given = {names.index(name): value for name, value in seed.items()}
+    else:
+        try:
+            values = np.asarray(seed, dtype=float)
+        except (TypeError, ValueError):
+            raise ArgumentTypeError(f"expected joint values by name or one per joint, got "
+                                    f"{seed!r}", frame=frame, field="seed") from None
+        if values.shape != (len(names),):
+            raise InvalidDataError(f"expected {len(names)} values (joints {', '.join(names)}), "
+                                   f"got shape {values.shape}", frame=frame, field="seed")
+        given = dict(enumerate(values.tolist()))
+    for column, value in given.items():
+        name = names[column]
+        try:
+            number = float(value)
+        except (TypeError, ValueError):
+            number = math.nan
+        if not math.isfinite(number):
+            raise InvalidDataError(f"expected a finite number for joint {name!r}, got {value!r}",
+                                   frame=frame, field="seed")
+        low, high = solved.limits.lower[column], solved.limits.upper[column]
+        if not low <= number <= high:
+            raise JointError(f"seed {number:.6g} of joint {name!r} is outside its limits "
+                             f"[{low:.6g}, {high:.6g}]", frame=frame, field="seed")
+        start[column] = number
+    return start
+
+
+def _step_ratios(moments: NDArray[np.int64]) -> FloatArray:
+    """Per sample, its time step over the previous one (1 where there is none)."""
+    ratios = np.ones(moments.shape[0])
+    if moments.shape[0] > 2:
+        steps = np.diff(moments).astype(float)
+        ratios[2:] = steps[1:] / steps[:-1]
+    return ratios
+
+
+def _reference_id(model: CompiledModel, reference: str) -> int | None:
+    """The Pinocchio frame id of ``reference``, or None when it is the model's root."""
+    frame = model.model.frames[model.frame_ids[reference]]
+    return None if frame.parentJoint == 0 and frame.placement.isIdentity() else (
+        model.frame_ids[reference])
+
+
+def _targets(target: Pose | None, moments: NDArray[np.int64], shift: int
+             ) -> Transform | None:
+    """The target in the reference frame at each of ``moments``: ``(N, 3, 3)`` rotations
+    and ``(N, 3)`` translations (None: the frame itself)."""
+    if target is None:
+        return None
+    if target.is_time_dependent:
+        return target.keyframes.sample(moments - shift)
+    count = moments.shape[0]
+    return (np.broadcast_to(target.rotation, (count, 3, 3)),
+            np.broadcast_to(target.translation, (count, 3)))
+
+
+def _xyz_quaternions(targets: Transform) -> FloatArray:
+    """``x y z qx qy qz qw`` rows (Pinocchio's ``XYZQUAT``) of ``(N, 3, 3)`` rotations and
+    ``(N, 3)`` translations."""
+    rotations, translations = targets
+    return np.concatenate([translations, quaternion_from_matrix(rotations)], axis=1)
+
+
+def _measure_the_rest(tree: TreeDescription, path: PreparedPath, moments: NDArray[np.int64],
+                      shifts: dict[str, int], targets: Transform | None,
+                      problem: TrackingProblem, tracked: Tracked) -> None:
+    """Measure the samples the loop took as solved unmeasured, all at once, and solve again
+    (measuring) any that missed its tolerances; ``tracked`` is updated in place."""
+    unmeasured = np.flatnonzero(~tracked.measured)
+    if not unmeasured.shape[0]:
+        return
+    subset = None if targets is None else (targets[0][unmeasured], targets[1][unmeasured])
+    position, orientation = measure_solutions(
+        tree, path, moments[unmeasured], shifts, problem.joints.names,
+        tracked.positions[unmeasured], subset, problem.error)
+    tracked.position_error[unmeasured] = position
+    tracked.orientation_error[unmeasured] = orientation
+    missed = (position > problem.position_tolerance) | (
+        orientation > problem.orientation_tolerance)
+    for index in unmeasured[missed]:
+        (tracked.positions[index], tracked.position_error[index],
+         tracked.orientation_error[index], tracked.reached[index]) = solve_again(
+            problem, int(index), tracked.positions[index])
+
+
+def _raise_unreached(parts: list[Tracked], offsets: NDArray[np.int64],
+                     reference: np.datetime64 | None, tolerances: tuple[float, float],
+                     frame: str) -> None:
+    """The :class:`TargetNotReachedError` of ``strict=True`` at the last sample solved."""
+    index = sum(part.reached.shape[0] for part in parts) - 1
+    last = parts[-1]
+    seconds = offsets[index] / 1e9
+    when = f"{seconds:.9g} s" + ("" if reference is None else f" after {reference}")
+    raise TargetNotReachedError(
+        f"target not reached at {when} (sample {index + 1} of {offsets.shape[0]}): position "
+        f"error {last.position_error[-1]:.3g} m, orientation error "
+        f"{last.orientation_error[-1]:.3g} rad (tolerances {tolerances[0]:g} m, "
+        f"{tolerances[1]:g} rad)", frame=frame, field="target")

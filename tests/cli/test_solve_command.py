@@ -1,0 +1,137 @@
+"""``pinframes solve``: joint trajectory CSVs checked with Pinocchio on the URDF, and the
+command's shell habits (standard output, summary, exit status, errors)."""
+
+from __future__ import annotations
+
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+from pinframes import read_joint_trajectory
+
+ROBOT = Path(__file__).resolve().parents[2] / "models" / "welding_robot" / "welding_robot.urdf"
+HOME = np.array([0.2, 0.4, -0.6, 0.1, 0.9, 0.3])  # rad
+TURN_DEG = 20.0  # the table turns this much about its vertical axis in 2 s
+
+
+def flange_poses(configurations: np.ndarray) -> list[pin.SE3]:
+    model = pin.buildModelFromUrdf(str(ROBOT))
+    data = model.createData()
+    frame = model.getFrameId("flange")
+    poses = []
+    for q in configurations:
+        pin.framesForwardKinematics(model, data, q)
+        poses.append(data.oMf[frame].copy())
+    return poses
+
+
+@pytest.fixture
+def cell(tmp_path: Path) -> tuple[Path, pin.SE3, pin.SE3]:
+    """The welding robot at the root, a table turning 20 degrees in 2 s in front of it, and
+    ``seam`` on the table where the flange is at the robot's home configuration."""
+    tool = flange_poses(HOME[None])[0]
+    centre = tool.translation + np.array([0.15, 0.0, 0.0])
+    seam_in_table = pin.SE3(tool.rotation, tool.translation - centre)
+    quaternion = pin.Quaternion(seam_in_table.rotation).coeffs()  # x y z w
+    half = np.radians(TURN_DEG) / 2
+    path = tmp_path / "cell.yaml"
+    path.write_text(textwrap.dedent(f"""\
+        pinframes_scene: 1
+        name: cell
+        frames:
+          - name: table
+            parent: world
+            xyz: {centre.tolist()}
+            keyframes:
+              - {{time: 0, quaternion: [0, 0, 0, 1]}}
+              - {{time: 2, quaternion: [0, 0, {float(np.sin(half))!r}, {float(np.cos(half))!r}]}}
+          - name: seam
+            parent: table
+            xyz: {seam_in_table.translation.tolist()}
+            quaternion: {quaternion.tolist()}
+        robots:
+          - {{name: welder, urdf: {ROBOT}, parent: world, prefix: robot/}}
+        """))
+    return path, pin.SE3(np.eye(3), centre), seam_in_table
+
+
+def seam_targets(table: pin.SE3, seam_in_table: pin.SE3, seconds: np.ndarray) -> list[pin.SE3]:
+    """The seam in the world by hand: the table turned linearly in angle (SLERP about one
+    axis) up to 2 s."""
+    angles = np.radians(TURN_DEG) * np.clip(seconds, 0.0, 2.0) / 2.0
+    return [table * pin.SE3(pin.utils.rotate("z", angle), np.zeros(3)) * seam_in_table
+            for angle in angles]
+
+
+def test_solve_writes_a_trajectory_the_robot_follows_onto_the_seam(cell, run_cli, tmp_path):
+    scene, table, seam_in_table = cell
+    out = tmp_path / "joints.csv"
+    result = run_cli("solve", scene, "--frame", "robot/flange", "--target", "seam",
+                     "--start", "0", "--stop", "2", "--step", "0.02", "-o", out)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout == ""
+    assert "101 samples, 101 reached" in result.stderr
+    assert "closest to a joint limit" in result.stderr
+    times, positions, names = read_joint_trajectory(out)
+    assert names == [f"joint_{index}" for index in range(1, 7)]  # the URDF's, for a scene
+    np.testing.assert_allclose(times, np.linspace(0.0, 2.0, 101), atol=1e-12)
+    targets = seam_targets(table, seam_in_table, times)
+    for placement, target in zip(flange_poses(positions), targets, strict=True):
+        offset = target.actInv(placement)
+        assert np.linalg.norm(offset.translation) <= 1e-6
+        assert np.linalg.norm(pin.log3(offset.rotation)) <= 1e-6
+    # the file drives the scene's robot: the flange then sits on the seam
+    driven = scene.with_name("driven.yaml")
+    driven.write_text(scene.read_text().replace("prefix: robot/}",
+                                                f"prefix: robot/, trajectory: {out}}}"))
+    pose = run_cli("pose", driven, "robot/flange", "-r", "seam", "--times", "0.5", "1.5")
+    assert pose.returncode == 0, pose.stderr
+    rows = np.loadtxt(pose.stdout.splitlines()[1:], delimiter=",")
+    np.testing.assert_allclose(rows[:, 1:4], 0.0, atol=1e-6)
+
+
+def test_solve_writes_to_standard_output_with_a_free_axis(cell, run_cli):
+    scene, table, seam_in_table = cell
+    result = run_cli("solve", scene, "--frame", "robot/flange", "--target", "seam",
+                     "--free-axis", "x", "--times", "0", "1", "2")
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert lines[0] == "time_s,joint_1,joint_2,joint_3,joint_4,joint_5,joint_6"
+    rows = np.array([[float(cell) for cell in line.split(",")] for line in lines[1:]])
+    targets = seam_targets(table, seam_in_table, rows[:, 0])
+    for placement, target in zip(flange_poses(rows[:, 1:]), targets, strict=True):
+        assert np.linalg.norm(placement.translation - target.translation) <= 1e-6
+        axis, wanted = placement.rotation[:, 0], target.rotation[:, 0]
+        assert np.arctan2(np.linalg.norm(np.cross(axis, wanted)), axis @ wanted) <= 1e-6
+
+
+def test_solve_out_of_reach(cell, run_cli, tmp_path):
+    scene, _, _ = cell
+    far = scene.with_name("far.yaml")
+    far.write_text(scene.read_text() + "tools:\n  - {name: far, parent: seam, xyz: [0, 0, 5]}\n")
+    kept = run_cli("solve", far, "--frame", "robot/flange", "--target", "far", "--times", "0",
+                   "1")
+    assert kept.returncode == 0, kept.stderr
+    assert "2 samples, 0 reached" in kept.stderr
+    strict = run_cli("solve", far, "--frame", "robot/flange", "--target", "far", "--times", "0",
+                     "1", "--strict", "-o", tmp_path / "never.csv")
+    assert strict.returncode == 1
+    assert "pinframes: error:" in strict.stderr and "not reached at 0 s" in strict.stderr
+    assert not (tmp_path / "never.csv").exists()
+
+
+@pytest.mark.parametrize(("arguments", "words"), [
+    (["--frame", "robot/flang", "--target", "seam"], "robot/flang"),
+    (["--frame", "robot/flange", "--target", "seam", "--joints", "robot/joint_9"],
+     "robot/joint_9"),
+    (["--frame", "robot/flange", "--target", "seam", "--position-tolerance", "-1"],
+     "position_tolerance"),
+])
+def test_solve_errors_name_what_is_wrong(cell, run_cli, arguments, words):
+    scene, _, _ = cell
+    result = run_cli("solve", scene, *arguments)
+    assert result.returncode == 1
+    assert result.stderr.startswith("pinframes: error:") and words in result.stderr
