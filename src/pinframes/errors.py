@@ -31,6 +31,7 @@ __all__ = [
     "JointError",
     "JointLimitWarning",
     "JointWithoutSamplesWarning",
+    "ManifestWarning",
     "PinframesError",
     "ReadError",
     "ReferenceTimeError",
@@ -205,3 +206,8 @@ class BrokenMimicWarning(UserWarning):
 class JointWithoutSamplesWarning(UserWarning):
     """Robot joints evaluated without samples: they hold their rest value
     (:attr:`pinframes.Joint.rest_value`). Issued once until the tree changes."""
+
+
+class ManifestWarning(UserWarning):
+    """Lines of a batch's ``manifest.jsonl`` that are no run record (torn by an interrupted
+    write, or edited by hand): they are skipped, and their runs computed again."""

@@ -199,7 +199,7 @@ def test_failing_to_make_the_temporary_file_is_a_write_error(tmp_path, monkeypat
     # What a read-only folder does for users who are not root.
     def refuse(*args, **kwargs):
         raise PermissionError(errno.EACCES, os.strerror(errno.EACCES))
-    monkeypatch.setattr("pinframes.formats.atomic.tempfile.mkstemp", refuse)
+    monkeypatch.setattr("pinframes.formats.atomic._create_temporary", refuse)
     with pytest.raises(WriteError, match="Permission denied"), atomic_write(tmp_path / "x"):
         pass
     assert list(tmp_path.iterdir()) == []

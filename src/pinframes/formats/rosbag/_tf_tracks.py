@@ -26,7 +26,7 @@ from ...values.timeconv import format_timestamp_iso
 from ..limits import current_limits, exceeded
 from ._tf_messages import TransformColumns
 
-__all__ = ["FrameTrack", "frame_tracks"]
+__all__ = ["FrameTrack", "frame_tracks", "stamp_iso"]
 
 QUATERNION_TOLERANCE = 0.01
 """tf2 refuses a quaternion whose squared norm differs from 1 by more than this."""
@@ -164,7 +164,7 @@ def _check_one_parent(names: list[str], parents: NDArray[np.int64],
         described = []
         for parent in (pairs[pair_children == child] % count).tolist():
             mask = (children == child) & (parents == parent)
-            described.append(f"{names[parent]!r} (first at {_iso(stamps[mask].min())})")
+            described.append(f"{names[parent]!r} (first at {stamp_iso(stamps[mask].min())})")
         raise TreeStructureError(
             "published under several parents: " + " and ".join(described)
             + "; tf2 re-parents a frame in time, a tree cannot (read the bag in parts, or "
@@ -176,7 +176,8 @@ def _check_one_parent(names: list[str], parents: NDArray[np.int64],
                                  file=file, frame=names[int(kinds[both[0]] // 2)])
 
 
-def _iso(stamp_ns: int) -> str:
+def stamp_iso(stamp_ns: int) -> str:
+    """A stamp (ns since the epoch) as an ISO timestamp, for messages."""
     return format_timestamp_iso(np.datetime64(int(stamp_ns), "ns"))
 
 

@@ -28,7 +28,7 @@ from ...errors import FileFormatError, PinframesError, UnsupportedFeatureError
 from ...tree import FrameTree
 from ...values.pose import Pose
 from ...values.timeconv import parse_timestamp
-from .._paths import is_regular_file, path_argument
+from .._paths import path_argument, regular_file_problem
 from .._registry import detect_format, read
 from .._yaml_loader import load_yaml
 from ..limits import Limits, reader_with_limits
@@ -345,8 +345,8 @@ class _Scene:
             raise FileFormatError("missing", file=self.path, frame=frame, field=f"{field}.{key}")
         value = self._name(item[key], frame, f"{field}.{key}")
         path = self.path.parent / value
-        if not is_regular_file(path):
-            raise FileFormatError(f"no such file: {path}", file=self.path, frame=frame,
+        if (problem := regular_file_problem(path)) is not None:
+            raise FileFormatError(f"{problem}: {path}", file=self.path, frame=frame,
                                   field=f"{field}.{key}")
         return path
 
