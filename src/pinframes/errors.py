@@ -13,7 +13,9 @@ from __future__ import annotations
 
 import difflib
 import os
+import sys
 from collections.abc import Iterable
+from types import FrameType
 
 __all__ = [
     "ArgumentTypeError",
@@ -39,6 +41,7 @@ __all__ = [
     "TreeStructureError",
     "UnsupportedFeatureError",
     "WriteError",
+    "caller_stacklevel",
     "near_misses",
 ]
 
@@ -182,6 +185,16 @@ def near_misses(name: object, known: Iterable[str], kind: str = "frame") -> str:
     if not matches:
         return ""
     return f"; did you mean {kind} " + " or ".join(repr(match) for match in matches) + "?"
+
+
+def caller_stacklevel() -> int:
+    """The ``stacklevel`` for a warning given in the function that calls this one: it points
+    at the first caller outside pinframes, however deep inside pinframes the warning arose."""
+    frame: FrameType | None = sys._getframe(2)
+    level = 2
+    while frame is not None and frame.f_globals.get("__name__", "").startswith("pinframes."):
+        frame, level = frame.f_back, level + 1
+    return level
 
 
 class JointLimitWarning(UserWarning):
