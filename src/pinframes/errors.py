@@ -1,9 +1,10 @@
 """Exceptions raised by pinframes, and the warnings it gives.
 
-Every error carries, where known, the ``file`` it came from, the ``frame`` it concerns and the
-``field`` that is wrong, and puts them at the front of its message::
+Every error carries, where known, the ``file`` it came from, the ``frame`` or ``joint`` it
+concerns and the ``field`` that is wrong, and puts them at the front of its message::
 
     scene.yaml: frame 'torch': field 'pose.yaw': expected a number, got 'abc'
+    run.csv: joint 'robot/joint_3': field 'line 4': expected a number, got 'abc'
 
 Each class also subclasses the built-in exception a caller would naturally catch
 (``ValueError``, ``KeyError``, ``TypeError``, ``OSError``).
@@ -14,6 +15,7 @@ from __future__ import annotations
 import difflib
 import os
 import sys
+import warnings
 from collections.abc import Iterable
 from types import FrameType
 
@@ -21,6 +23,7 @@ __all__ = [
     "ArgumentTypeError",
     "BagWarning",
     "BrokenMimicWarning",
+    "DataNotFoundError",
     "ExtrapolationError",
     "FileFormatError",
     "FrameExistsError",
@@ -32,8 +35,10 @@ __all__ = [
     "InvalidTimeError",
     "JointError",
     "JointLimitWarning",
+    "JointNotFoundError",
     "JointWithoutSamplesWarning",
     "ManifestWarning",
+    "NameNotFoundError",
     "PinframesError",
     "ReadError",
     "ReferenceTimeError",
@@ -41,8 +46,8 @@ __all__ = [
     "TreeStructureError",
     "UnsupportedFeatureError",
     "WriteError",
-    "caller_stacklevel",
     "near_misses",
+    "warn_at_caller",
 ]
 
 
@@ -56,9 +61,11 @@ class PinframesError(Exception):
     file : str or None
         The file the bad input came from.
     frame : str or None
-        The frame (or key, link, joint) concerned.
+        The frame (or key, link) concerned.
+    joint : str or None
+        The robot joint concerned (a joint trajectory's column, a URDF joint).
     field : str or None
-        The field within that frame, dotted for nested fields (``pose.yaw``).
+        The field within that frame or joint, dotted for nested fields (``pose.yaw``).
     """
 
     def __init__(
@@ -68,10 +75,12 @@ class PinframesError(Exception):
         file: str | os.PathLike[str] | None = None,
         frame: str | None = None,
         field: str | None = None,
+        joint: str | None = None,
     ) -> None:
         self.message = message
         self.file = os.fspath(file) if file is not None else None
         self.frame = frame
+        self.joint = joint
         self.field = field
         super().__init__(str(self))
 
@@ -81,6 +90,8 @@ class PinframesError(Exception):
             parts.append(self.file)
         if self.frame is not None:
             parts.append(f"frame {self.frame!r}")
+        if self.joint is not None:
+            parts.append(f"joint {self.joint!r}")
         if self.field is not None:
             parts.append(f"field {self.field!r}")
         parts.append(self.message)
@@ -92,6 +103,7 @@ class PinframesError(Exception):
         file: str | os.PathLike[str] | None = None,
         frame: str | None = None,
         field: str | None = None,
+        joint: str | None = None,
     ) -> PinframesError:
         """Return a copy of this error with missing location parts filled in."""
         return type(self)(
@@ -99,11 +111,17 @@ class PinframesError(Exception):
             file=self.file if self.file is not None else file,
             frame=self.frame if self.frame is not None else frame,
             field=self.field if self.field is not None else field,
+            joint=self.joint if self.joint is not None else joint,
         )
 
 
-class FrameNotFoundError(PinframesError, KeyError):
-    """A frame (or joint) name that the tree does not hold."""
+class NameNotFoundError(PinframesError, KeyError):
+    """A name the tree does not hold: a frame, a robot joint or a data set. Every lookup
+    that misses raises one of its kinds below; catch this class (or ``KeyError``) for all."""
+
+
+class FrameNotFoundError(NameNotFoundError):
+    """A frame name that the tree does not hold."""
 
 
 class FrameExistsError(PinframesError, ValueError):
@@ -138,6 +156,16 @@ class ExtrapolationError(PinframesError, ValueError):
 
 class JointError(PinframesError, ValueError):
     """A robot joint that is unknown, mis-specified or driven with bad values."""
+
+
+class JointNotFoundError(NameNotFoundError, JointError):
+    """A robot joint name that the tree does not hold: a :class:`NameNotFoundError` (a
+    ``KeyError``) like every missed lookup, and still a :class:`JointError` (a
+    ``ValueError``), which unknown joint names raised before."""
+
+
+class DataNotFoundError(NameNotFoundError):
+    """A data set name that no frame of the tree holds."""
 
 
 class TargetNotReachedError(PinframesError, ValueError):
@@ -187,14 +215,16 @@ def near_misses(name: object, known: Iterable[str], kind: str = "frame") -> str:
     return f"; did you mean {kind} " + " or ".join(repr(match) for match in matches) + "?"
 
 
-def caller_stacklevel() -> int:
-    """The ``stacklevel`` for a warning given in the function that calls this one: it points
-    at the first caller outside pinframes, however deep inside pinframes the warning arose."""
-    frame: FrameType | None = sys._getframe(2)
+def warn_at_caller(message: str, category: type[Warning] = UserWarning) -> None:
+    """Warn about the line that called pinframes: the warning's file and line are those of
+    the first frame outside the ``pinframes`` package (however deep inside pinframes the
+    warning arises), so that Python shows the user's line and filters on it work."""
+    frame: FrameType | None = sys._getframe(1)  # the function that warns: stacklevel 2
     level = 2
-    while frame is not None and frame.f_globals.get("__name__", "").startswith("pinframes."):
+    while frame is not None and frame.f_globals.get("__name__", "").partition(".")[0] == (
+            "pinframes"):
         frame, level = frame.f_back, level + 1
-    return level
+    warnings.warn(message, category, stacklevel=level)
 
 
 class JointLimitWarning(UserWarning):

@@ -18,12 +18,11 @@ kept. ``pandas.read_json(path, lines=True)`` reads it as a table.
 from __future__ import annotations
 
 import json
-import warnings
 from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
-from ..errors import ManifestWarning
+from ..errors import ManifestWarning, warn_at_caller
 from ..formats.atomic import atomic_write
 
 __all__ = ["MANIFEST_NAME", "Manifest"]
@@ -49,12 +48,12 @@ class Manifest:
                 else:
                     self.records[record["run"]] = record
         if self.skipped_lines:
-            warnings.warn(ManifestWarning(
+            warn_at_caller(
                 f"{self.path}: line{'s' if len(self.skipped_lines) > 1 else ''} "
                 f"{', '.join(map(str, self.skipped_lines))} "
                 f"{'are' if len(self.skipped_lines) > 1 else 'is'} no run record (torn by "
                 "an interrupted batch, or edited): skipped, so those runs are computed "
-                "again"), stacklevel=2)
+                "again", ManifestWarning)
 
     def append(self, record: dict[str, Any]) -> None:
         """Add ``record`` to the file at once (and to :attr:`records`), on a line of its

@@ -8,11 +8,11 @@ frames are left out with a :class:`GeometryWarning` naming them, and the rest is
 
 from __future__ import annotations
 
-import warnings
 from collections.abc import Sequence
 
 import numpy as np
 
+from ..errors import warn_at_caller
 from ._geometry import GeometryWarning, LinkGeometry
 
 __all__ = ["MAX_DRAWN_DISTANCE_M", "drawable", "drawable_frames", "drawable_geometry"]
@@ -62,4 +62,4 @@ def drawable_geometry(geometry: Sequence[LinkGeometry], frames: dict[str, np.nda
 
 
 def _warn(message: str) -> None:
-    warnings.warn(GeometryWarning(message), stacklevel=4)
+    warn_at_caller(message, GeometryWarning)

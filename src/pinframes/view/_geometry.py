@@ -12,16 +12,17 @@ asked for.
 
 from __future__ import annotations
 
+import logging
 import os
-import warnings
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from ..errors import UnsupportedFeatureError, caller_stacklevel
+from ..errors import UnsupportedFeatureError, warn_at_caller
 from ..formats.limits import Limits, current_limits, reader_with_limits
 from ..kinematics.mesh_files import (
     HOW_TO_SEARCH,
@@ -193,9 +194,8 @@ def _colours(mesh: Any, shape: Shape) -> np.ndarray:
 
 
 def _warn(recorded: FrameGeometry, problem: str, what: str = "mesh") -> None:
-    warnings.warn(GeometryWarning(f"{recorded.urdf or '<urdf string>'}: link "
-                                  f"{recorded.link!r}: {problem}; the link is drawn without "
-                                  f"that {what}"), stacklevel=caller_stacklevel())
+    warn_at_caller(f"{recorded.urdf or '<urdf string>'}: link {recorded.link!r}: {problem}; "
+                   f"the link is drawn without that {what}", GeometryWarning)
 
 
 def _trimesh() -> Any:

@@ -170,7 +170,7 @@ def _closest_pair(tree: FrameTree, sides: tuple[Any, Any],
                             package_dirs=package_dirs)
     root_in_drawing = _pose(tree, tree.root, relative_to, values, time_ref)
     # (T, 3): one point per time through a moving pose, or each point through a static one
-    points = [root_in_drawing.transform_points(points)
+    points = [root_in_drawing.transform_points(points, per_time=True)
               for points in (result.point_a, result.point_b)]
     names, pairs = np.unique(result.closest, return_inverse=True)
     return points[0], points[1], {

@@ -11,12 +11,11 @@ from __future__ import annotations
 
 import math
 import os
-import warnings
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ...errors import FileFormatError, FramesYamlWarning, caller_stacklevel
+from ...errors import FileFormatError, FramesYamlWarning, warn_at_caller
 from .._yaml_loader import KeyPath, load_yaml
 
 __all__ = [
@@ -230,7 +229,7 @@ def tile_maps_beside(file: str | os.PathLike[str]) -> Path:
 def warn_layer(file: str, frame: str | None, message: str) -> None:
     """Warn with a :class:`FramesYamlWarning` that names the file and frame."""
     where = f"{file}: frame {frame!r}" if frame is not None else file
-    warnings.warn(f"{where}: {message}", FramesYamlWarning, stacklevel=caller_stacklevel())
+    warn_at_caller(f"{where}: {message}", FramesYamlWarning)
 
 
 def _kind(value: Any) -> str:

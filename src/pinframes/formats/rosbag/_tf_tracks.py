@@ -14,14 +14,13 @@
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
 
-from ...errors import BagWarning, TreeStructureError
+from ...errors import BagWarning, TreeStructureError, warn_at_caller
 from ...values.timeconv import format_timestamp_iso
 from ..limits import current_limits, exceeded
 from ._tf_messages import TransformColumns
@@ -144,8 +143,8 @@ def _accepted_by_tf2(names: list[str], parents: NDArray[np.int64],
                           f"{names[int(children[np.argmax(mask)])]!r})")
         refused |= mask
     if counts:
-        warnings.warn(BagWarning(f"{file}: skipped transforms that tf2 refuses: "
-                                 + "; ".join(counts)), stacklevel=5)
+        warn_at_caller(f"{file}: skipped transforms that tf2 refuses: "
+                       + "; ".join(counts), BagWarning)
     return ~refused
 
 
@@ -173,7 +172,7 @@ def _check_one_parent(names: list[str], parents: NDArray[np.int64],
     both = np.flatnonzero(kinds[1:] // 2 == kinds[:-1] // 2)
     if both.size:
         raise TreeStructureError("published on both a static and a dynamic tf topic",
-                                 file=file, frame=names[int(kinds[both[0]] // 2)])
+                       file=file, frame=names[int(kinds[both[0]] // 2)])
 
 
 def stamp_iso(stamp_ns: int) -> str:
@@ -184,5 +183,5 @@ def stamp_iso(stamp_ns: int) -> str:
 def _warn_once(frames: list[str], what: str, file: Path) -> None:
     if frames:
         shown = ", ".join(repr(frame) for frame in frames[:5])
-        warnings.warn(BagWarning(f"{file}: {len(frames)} {what}: {shown}"
-                                 + (" ..." if len(frames) > 5 else "")), stacklevel=5)
+        warn_at_caller(f"{file}: {len(frames)} {what}: {shown}"
+                       + (" ..." if len(frames) > 5 else ""), BagWarning)

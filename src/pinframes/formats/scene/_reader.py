@@ -235,7 +235,7 @@ class _Scene:
                 known = ", ".join(sorted(joints)) or "none"
                 raise self._referenced(FileFormatError(
                     f"no joint {prefix + name!r} in the tree (joints: {known})", file=path,
-                    frame=name, field="header"), field)
+                    joint=name, field="header"), field)
         try:
             tree.set_joint_trajectory(times, positions, [prefix + name for name in names])
         except PinframesError as exc:
@@ -374,9 +374,13 @@ class _Scene:
                                   field=field) from None
 
     def _referenced(self, exc: PinframesError, field: str) -> PinframesError:
-        """``exc`` from a file this scene references, with a note saying which entry."""
-        return type(exc)(f"{exc.message} (referenced by {self.path}: {field})",
-                         file=exc.file, frame=exc.frame, field=exc.field)
+        """``exc`` from a file this scene references, with a note saying which entry (once:
+        an error this scene already noted keeps its note)."""
+        note = f" (referenced by {self.path}: "
+        if note in exc.message:
+            return exc
+        return type(exc)(f"{exc.message}{note}{field})", file=exc.file, frame=exc.frame,
+                         field=exc.field, joint=exc.joint)
 
 
 def _graft(tree: FrameTree, layer: FrameTree, mount: str, prefix: str) -> None:
