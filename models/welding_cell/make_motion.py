@@ -25,6 +25,12 @@ The cell (all lengths in metres, angles in radians, times in seconds, quaternion
   half circle ``centre + Ry(a) @ (0, 0, radius)`` with centre ``(0, 0, -radius)`` in
   ``weld_seam`` coordinates and travel angle ``a`` from 0 to pi, welded at constant travel
   speed over the 20 s.
+- ``seam_point``: the weld point, moving along the seam over the 20 s at the constant travel
+  speed (x travel direction, y pipe axis, z outward normal): a polyline of
+  ``SEAM_POINT_COUNT`` points on the half circle, one per robot sample
+  (``pinframes.Pose.along_curve``), within 0.04 micrometres of it.
+- ``torch_target``: the torch pose the cell is designed for, a static frame under
+  ``seam_point``: tip on the seam, 10 degree push angle, 90 degree work angle.
 - ``torch_tcp``: the tool centre point of a torch with a 22 degree neck, a static frame under
   the robot's ``flange``.
 
@@ -65,6 +71,7 @@ TORCH_NECK_ANGLE_RAD = math.radians(22.0)
 PUSH_ANGLE_RAD = math.radians(10.0)
 TORCH_ANGLE_START_RAD = math.radians(-25.0)  # seam point under the torch, from the pipe top
 TORCH_ANGLE_END_RAD = math.radians(25.0)
+SEAM_POINT_COUNT = 2001  # seam_point: one point per robot sample; chords 0.17 mm, sagitta 0.034 um
 ROBOT_PREFIX = "robot/"
 JOINT_NAMES = [f"joint_{i}" for i in range(1, 7)]
 IK_SEED = np.array([-0.4, 0.3, 0.2, 0.0, 1.0, 1.5])  # rad, elbow up, wrist bent down
@@ -149,6 +156,22 @@ def build_cell() -> dict:
             "workpiece", "positioner", [0.0, 0.0, SEAM_OFFSET_FROM_FACEPLATE_M], np.eye(3)
         ),
         _static_frame("weld_seam", "workpiece", [PIPE_RADIUS_M, 0.0, 0.0], seam_axes_in_workpiece),
+        {
+            "name": "seam_point",
+            "parent": "weld_seam",
+            "curve": {
+                "arc": {
+                    "centre_xyz": _round([0.0, 0.0, -PIPE_RADIUS_M]),
+                    "axis_xyz": [0.0, 1.0, 0.0],
+                    "start_xyz": [0.0, 0.0, 0.0],
+                    "angle": _round(math.pi),
+                    "count": SEAM_POINT_COUNT,
+                },
+                "duration_s": DURATION_S,
+            },
+        },
+        _static_frame("torch_target", "seam_point", [0.0, 0.0, 0.0],
+                      _torch_rotation_in_seam_point()),
         _static_frame(
             "torch_tcp", ROBOT_PREFIX + "flange", tcp_in_flange, pin.utils.rotate("x", neck)
         ),

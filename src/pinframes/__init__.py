@@ -42,6 +42,7 @@ from .kinematics import (
     PinocchioTree,
     Snapshot,
     Velocity,
+    WeldProcess,
 )
 from .tree import FrameTree
 from .values.geometry import FrameGeometry, Shape
@@ -99,6 +100,7 @@ __all__ = [
     "TreeStructureError",
     "UnsupportedFeatureError",
     "Velocity",
+    "WeldProcess",
     "WriteError",
     "__version__",
     "read",

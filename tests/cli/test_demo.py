@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import yaml
+from scipy.spatial.transform import Rotation
 
 from pinframes import read_scene
 from pinframes.cli.demo import bundled_scene
@@ -38,6 +39,9 @@ def test_bundled_scene_matches_cell_description():
         name = frame["name"]
         assert tree.parent(name) == frame["parent"]
         pose = tree.local_pose(name)
+        if "curve" in frame:
+            check_arc_frame(pose, frame["curve"])
+            continue
         np.testing.assert_array_equal(np.atleast_2d(pose.translation),
                                       np.atleast_2d(frame["xyz"]).repeat(len(pose), axis=0))
         if "keyframes" in frame:
@@ -59,6 +63,53 @@ def test_bundled_scene_matches_cell_description():
         np.testing.assert_array_equal(track.times, np.round(motion[:, 0] * 1e9))
 
 
+def check_arc_frame(pose, curve):
+    """A frame along an arc of cell_design.yaml: points on the arc at equal steps of time, x
+    the tangent (at the two ends the parabola's through the last three points: equal chords,
+    4 p1 - 3 p0 - p2), z away from the centre."""
+    arc = curve["arc"]
+    count, axis = arc["count"], np.array(arc["axis_xyz"])
+    centre, start = np.array(arc["centre_xyz"]), np.array(arc["start_xyz"])
+    angles = np.linspace(0.0, arc["angle"], count)
+    turns = Rotation.from_rotvec(angles[:, None] * axis).as_matrix()
+    points = centre + turns @ (start - centre)
+    np.testing.assert_array_equal(pose.times.astype(np.int64),
+                                  np.round(np.linspace(0.0, curve["duration_s"], count) * 1e9))
+    np.testing.assert_allclose(pose.translation, points, atol=1e-14)
+    tangents = np.cross(axis, points - centre)
+    tangents[0] = 4 * points[1] - 3 * points[0] - points[2]
+    tangents[-1] = 3 * points[-1] - 4 * points[-2] + points[-3]
+    tangents /= np.linalg.norm(tangents, axis=1)[:, None]
+    np.testing.assert_allclose(pose.rotation[:, :, 0], tangents, atol=1e-12)
+    outward = (points - centre) / np.linalg.norm(points - centre, axis=1)[:, None]
+    outward -= np.sum(outward * tangents, axis=1)[:, None] * tangents
+    outward /= np.linalg.norm(outward, axis=1)[:, None]
+    np.testing.assert_allclose(pose.rotation[:, :, 2], outward, atol=1e-12)
+
+
+def test_seam_point_rides_the_seam_at_the_travel_speed():
+    """seam_point stays within a few micrometres of the design seam, and the torch_target
+    above it has the design torch rotation."""
+    cell = yaml.safe_load((MODELS / "welding_cell" / "cell_design.yaml").read_text())
+    seam = cell["seam"]
+    tree = read_scene(MODELS / "welding_cell" / "scene.yaml")
+    times = np.linspace(0.0, DURATION, 20_001)
+    pose = tree.pose("seam_point", relative_to=seam["frame"], times=times)
+    angle = np.pi * times / DURATION
+    on_seam = np.column_stack([RADIUS * np.sin(angle), np.zeros_like(angle),
+                               RADIUS * np.cos(angle) - RADIUS])
+    gap = np.linalg.norm(pose.translation - on_seam, axis=1)
+    assert gap.max() < 4e-8  # the sagitta of a 0.17 mm chord: r (1 - cos(pi / 4000))
+    assert seam["radius"] == RADIUS and seam["end_time_s"] == DURATION
+    design = tree.pose("torch_target", relative_to="seam_point").rotation
+    x, y, z, w = cell["torch"]["tcp_quat_xyzw_in_seam_point"]
+    np.testing.assert_allclose(design, Rotation.from_quat([x, y, z, w]).as_matrix(),
+                               atol=1e-11)
+    wire = design[:, 2]
+    np.testing.assert_allclose(wire, [np.sin(np.radians(10)), 0.0, -np.cos(np.radians(10))],
+                               atol=1e-11)  # 10 degrees ahead, square across the seam
+
+
 def test_demo_prints_summary_and_writes_csv_and_png(run_cli, tmp_path):
     result = run_cli("demo", "--out", "results", cwd=tmp_path)
     assert result.returncode == 0, result.stderr
@@ -75,6 +126,18 @@ def test_demo_prints_summary_and_writes_csv_and_png(run_cli, tmp_path):
     # linear joint interpolation between them speeds the tip up by at most 0.1 %
     fastest = float(summary["max travel speed"].removesuffix(" mm/s"))
     assert 1000 * seam_length / DURATION <= fastest <= 1.001 * 1000 * seam_length / DURATION
+    # the welding process along seam_point: the ranges of speed, angles and offset
+    def span(name, unit):
+        low, high = summary[name].removesuffix(f" {unit}").split(" .. ")
+        return float(low), float(high)
+
+    design_speed = 1000 * seam_length / DURATION
+    assert design_speed * 0.999 <= span("travel speed", "mm/s")[0]
+    assert span("travel speed", "mm/s")[1] <= design_speed * 1.001
+    assert span("travel angle", "deg") == (10.0, 10.0)
+    assert span("work angle", "deg") == (90.0, 90.0)
+    for name in ("offset along", "offset across", "offset normal"):
+        assert span(name, "mm") == (0.0, 0.0)
 
     text = (tmp_path / "results" / "torch_poses.csv").read_text()
     assert text.startswith("time_s,x_m,y_m,z_m,qx,qy,qz,qw\n")

@@ -146,6 +146,103 @@ def test_reference_times(tmp_path):
     np.testing.assert_allclose(cart.translation, [[0.5, 0.0, 0.0]], atol=1e-12)
 
 
+def test_curve_frames_from_points_and_from_an_arc(tmp_path):
+    """A curve entry is Pose.along_curve: points with normals, or an arc's points with normals
+    away from its centre; timed by speed, duration or times."""
+    path = scene_file(tmp_path, """\
+        pinframes_scene: 1
+        reference_time: 2024-03-01T08:00:00
+        frames:
+          - name: bend
+            parent: world
+            curve:
+              points: [[0, 0, 0], [3, 4, 0], [3, 4, 12]]
+              normals: [[0, 0, 1], [0, 0, 1], [1, 0, 0]]
+              speed: 2.0
+          - name: flat
+            parent: world
+            reference_time: 2024-03-01T08:00:10
+            curve: {points: [[0, 0, 0], [1, 0, 0]], normals: [0, 0, 1], times: [0, 4s]}
+          - name: girth
+            parent: world
+            curve:
+              arc: {centre: [1, 0, 0], axis: [0, 0, 2], start: [1, -2, 5], angle: 1.5,
+                    count: 4}
+              duration: 3
+        """)
+    tree = read_scene(path)
+    bend = tree.local_pose("bend")
+    np.testing.assert_allclose(bend.seconds, [0.0, 2.5, 8.5], atol=1e-12)
+    np.testing.assert_allclose(bend.rotation[1, :, 0], np.array([3, 4, 12]) / 13, atol=1e-15)
+    flat = tree.pose("flat", times=[np.datetime64("2024-03-01T08:00:11")])
+    np.testing.assert_allclose(flat.translation, [[0.25, 0.0, 0.0]], atol=1e-15)
+    np.testing.assert_allclose(flat.rotation[0], np.eye(3), atol=1e-15)
+    # a circle of radius 2 about the line x = 1, y = 0 in the plane z = 5: angles -90 deg,
+    # -60, -30, 0 at 0, 1, 2, 3 s; equal chords, so one second each
+    girth = tree.local_pose("girth")
+    angles = -np.pi / 2 + np.array([0.0, 0.5, 1.0, 1.5])
+    outward = np.column_stack([np.cos(angles), np.sin(angles), np.zeros(4)])
+    np.testing.assert_allclose(girth.seconds, [0.0, 1.0, 2.0, 3.0], atol=1e-9)
+    np.testing.assert_allclose(girth.translation, [1, 0, 5] + 2 * outward, atol=1e-15)
+    np.testing.assert_allclose(girth.rotation[1:3, :, 2], outward[1:3], atol=1e-15)
+    tangent = np.column_stack([-np.sin(angles), np.cos(angles), np.zeros(4)])
+    np.testing.assert_allclose(girth.rotation[1:3, :, 0], tangent[1:3], atol=1e-15)
+
+
+_CURVE = "pinframes_scene: 1\nframes:\n- name: c\n  parent: world\n  curve: "
+
+
+@pytest.mark.parametrize(
+    ("curve", "expected"),
+    [
+        ("{points: [[0, 0, 0], [1, 0, 0], [1, 0, 0]], normals: [0, 0, 1], speed: 1}",
+         "field 'frames[0].curve.points[2]': point 2 repeats point 1"),
+        ("{points: [[0, 0, 0], [1, 0, 0]], normals: [[0, 0, 1], [1, 0, 0]], speed: 1}",
+         "field 'frames[0].curve.normals[1]': the normal of point 1 is parallel"),
+        ("{points: [[0, 0, 0], [1, 0, 0]], normals: [0, 0, 1], times: [1, 0]}",
+         "field 'frames[0].curve.times[1]'"),
+        ("{points: [[0, 0, 0], [1, 0, 0]], speed: 1}", "field 'frames[0].curve.normals': "
+         "missing"),
+        ("{points: [[0, 0, 0], [1, 0]], normals: [0, 0, 1], speed: 1}",
+         "field 'frames[0].curve.points[1]': expected a list of 3 numbers"),
+        ("{points: [[0, 0, 0], [1, 0, 0]], normals: [0, 0, 1]}",
+         "field 'frames[0].curve': give one of speed"),
+        ("{points: [[0, 0, 0], [1, 0, 0]], normals: [0, 0, 1], speed: 1, duration: 1}",
+         "field 'frames[0].curve': give one of speed"),
+        ("{points: [[0, 0, 0], [1, 0, 0]], normals: [0, 0, 1], speed: -1}",
+         "field 'frames[0].curve.speed': expected a positive number"),
+        ("{points: [[0, 0, 0], [1, 0, 0]], normals: [0, 0, 1], duration: .inf}",
+         "field 'frames[0].curve.duration': the value must be finite"),
+        ("{speed: 1}", "field 'frames[0].curve': give either points (with normals) or arc"),
+        ("{arc: {centre: [0, 0, 0], axis: [0, 0, 1], start: [1, 0, 0], angle: 1, count: 1}, "
+         "speed: 1}", "field 'frames[0].curve.arc.count': expected a whole number"),
+        ("{arc: {centre: [0, 0, 0], axis: [0, 0, 1], start: [0, 0, 1], angle: 1, count: 9}, "
+         "speed: 1}", "field 'frames[0].curve.arc': the arc has no length"),
+        ("{arc: {centre: [0, 0, 0], axis: [0, 0, 0], start: [1, 0, 0], angle: 1, count: 9}, "
+         "speed: 1}", "field 'frames[0].curve.arc.axis': the axis must not be zero"),
+        ("{arc: {centre: [0, 0, 0], axis: [0, 0, 1], angle: 1, count: 9}, speed: 1}",
+         "field 'frames[0].curve.arc.start': missing"),
+        ("{arc: {centre: [0, 0, 0], axis: [0, 0, 1], start: [1, 0, 0], angle: x, count: 9}, "
+         "speed: 1}", "field 'frames[0].curve.arc.angle': expected a number"),
+        ("{arc: {centre: [0, 0, 0], axis: [0, 0, 1], start: [1, 0, 0], angle: 1, count: 9}, "
+         "normals: [0, 0, 1], speed: 1}", "field 'frames[0].curve.normals': an arc's normals"),
+        ("{points: [[0, 0, 0], [1, 0, 0]], normals: [0, 0, 1], speed: 1, tilt: 2}",
+         "field 'frames[0].curve': unknown key(s) tilt"),
+        ("{points: [[0, 0, 0], [1, 0, 0]], normals: [0, 0, 1], speed: 1}\n  xyz: [0, 0, 1]",
+         "field 'frames[0].curve': a curve frame takes its pose from the curve"),
+        ("{points: [[0, 0, 0], [1, 0, 0]], normals: [0, 0, 1], speed: 1}\n  keyframes: "
+         "[{time: 0}]", "field 'frames[0].curve': give either keyframes or curve"),
+    ],
+)
+def test_malformed_curves_name_the_entry_the_field_and_the_point(tmp_path, curve, expected):
+    path = scene_file(tmp_path, _CURVE + curve + "\n")
+    with pytest.raises(FileFormatError) as caught:
+        read_scene(path)
+    message = str(caught.value)
+    assert message.startswith(f"{path}: frame 'c': "), message
+    assert expected in message, message
+
+
 @pytest.mark.parametrize(
     ("text", "error", "expected"),
     [

@@ -165,15 +165,38 @@ def test_cell_frames_form_a_tree_with_unit_quaternions(cell, frames, urdf):
         assert entry["parent"] in known, entry["name"]
         assert entry["name"] not in known, entry["name"]
         known.add(entry["name"])
+        if "curve" in entry:
+            continue  # its pose comes from the curve (test_seam_point_follows_the_seam)
         assert len(entry["xyz"]) == 3
         quats = entry["keyframes"]["quat_xyzw"] if "keyframes" in entry else [entry["quat_xyzw"]]
         np.testing.assert_allclose(np.linalg.norm(quats, axis=1), 1.0, atol=1e-11)
-    for name in ("robot_base", "positioner_base", "positioner", "workpiece", "weld_seam"):
+    for name in ("robot_base", "positioner_base", "positioner", "workpiece", "weld_seam",
+                 "seam_point", "torch_target"):
         assert name in frames
     assert frames["torch_tcp"]["parent"] == prefix + "flange"
     assert cell["robot"]["mount_frame"] == "robot_base"
     assert (CELL_DIR / cell["robot"]["urdf"]).resolve() == URDF_PATH
     assert cell["robot"]["joint_trajectory"] == "robot_motion.csv"
+
+
+def test_seam_point_follows_the_seam_and_torch_target_is_the_design_torch(cell, frames):
+    """seam_point's arc is the seam of the design, swept over its times; torch_target sits on
+    it with the design torch rotation."""
+    seam, seam_point = cell["seam"], frames["seam_point"]
+    assert seam_point["parent"] == seam["frame"]
+    arc, duration = seam_point["curve"]["arc"], seam_point["curve"]["duration_s"]
+    assert duration == seam["end_time_s"] - seam["start_time_s"] and seam["start_time_s"] == 0
+    assert arc["centre_xyz"] == seam["centre_xyz"] and arc["axis_xyz"] == seam["axis_xyz"]
+    assert arc["angle"] == seam["end_angle"] - seam["start_angle"]
+    start = np.asarray(seam["centre_xyz"]) + _axis_angle(seam["axis_xyz"], seam["start_angle"]) @ [
+        0.0, 0.0, seam["radius"]]
+    np.testing.assert_allclose(arc["start_xyz"], start, atol=1e-15)
+    # a chord of the polyline passes r (1 - cos(step / 2)) inside the circle: under a few um
+    step = arc["angle"] / (arc["count"] - 1)
+    assert seam["radius"] * (1 - np.cos(step / 2)) < 2.5e-6
+    target = frames["torch_target"]
+    assert target["parent"] == "seam_point" and target["xyz"] == [0.0, 0.0, 0.0]
+    assert target["quat_xyzw"] == cell["torch"]["tcp_quat_xyzw_in_seam_point"]
 
 
 def test_positioner_keyframes_turn_about_one_horizontal_axis(frames):

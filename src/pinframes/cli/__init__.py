@@ -19,11 +19,12 @@ from dataclasses import fields
 from .. import __version__
 from ..errors import PinframesError
 from ..formats.limits import Limits, using_limits
-from . import batch, clearance, convert, demo, info, plot, pose, solve, transform, view
+from . import batch, clearance, convert, demo, info, plot, pose, process, solve, transform, view
 
 __all__ = ["main"]
 
-_SUBCOMMANDS = (demo, info, pose, transform, solve, clearance, convert, plot, view, batch)
+_SUBCOMMANDS = (demo, info, pose, transform, process, solve, clearance, convert, plot, view,
+                batch)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

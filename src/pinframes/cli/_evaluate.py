@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 from collections.abc import Callable
-from typing import Any, TextIO
+from typing import Any, TextIO, TypeVar
 
 import numpy as np
 
@@ -21,8 +21,10 @@ from ..values.timeconv import (
     timestamp_ns,
 )
 
-__all__ = ["ProgressBar", "add_time_arguments", "evaluate_poses", "pose_velocity",
+__all__ = ["ProgressBar", "add_time_arguments", "evaluate_poses", "in_chunks", "pose_velocity",
            "requested_times", "terminal_stderr", "times_from_options"]
+
+Result = TypeVar("Result")
 
 CHUNK_SIZE = 20_000
 """Times evaluated per call; the progress bar moves once per chunk."""
@@ -127,18 +129,27 @@ def evaluate_poses(tree: FrameTree, frame: str, relative_to: str, times: TimeAxi
         if times is None:
             return tree.pose(frame, relative_to=relative_to)
         time_ref = times.reference
+    parts = in_chunks(lambda values: tree.pose(frame, relative_to, values, time_ref), times,
+                      progress)
+    return parts[0] if len(parts) == 1 else _concatenate(parts)
+
+
+def in_chunks(query: Callable[[np.ndarray], Result], times: TimeAxis,
+              progress: TextIO | None) -> list[Result]:
+    """``query(values)`` for consecutive chunks of at most :data:`CHUNK_SIZE` of ``times``
+    (``timedelta64`` values, or ``datetime64`` with a reference), with a progress bar on
+    ``progress`` (a terminal) when there is more than one chunk."""
     values = times.as_numpy()
     count = values.shape[0]
     bar = ProgressBar(progress, count) if progress is not None and count > CHUNK_SIZE else None
     parts = []
     for start in range(0, count, CHUNK_SIZE):
-        parts.append(tree.pose(frame, relative_to=relative_to,
-                               times=values[start:start + CHUNK_SIZE], time_ref=time_ref))
+        parts.append(query(values[start:start + CHUNK_SIZE]))
         if bar is not None:
             bar.update(min(start + CHUNK_SIZE, count))
     if bar is not None:
         bar.close()
-    return parts[0] if len(parts) == 1 else _concatenate(parts)
+    return parts
 
 
 def pose_velocity(tree: FrameTree, pose: Pose, frame: str, relative_to: str,

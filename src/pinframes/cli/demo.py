@@ -11,12 +11,13 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import FileFormatError, UnsupportedFeatureError, WriteError
-from ..kinematics import Velocity
+from ..kinematics import Velocity, WeldProcess
 from ..plotting import new_figure, plot_frames, plotting_available, robot_frames, save_figure
 from ..tree import FrameTree
 from ..values.pose import Pose
 from ..view import write_view
 from ._cell_clearance import clearance_lines
+from ._demo_process import DEFAULT_SEAM, demo_process, plot_process, process_table
 from ._evaluate import evaluate_poses, pose_velocity, terminal_stderr
 from ._files import read_tree, require_frames
 from ._output import write_poses
@@ -41,6 +42,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "demo", parents=parents, help="torch path of the bundled welding cell",
         description="Load the bundled welding cell (robot, positioner, workpiece), compute "
         "the pose of the torch tip relative to the workpiece at every sample of the motion, "
+        "and the welding process along the seam (travel speed, torch angles, offset), "
         f"print a summary and write the poses ({POSES_FILE}), a plot ({PLOT_FILE}; needs "
         f"pinframes[plot]) and an animated 3-D page of the whole run ({VIEW_FILE}; needs "
         "pinframes[view]).")
@@ -54,6 +56,9 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         help="the tool frame (default: torch_tcp)")
     parser.add_argument("--workpiece", default="workpiece", metavar="FRAME",
                         help="the frame the tool poses are expressed in (default: workpiece)")
+    parser.add_argument("--seam", metavar="FRAME",
+                        help=f"the seam frame of the welding process (default: {DEFAULT_SEAM} "
+                        "when the scene has it, else no process)")
     parser.set_defaults(run=run)
 
 
@@ -119,6 +124,7 @@ def run(args: argparse.Namespace) -> int:
                               file=scene)
     velocity = pose_velocity(tree, pose, args.tool, args.workpiece)
     summary = summarize(pose, velocity)
+    process = demo_process(tree, scene, args.tool, args.workpiece, args.seam)
     out = Path(args.out)
     try:
         out.mkdir(exist_ok=True)  # the output folder itself, never its parents
@@ -129,7 +135,8 @@ def run(args: argparse.Namespace) -> int:
     written = [out / POSES_FILE]
     missing = []
     if plotting_available():
-        _plot(tree, pose, velocity, summary, args.tool, args.workpiece, out / PLOT_FILE)
+        _plot(tree, pose, velocity, summary, args.tool, args.workpiece, out / PLOT_FILE,
+              process)
         written.append(out / PLOT_FILE)
     else:
         missing.append(f'no plot: pip install "pinframes[plot]" adds matplotlib, and the demo '
@@ -142,6 +149,8 @@ def run(args: argparse.Namespace) -> int:
     print(f"{args.tool} relative to {args.workpiece} ({scene.name})")
     table = summary.table()
     sys.stdout.write(table)
+    if process is not None:
+        sys.stdout.write(process_table(process, len("seam length travelled")))
     sys.stdout.write(clearance_lines(tree))
     sys.stdout.write(_reached_row(tree, args.tool, table))
     print(f"pinframes: wrote {', '.join(map(str, written))}", file=sys.stderr)
@@ -152,9 +161,10 @@ def run(args: argparse.Namespace) -> int:
 
 def _reached_row(tree: FrameTree, tool: str, table: str) -> str:
     """A row for the summary ``table``: of the samples at which ``solve_joints`` puts
-    ``tool`` on the cell's ``torch_target``, how many it reaches ("" without that frame)."""
-    if TARGET_FRAME not in tree or tool not in tree:
-        return ""
+    ``tool`` on the cell's ``torch_target``, how many it reaches ("" without that frame or
+    without robot joints)."""
+    if TARGET_FRAME not in tree or tool not in tree or not tree.joints:
+        return ""  # no target, or no joints to solve (the cell written as ASDF keeps none)
     solution = tree.solve_joints(tool, TARGET_FRAME)
     name, value = table.splitlines()[0].split("  ", 1)
     column = len(name) + len(value) - len(value.lstrip())  # where the table's values start
@@ -163,9 +173,9 @@ def _reached_row(tree: FrameTree, tool: str, table: str) -> str:
 
 
 def _plot(tree: FrameTree, pose: Pose, velocity: Velocity, summary: PathSummary, tool: str,
-          workpiece: str, path: Path) -> None:
-    figure = new_figure(13.0, 6.5)
-    grid = figure.add_gridspec(2, 2, width_ratios=(1.15, 1.0))
+          workpiece: str, path: Path, process: WeldProcess | None) -> None:
+    figure = new_figure(13.0, 6.5 if process is None else 11.0)
+    grid = figure.add_gridspec(2 if process is None else 4, 2, width_ratios=(1.15, 1.0))
     cell = figure.add_subplot(grid[:, 0], projection="3d")
     robot = robot_frames(tree)
     labelled = [frame for frame in tree.frames if frame not in robot and frame != tool]
@@ -191,5 +201,7 @@ def _plot(tree: FrameTree, pose: Pose, velocity: Velocity, summary: PathSummary,
     speed.set_ylabel("travel speed [mm/s]")
     speed.set_title(f"{tool} speed relative to the {workpiece}")
     speed.legend(loc="upper right")
+    if process is not None:
+        plot_process(figure, speed, grid[2, 1], grid[3, 1], process)
     save_figure(figure, path)
 

@@ -2,8 +2,9 @@
 
 The queries, one public module each: :mod:`.pose` (``FrameTree.pose``, ``sample_times``),
 :mod:`.poses` (many pairs in one call), :mod:`.snapshot` (the whole tree at one instant),
-:mod:`.velocity`, :mod:`.jacobian`, :mod:`.pinocchio_tree` (``to_pinocchio``) and
-:mod:`.solve_joints` (inverse kinematics along a path, returning :mod:`.joint_solution`). Their
+:mod:`.velocity`, :mod:`.jacobian`, :mod:`.weld_process` (the welding process along a seam),
+:mod:`.pinocchio_tree` (``to_pinocchio``) and :mod:`.solve_joints` (inverse kinematics along
+a path, returning :mod:`.joint_solution`). Their
 steps are the ``_`` modules: the frozen tree (``_description``), its compiled path
 (``_model``), path preparation (``_path``), the query's times (``_times``), joint sampling
 (``_sampling``), the one-time path (``_one_time``), for velocities and Jacobians the
@@ -24,6 +25,7 @@ from .poses import evaluate_poses
 from .snapshot import Snapshot, snapshot
 from .solve_joints import evaluate_solve_joints
 from .velocity import Velocity, evaluate_velocity
+from .weld_process import WeldProcess, evaluate_weld_process
 
 __all__ = [
     "Clearance",
@@ -33,6 +35,7 @@ __all__ = [
     "Snapshot",
     "TreeDescription",
     "Velocity",
+    "WeldProcess",
     "clearance_times",
     "default_times",
     "evaluate_clearance",
@@ -41,6 +44,7 @@ __all__ = [
     "evaluate_poses",
     "evaluate_solve_joints",
     "evaluate_velocity",
+    "evaluate_weld_process",
     "paths_to_common_ancestor",
     "snapshot",
 ]

@@ -34,6 +34,7 @@ from ..kinematics import (
     PinocchioTree,
     Snapshot,
     Velocity,
+    WeldProcess,
     clearance_times,
     default_times,
     evaluate_clearance,
@@ -42,6 +43,7 @@ from ..kinematics import (
     evaluate_poses,
     evaluate_solve_joints,
     evaluate_velocity,
+    evaluate_weld_process,
     paths_to_common_ancestor,
     snapshot,
 )
@@ -230,6 +232,36 @@ class TreeQueries(TreeStructure):
         _require_finite(velocity.linear, "linear", what, frame)
         _require_finite(velocity.angular, "angular", what, frame)
         return velocity
+
+    def weld_process(
+        self, torch: str, seam: str, *, times: Any = None, time_ref: Any = None,
+        workpiece: str | None = None, contact_tip: str | None = None,
+        extrapolation: str = "clamp",
+    ) -> WeldProcess:
+        """The welding process ``torch`` produces along ``seam``, per sample (SPEC section 9).
+
+        ``seam`` is a frame at the weld point with x along the travel direction and z the
+        surface normal out of the material (:meth:`Pose.along_curve` makes one); ``torch``
+        the tool centre point whose z axis is the wire axis, pointing toward the work.
+        Returns the travel speed (m/s, relative to ``workpiece``, default the seam's
+        parent), the travel angle (rad, positive push) and work angle (rad, pi/2 square to
+        the surface) of the wire axis, the torch origin in seam axes (m) and, when
+        ``contact_tip`` names a frame, the contact tip to work distance (m). Times as
+        :meth:`pose` of ``torch`` in ``seam`` (arguments as there); the speed is exact, from
+        :meth:`velocity`. Turning the torch about its own axis changes none of these.
+        """
+        self._require(torch, "torch")
+        self._require(seam, "seam")
+        if workpiece is None:
+            workpiece = self._parent.get(seam)
+            if workpiece is None:
+                raise TreeStructureError("the seam is the root frame, which has no parent; "
+                                         "pass workpiece", frame=seam, field="workpiece")
+        self._require(workpiece, "workpiece")
+        if contact_tip is not None:
+            self._require(contact_tip, "contact_tip")
+        return evaluate_weld_process(self._frozen(), torch, seam, times, time_ref,
+                                     extrapolation, workpiece, contact_tip)
 
     def jacobian(
         self, frame: str, relative_to: str | None = None, times: Any = None,

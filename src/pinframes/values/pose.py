@@ -15,6 +15,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import InvalidPoseError, InvalidTimeError, ReferenceTimeError
 from ._readonly import readonly
 from ._transform_data import transform_data
+from .curve_frames import curve_rotations, length_along_polyline
 from .euler import euler_from_matrix, matrix_from_euler
 from .interpolation import Keyframes
 from .numbers import float_array, require_finite_result
@@ -202,6 +203,54 @@ class Pose:
             raise InvalidPoseError(str(exc), field=",".join(named)) from None
         return cls((0.0, 0.0, 0.0) if translation is None else translation, rotation,
                    times, reference_time)
+
+    @classmethod
+    def along_curve(
+        cls, points: ArrayLike, normals: ArrayLike, *, speed: float | None = None,
+        times: Any = None, reference_time: Any = None,
+    ) -> Pose:
+        """A pose moving along the polyline ``points`` (N, 3), metres (or a pint length):
+        a seam frame. ``speed`` in m/s (or a pint speed).
+
+        Axes at each point: x the travel direction (central difference of the neighbours;
+        at the ends the one-sided difference of the same order, the parabola through the
+        first or last three points), z the point's ``normals`` row ((N, 3), or one (3,)
+        normal for all) made perpendicular to x, y = z x x. Give exactly one of ``speed`` (m/s: the
+        first point at time 0, each next one after its distance along the polyline) and
+        ``times`` (one per point, strictly increasing; any time form, with
+        ``reference_time`` as for :class:`Pose`). Between points the pose moves as every
+        pose does: the origin linearly, the axes by SLERP.
+
+        Raises :class:`~pinframes.errors.InvalidPoseError` naming the point (``points[3]``,
+        ``normals[3]``, ``times[3]``): fewer than 2 points, a point repeating the one before
+        it, a curve turning back on itself, a normal parallel to the travel direction, times
+        that do not increase.
+        """
+        path = _as_float_array(metres(points, "points"), "points")
+        rotation = curve_rotations(
+            path, _as_float_array(magnitude_in(normals, "dimensionless", "normals"), "normals"))
+        if (speed is None) == (times is None):
+            raise InvalidPoseError("give either speed (m/s) or times (one per point)",
+                                   field="speed")
+        if speed is not None:
+            speed = magnitude_in(speed, "meter / second", "speed")
+            if (isinstance(speed, bool) or not isinstance(speed, (int, float, np.number))
+                    or not (np.isfinite(speed) and speed > 0)):
+                raise InvalidPoseError(f"expected a positive speed in m/s, got {speed!r}",
+                                       field="speed")
+            times = length_along_polyline(path) / float(speed)
+        axis = parse_time_axis(times)
+        if axis.offsets.shape[0] != path.shape[0]:
+            raise InvalidPoseError(f"expected one time per point: {axis.offsets.shape[0]} "
+                                   f"times for {path.shape[0]} points", field="times")
+        late = np.diff(axis.offsets) <= 0
+        if np.any(late):
+            index = int(np.argmax(late)) + 1
+            raise InvalidPoseError(
+                f"point {index} is not after point {index - 1} in time (times must "
+                "increase; at a speed, points closer than a nanosecond of travel collide)",
+                field=f"times[{index}]")
+        return cls(path, rotation, times, reference_time)
 
     # -- attributes ----------------------------------------------------------------------
     @property

@@ -26,7 +26,9 @@ import numpy as np
 
 from ...errors import FileFormatError, PinframesError, UnsupportedFeatureError
 from ...tree import FrameTree
+from ...values.curve_frames import length_along_polyline
 from ...values.pose import Pose
+from ...values.rotations import matrix_from_axis_angle
 from ...values.timeconv import parse_timestamp
 from .._paths import path_argument, regular_file_problem
 from .._registry import detect_format, read
@@ -49,11 +51,14 @@ _TOP_KEYS = {SCENE_FORMAT_KEY, "name", "root", "reference_time", "layers", "fram
 _POSE_KEYS = {"xyz", "rpy", "quaternion"}
 _ENTRY_KEYS = {
     "layers": {"file", "mount", "prefix", "key"},
-    "frames": {"name", "parent", "keyframes", "reference_time"} | _POSE_KEYS,
+    "frames": {"name", "parent", "keyframes", "curve", "reference_time"} | _POSE_KEYS,
     "robots": {"name", "urdf", "parent", "prefix", "trajectory"} | _POSE_KEYS,
     "tools": {"name", "parent"} | _POSE_KEYS,
 }
 _KEYFRAME_KEYS = {"time"} | _POSE_KEYS
+_CURVE_KEYS = {"points", "normals", "arc", "speed", "duration", "times"}
+_CURVE_TIMINGS = ("speed", "duration", "times")
+_ARC_KEYS = {"centre", "axis", "start", "angle", "count"}
 
 
 @dataclass
@@ -182,11 +187,20 @@ class _Scene:
         name, parent = self._frame_names(item, "frames", field)
         static = self._pose_parts(item, name, field)
         pose = Pose(static[0], static[1])
-        if "keyframes" in item:
+        if "keyframes" in item and "curve" in item:
+            raise FileFormatError("give either keyframes or curve, not both", file=self.path,
+                                  frame=name, field=f"{field}.curve")
+        if "curve" in item:
+            if _POSE_KEYS & set(item):
+                raise FileFormatError("a curve frame takes its pose from the curve: no xyz, "
+                                      "rpy or quaternion", file=self.path, frame=name,
+                                      field=f"{field}.curve")
+            pose = self._curve(item, name, field)
+        elif "keyframes" in item:
             pose = self._keyframes(item, static, name, field)
         elif "reference_time" in item:
-            raise FileFormatError("a reference_time needs keyframes", file=self.path,
-                                  frame=name, field=f"{field}.reference_time")
+            raise FileFormatError("a reference_time needs keyframes or a curve",
+                                  file=self.path, frame=name, field=f"{field}.reference_time")
         return _Entry(field, name, parent, f"{field}.parent",
                       lambda tree: tree.add(name, parent, pose))
 
@@ -293,6 +307,78 @@ class _Scene:
             raise FileFormatError(exc.message, file=self.path, frame=frame,
                                   field=f"{field}.keyframes.time") from None
 
+    def _curve(self, item: dict, frame: str, field: str) -> Pose:
+        """A frame moving along a polyline (``Pose.along_curve``), given as points or an arc."""
+        where = f"{field}.curve"
+        curve = item["curve"]
+        self._check_keys(curve, _CURVE_KEYS, frame, where)
+        if ("points" in curve) == ("arc" in curve):
+            raise FileFormatError("give either points (with normals) or arc", file=self.path,
+                                  frame=frame, field=where)
+        if "points" in curve:
+            points = self._vectors(curve["points"], frame, f"{where}.points")
+            if "normals" not in curve:
+                raise FileFormatError("missing", file=self.path, frame=frame,
+                                      field=f"{where}.normals")
+            normals = curve["normals"]
+            normals = (self._numbers(normals, 3, frame, f"{where}.normals")
+                       if _is_flat(normals) else
+                       self._vectors(normals, frame, f"{where}.normals"))
+        else:
+            if "normals" in curve:
+                raise FileFormatError("an arc's normals point away from its centre; give "
+                                      "points for others", file=self.path, frame=frame,
+                                      field=f"{where}.normals")
+            points, normals = self._arc(curve["arc"], frame, f"{where}.arc")
+        timings = [key for key in _CURVE_TIMINGS if key in curve]
+        if len(timings) != 1:
+            raise FileFormatError("give one of speed (m/s), duration (s) or times",
+                                  file=self.path, frame=frame, field=where)
+        speed, times = None, curve.get("times")
+        if "speed" in curve:
+            speed = self._positive(curve["speed"], frame, f"{where}.speed")
+        elif "duration" in curve:
+            duration = self._positive(curve["duration"], frame, f"{where}.duration")
+            speed = float(length_along_polyline(points)[-1]) / duration
+        reference = None
+        if "reference_time" in item:
+            reference = self._timestamp(item["reference_time"], frame,
+                                        f"{field}.reference_time")
+        try:
+            return Pose.along_curve(points, normals, speed=speed, times=times,
+                                    reference_time=reference)
+        except PinframesError as exc:
+            inner = "" if exc.field is None else f".{exc.field}"
+            raise FileFormatError(exc.message, file=self.path, frame=frame,
+                                  field=where + inner) from None
+
+    def _arc(self, arc: Any, frame: str, field: str) -> tuple[np.ndarray, np.ndarray]:
+        """Points (count, 3) of a circular arc and their normals, away from its centre."""
+        self._check_keys(arc, _ARC_KEYS, frame, field)
+        missing = sorted(_ARC_KEYS - set(arc))
+        if missing:
+            raise FileFormatError("missing", file=self.path, frame=frame,
+                                  field=f"{field}.{missing[0]}")
+        centre = self._numbers(arc["centre"], 3, frame, f"{field}.centre")
+        axis = self._numbers(arc["axis"], 3, frame, f"{field}.axis")
+        start = self._numbers(arc["start"], 3, frame, f"{field}.start")
+        angle = self._number(arc["angle"], frame, f"{field}.angle")
+        count = arc["count"]
+        if isinstance(count, bool) or not isinstance(count, int) or count < 2:
+            raise FileFormatError(f"expected a whole number of points >= 2, got {count!r}",
+                                  file=self.path, frame=frame, field=f"{field}.count")
+        if not np.linalg.norm(axis) > 0.0:
+            raise FileFormatError("the axis must not be zero", file=self.path, frame=frame,
+                                  field=f"{field}.axis")
+        axis = axis / np.linalg.norm(axis)
+        radial = (start - centre) - np.dot(start - centre, axis) * axis
+        if not np.linalg.norm(radial) > 0.0 or angle == 0.0:
+            raise FileFormatError("the arc has no length: start on the axis or angle 0",
+                                  file=self.path, frame=frame, field=field)
+        turns = matrix_from_axis_angle(axis, np.linspace(0.0, angle, count))
+        points = centre + turns @ (start - centre)
+        return points, turns @ (radial / np.linalg.norm(radial))
+
     # -- field readers ---------------------------------------------------------------------
     def _list(self, key: str) -> list[Any]:
         value = self.content.get(key, [])
@@ -366,6 +452,34 @@ class _Scene:
                                   field=field)
         return array
 
+    def _vectors(self, value: Any, frame: str | None, field: str) -> np.ndarray:
+        """A list of [x, y, z] lists as an (N, 3) array."""
+        if not isinstance(value, list) or not value:
+            raise FileFormatError("expected a non-empty list of [x, y, z] lists",
+                                  file=self.path, frame=frame, field=field)
+        return np.array([self._numbers(row, 3, frame, f"{field}[{index}]")
+                         for index, row in enumerate(value)])
+
+    def _number(self, value: Any, frame: str | None, field: str) -> float:
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise FileFormatError(f"expected a number, got {value!r}", file=self.path,
+                                  frame=frame, field=field)
+        try:
+            number = float(value)
+        except OverflowError:  # an integer too large for a float
+            number = np.inf
+        if not np.isfinite(number):
+            raise FileFormatError("the value must be finite", file=self.path, frame=frame,
+                                  field=field)
+        return number
+
+    def _positive(self, value: Any, frame: str | None, field: str) -> float:
+        number = self._number(value, frame, field)
+        if number <= 0.0:
+            raise FileFormatError(f"expected a positive number, got {value!r}",
+                                  file=self.path, frame=frame, field=field)
+        return number
+
     def _timestamp(self, value: Any, frame: str | None, field: str) -> np.datetime64:
         try:
             return parse_timestamp(value, field=field)
@@ -381,6 +495,11 @@ class _Scene:
             return exc
         return type(exc)(f"{exc.message}{note}{field})", file=exc.file, frame=exc.frame,
                          field=exc.field, joint=exc.joint)
+
+
+def _is_flat(value: Any) -> bool:
+    """A list of numbers (one vector), not a list of lists."""
+    return isinstance(value, list) and not any(isinstance(item, list) for item in value)
 
 
 def _graft(tree: FrameTree, layer: FrameTree, mount: str, prefix: str) -> None:

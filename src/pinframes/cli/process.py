@@ -1,0 +1,135 @@
+"""``pinframes process SCENE --torch F --seam S``: the welding process along a seam, per time.
+
+Columns ``time_s, travel_speed_m_s, travel_angle_deg, work_angle_deg, offset_along_m,
+offset_across_m, offset_normal_m`` (and ``ctwd_m`` with ``--contact-tip``): degrees, because
+welders read degrees. One summary line on standard error gives the range of each.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+import numpy as np
+
+from ..kinematics import WeldProcess
+from ..tree import FrameTree
+from ._evaluate import add_time_arguments, in_chunks, requested_times, terminal_stderr
+from ._files import read_tree, require_frames
+from ._output import write_text
+
+__all__ = ["COLUMNS", "add_parser", "process_ranges", "process_text", "run"]
+
+COLUMNS = ("time_s", "travel_speed_m_s", "travel_angle_deg", "work_angle_deg",
+           "offset_along_m", "offset_across_m", "offset_normal_m")
+"""The columns of the output; ``ctwd_m`` follows with a contact tip."""
+
+
+def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
+    """Register the ``process`` subcommand."""
+    parser = subparsers.add_parser(
+        "process", parents=parents, help="welding process along a seam, per time",
+        description="Print the welding process that the torch produces along the seam, per "
+        "time: travel speed relative to the workpiece (m/s, along the seam's x axis), travel "
+        "angle (degrees, positive push, negative drag) and work angle (degrees, 90 = square "
+        "to the surface) of the torch's z axis (the wire), the torch origin in seam axes "
+        "(along, across, normal, metres) and with --contact-tip the contact tip to work "
+        "distance (metres). The seam frame has x along the travel direction and z out of "
+        "the material. One summary line on standard error gives the range of each.")
+    parser.add_argument("file", metavar="SCENE", help="scene, frames.yaml, ASDF or URDF file")
+    parser.add_argument("--torch", required=True, metavar="FRAME",
+                        help="the torch's tool centre point; its z axis is the wire axis")
+    parser.add_argument("--seam", required=True, metavar="FRAME",
+                        help="the seam frame at the weld point (x travel, z surface normal)")
+    parser.add_argument("--workpiece", metavar="FRAME",
+                        help="the frame the travel speed is relative to (default: the "
+                        "seam's parent)")
+    parser.add_argument("--contact-tip", metavar="FRAME",
+                        help="the contact tip frame: adds the column ctwd_m (default: none)")
+    add_time_arguments(parser)
+    parser.add_argument("-o", "--output", metavar="OUT",
+                        help="write the CSV to this file (default: standard output)")
+    parser.set_defaults(run=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Evaluate, write the CSV, print the summary line."""
+    tree = read_tree(args.file)
+    require_frames(tree, args.file, args.torch, args.seam, args.workpiece, args.contact_tip)
+    process = _evaluate(tree, args)
+    write_text(process_text(process), args.output)
+    ranges = "; ".join(f"{name} {span}" for name, span in process_ranges(process))
+    print(f"pinframes: {args.torch} along {args.seam}: {len(process)} samples; {ranges}",
+          file=sys.stderr)
+    if process.reference_time is not None:
+        print(f"pinframes: time_s counts from {process.reference_time}", file=sys.stderr)
+    return 0
+
+
+def _evaluate(tree: FrameTree, args: argparse.Namespace) -> WeldProcess:
+    """The process at the requested times, in chunks with a progress bar on a terminal."""
+    def at(times: object = None, time_ref: object = None) -> WeldProcess:
+        return tree.weld_process(args.torch, args.seam, times=times, time_ref=time_ref,
+                                 workpiece=args.workpiece, contact_tip=args.contact_tip)
+
+    times = requested_times(args, tree, args.torch, args.seam)
+    time_ref = args.time_ref
+    if times is None:
+        times = tree.sample_times(args.torch, args.seam)
+        if times is None:
+            return at()
+        time_ref = times.reference
+    parts = in_chunks(lambda values: at(values, time_ref), times, terminal_stderr())
+    return parts[0] if len(parts) == 1 else _joined(parts)
+
+
+def _joined(parts: list[WeldProcess]) -> WeldProcess:
+    """One process from consecutive chunks (all on the same reference time)."""
+    first = parts[0]
+
+    def joined(name: str) -> np.ndarray:
+        return np.concatenate([getattr(part, name) for part in parts])
+
+    return WeldProcess(
+        travel_speed=joined("travel_speed"), travel_angle=joined("travel_angle"),
+        work_angle=joined("work_angle"), offset=joined("offset"),
+        ctwd=None if first.ctwd is None else joined("ctwd"), times=joined("times"),
+        reference_time=first.reference_time, torch=first.torch, seam=first.seam,
+        workpiece=first.workpiece, contact_tip=first.contact_tip)
+
+
+def process_text(process: WeldProcess) -> str:
+    """The process as CSV text: :data:`COLUMNS` (and ``ctwd_m``); a static process has one
+    row with the time ``nan``."""
+    seconds = process.seconds if process.seconds is not None else np.array([np.nan])
+    columns = [seconds, process.travel_speed, np.degrees(process.travel_angle),
+               np.degrees(process.work_angle), *process.offset.T]
+    names = list(COLUMNS)
+    if process.ctwd is not None:
+        columns.append(process.ctwd)
+        names.append("ctwd_m")
+    rows = np.column_stack(columns).tolist()
+    return "\n".join([",".join(names), *(",".join(map(repr, row)) for row in rows)]) + "\n"
+
+
+def process_ranges(process: WeldProcess) -> list[tuple[str, str]]:
+    """``(quantity, "low .. high unit")`` for each quantity of ``process``, in the units
+    welders read: mm/s, degrees, mm."""
+    quantities = [("travel speed", 1000 * process.travel_speed, "mm/s", 2),
+                  ("travel angle", np.degrees(process.travel_angle), "deg", 2),
+                  ("work angle", np.degrees(process.work_angle), "deg", 2),
+                  ("offset along", 1000 * process.offset[:, 0], "mm", 3),
+                  ("offset across", 1000 * process.offset[:, 1], "mm", 3),
+                  ("offset normal", 1000 * process.offset[:, 2], "mm", 3)]
+    if process.ctwd is not None:
+        quantities.append(("ctwd", 1000 * process.ctwd, "mm", 2))
+    ranges = []
+    for name, values, unit, decimals in quantities:
+        if np.isnan(values).all():
+            ranges.append((name, "none (the wire points away from the work)"))
+            continue
+        # rounded first, then + 0.0: a tiny negative value prints as 0.000, not -0.000
+        low, high = (round(float(value), decimals) + 0.0
+                     for value in (np.nanmin(values), np.nanmax(values)))
+        ranges.append((name, f"{low:.{decimals}f} .. {high:.{decimals}f} {unit}"))
+    return ranges
