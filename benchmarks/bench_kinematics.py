@@ -100,10 +100,10 @@ def main() -> None:
     hand = model.frames[model.getFrameId("panda_hand")].placement.homogeneous
     chain = arm_chain(model)
     points = rng.normal(scale=0.1, size=(count, 3))
-    ours = tree.transform_points(points, "panda_hand", "world", times)
+    ours = tree.transform_points(points, "panda_hand", "world", times, per_time=True)
     reference = reference_points(hand, chain, mount, times, positions, points)
     medians = interleaved_medians({
-        "ours": lambda: tree.transform_points(points, "panda_hand", "world", times),
+        "ours": lambda: tree.transform_points(points, "panda_hand", "world", times, per_time=True),
         "reference": lambda: reference_points(hand, chain, mount, times, positions, points),
     }, 5)
     table(f"(a) {count:,} time-stamped points, hand frame -> world", [

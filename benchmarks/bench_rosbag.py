@@ -17,6 +17,7 @@ temporary folder (about 20 s per 10^6 transforms on a quiet machine).
 from __future__ import annotations
 
 import json
+import statistics
 import sys
 import tempfile
 import time
@@ -30,12 +31,13 @@ from rosbags.rosbag2 import Writer as Ros2Writer
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
 import pinframes
-from _machine import describe_machine, interleaved, print_table, row, run_in_settings
+from _machine import describe_machine, print_table, row, run_in_settings
 
 FRAMES = 10
 SIZES = (100_000, 1_000_000)
 TF = "tf2_msgs/msg/TFMessage"
 REFERENCE = "rosbags read+deserialise"
+PINFRAMES = "pinframes.read_rosbag"
 
 
 def write_bags(folder: Path, transforms: int) -> dict[str, Path]:
@@ -103,32 +105,34 @@ def largest_difference(tree: pinframes.FrameTree, messages: list) -> float:
     return float(max(np.abs(pose.translation - translations).max(), (1 - dots).max()))
 
 
-def one_round(case: str, calls: dict) -> list[dict]:
-    """Each call timed once (the bag was read once before: its pages are cached)."""
-    seconds = {}
-    for name, call in calls.items():
+def timed_rounds(case: str, path: str, rounds: int) -> list[dict]:
+    """Both reads of ``path`` timed in ``rounds`` alternating rounds (no warm-up: the bag was
+    just written, its pages are cached; a 10^6 read takes minutes on a shared machine);
+    ratios are medians of per-round ratios. The last round's results give the difference."""
+    seconds: dict[str, list[float]] = {REFERENCE: [], PINFRAMES: []}
+    for _ in range(rounds):
         start = time.perf_counter()
-        call()
-        seconds[name] = time.perf_counter() - start
-    return [row(case, name, value, ratio=value / seconds[REFERENCE])
-            for name, value in seconds.items()]
+        messages = rosbags_alone(Path(path))
+        seconds[REFERENCE].append(time.perf_counter() - start)
+        start = time.perf_counter()
+        tree = pinframes.read_rosbag(path)
+        seconds[PINFRAMES].append(time.perf_counter() - start)
+    error = largest_difference(tree, messages)
+    ratios = [ours / theirs for ours, theirs in zip(seconds[PINFRAMES], seconds[REFERENCE],
+                                                      strict=True)]
+    return [row(case, REFERENCE, statistics.median(seconds[REFERENCE]), ratio=1.0),
+            row(case, PINFRAMES, statistics.median(seconds[PINFRAMES]), error,
+                ratio=statistics.median(ratios))]
 
 
 def child(bag_table: dict[str, dict[str, str]], quick: bool) -> None:
     rows = []
     for transforms, bags in bag_table.items():
         for storage, path in bags.items():
-            error = largest_difference(pinframes.read_rosbag(path), rosbags_alone(Path(path)))
-            calls = {REFERENCE: lambda p=Path(path): rosbags_alone(p),
-                     "pinframes.read_rosbag": lambda p=path: pinframes.read_rosbag(p)}
-            case = f"{storage}, {int(transforms):,} transforms"
-            if int(transforms) <= 100_000:
-                measured = interleaved(case, calls, 3 if quick else 5, reference=REFERENCE)
-            else:  # a minute or more per call on a shared machine: one round, no warm-up
-                measured = one_round(case, calls)
+            rounds = 1 if int(transforms) > 100_000 else 3 if quick else 5
+            measured = timed_rounds(f"{storage}, {int(transforms):,} transforms", path, rounds)
             for entry in measured:
                 entry["note"] = f"{entry['seconds'] / int(transforms) * 1e6:.2f} us/transform"
-                entry["error"] = error if entry["method"] != REFERENCE else None
             rows += measured
     print(json.dumps(rows))
 

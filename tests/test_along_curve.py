@@ -94,7 +94,7 @@ def test_a_circle_gets_its_tangent_and_outward_normal_between_points():
     np.testing.assert_allclose(between.translation[0], chord_middle, atol=1e-15)
 
 
-def test_times_may_be_absolute_and_speed_may_be_a_pint_length():
+def test_times_may_be_absolute_and_points_and_speed_pint_quantities():
     points = [[0, 0, 0], [1, 0, 0], [1, 1, 0]]
     pose = Pose.along_curve(points, [0, 0, 1], times=["2024-03-01T08:00:00",
                                                       "2024-03-01T08:00:01",
@@ -105,6 +105,11 @@ def test_times_may_be_absolute_and_speed_may_be_a_pint_length():
     in_mm = Pose.along_curve(np.array(points) * 1000 * units.mm, [0, 0, 1], speed=0.5)
     np.testing.assert_allclose(in_mm.translation, points, atol=1e-15)
     np.testing.assert_allclose(in_mm.seconds, [0.0, 2.0, 4.0])
+    by_the_minute = Pose.along_curve(points, [0, 0, 1], speed=units.Quantity(1.2, "m/min"))
+    np.testing.assert_allclose(by_the_minute.seconds, [0.0, 50.0, 100.0])
+    with pytest.raises(InvalidPoseError) as caught:
+        Pose.along_curve(points, [0, 0, 1], speed=units.Quantity(1.2, "m"))
+    assert caught.value.field == "speed" and "a speed" in caught.value.message
 
 
 @pytest.mark.parametrize(

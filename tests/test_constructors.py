@@ -8,7 +8,7 @@ import itertools
 import numpy as np
 import pytest
 
-from pinframes import InvalidPoseError, Pose
+from pinframes import FrameTree, InvalidPoseError, InvalidTimeError, Joint, JointError, Pose
 
 Rotation = pytest.importorskip("scipy.spatial.transform").Rotation
 
@@ -141,6 +141,56 @@ def test_pint_lengths_become_metres():
         Pose(units.Quantity([1.0, 2.0, 3.0], "s"))
     with pytest.raises(InvalidPoseError, match="field 'y'"):
         Pose.from_xyz_rpy(y=units.Quantity(1.0, "kg"))
+
+
+def test_pint_angles_become_radians_and_other_quantities_are_refused():
+    pint = pytest.importorskip("pint")
+    units = pint.UnitRegistry()
+    quarter_z = [[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]  # 90 degrees about z
+    for angles in (units.Quantity(90, "deg"), units.Quantity([90.0], "deg"),
+                   units.Quantity(np.pi / 2, "rad"), units.Quantity(0.25, "turn")):
+        np.testing.assert_allclose(Pose.from_euler("z", angles).rotation, quarter_z,
+                                   atol=1e-15)
+    # a quantity carries its unit: degrees=True is for plain numbers
+    np.testing.assert_allclose(
+        Pose.from_euler("z", units.Quantity(90, "deg"), degrees=True).rotation, quarter_z,
+        atol=1e-15)
+    np.testing.assert_allclose(Pose.from_xyz_rpy(yaw=units.Quantity(90, "deg")).rotation,
+                               quarter_z, atol=1e-15)
+    with pytest.raises(InvalidPoseError, match=r"field 'angles'.*expected an angle"):
+        Pose.from_euler("z", units.Quantity(90, "mm"))
+    with pytest.raises(InvalidPoseError, match=r"field 'roll'.*expected an angle"):
+        Pose.from_xyz_rpy(roll=units.Quantity(1.0, "m"))
+    with pytest.raises(InvalidPoseError, match=r"field 'rotation'"):
+        Pose(rotation=units.Quantity([0.0, 0.0, 0.0, 1.0], "m"))
+
+
+def test_pint_times_become_seconds():
+    pint = pytest.importorskip("pint")
+    units = pint.UnitRegistry()
+    pose = Pose([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]], times=units.Quantity([0, 500], "ms"))
+    np.testing.assert_allclose(pose.seconds, [0.0, 0.5])
+    np.testing.assert_allclose(pose.at(units.Quantity(250, "ms")).translation, [[0.5, 0, 0]])
+    with pytest.raises(InvalidTimeError, match="expected a time"):
+        Pose([0.0, 0.0, 0.0], times=units.Quantity([0, 1], "m"))
+
+
+def test_pint_joint_positions_in_their_joints_units():
+    pint = pytest.importorskip("pint")
+    units = pint.UnitRegistry()
+    tree = FrameTree()
+    tree.attach_joint("arm", "world", Joint("turn", "revolute", (0.0, 0.0, 1.0)))
+    tree.attach_joint("tip", "arm", Joint("slide", "prismatic", (1.0, 0.0, 0.0)))
+    tree.set_joint_trajectory([0.0], units.Quantity([[90.0]], "deg"), ["turn"])
+    tree.set_joint_trajectory([0.0], units.Quantity([[250.0]], "mm"), ["slide"])
+    np.testing.assert_allclose(tree.pose("tip", "world", times=[0.0]).translation,
+                               [[0.0, 0.25, 0.0]], atol=1e-15)  # 0.25 m along the turned x
+    with pytest.raises(JointError, match="expected an angle"):
+        tree.set_joint_trajectory([0.0], units.Quantity([[1.0]], "m"), ["turn"])
+    with pytest.raises(JointError, match="expected a length"):
+        tree.set_joint_trajectory([0.0], units.Quantity([[1.0]], "deg"), ["slide"])
+    with pytest.raises(JointError, match="both angles and lengths"):
+        tree.set_joint_trajectory([0.0], units.Quantity([[1.0, 1.0]], "deg"))
 
 
 def test_pint_is_not_imported_for_plain_numbers():

@@ -99,3 +99,28 @@ def test_a_second_joint_scheme_is_one_class(count):
     other.graft(tree, "world", prefix="a/")
     assert other.joint_trajectory("a/slide").interpolation is HeldValues
 
+
+
+@pytest.mark.parametrize("count", [1, 20])  # the one-time path and the batched kernels
+def test_joints_on_equal_times_from_other_references_are_searched_apart(count):
+    """Two sliders hold the same sample offsets and values, counted from reference times
+    10 s apart: at one instant each is at its own place (a shared segment search would put
+    both at the first's)."""
+    tree = FrameTree()
+    tree.attach_joint("x", "world", Joint("slide_x", "prismatic", (1.0, 0.0, 0.0),
+                                          lower=-99.0, upper=99.0))
+    tree.attach_joint("y", "x", Joint("slide_y", "prismatic", (0.0, 1.0, 0.0),
+                                      lower=-99.0, upper=99.0))
+    start = np.datetime64("2026-01-01T00:00:00", "ns")
+    offsets = np.array([0, 20 * S])
+    values = np.array([0.0, 20.0])  # 1 m/s
+    tree.replace_joint_trajectory("slide_x", JointTrajectory(offsets, start, values))
+    tree.replace_joint_trajectory("slide_y", JointTrajectory(
+        offsets, start + np.timedelta64(10, "s"), values))
+    seconds = np.linspace(10.0, 20.0, count) if count > 1 else np.array([15.0])
+    times = start + (seconds * 1e9).astype("timedelta64[ns]")
+    pose = tree.pose("y", "world", times=times)
+    np.testing.assert_allclose(pose.translation[:, 0], seconds, atol=1e-9)
+    np.testing.assert_allclose(pose.translation[:, 1], seconds - 10.0, atol=1e-9)
+    velocity = tree.velocity("y", "world", times=times)
+    np.testing.assert_allclose(velocity.linear[:, :2], np.ones((count, 2)), atol=1e-9)

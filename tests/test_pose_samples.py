@@ -70,14 +70,22 @@ def test_seconds_are_floats_that_column_stack_takes():
     assert table.shape == (3, 4)
 
 
-def test_repr_shows_seconds_and_timestamps():
-    relative = Pose(np.zeros((2, 3)), times=[0.0, 1.0])
-    assert repr(relative) == "Pose(2 samples from 0 s to 1 s)"
-    absolute = Pose(np.zeros((2, 3)), times=[0.0, 2.5], reference_time=REFERENCE)
+def test_repr_shows_seconds_timestamps_and_the_first_and_last_numbers():
+    quarter_z = [0.0, 0.0, np.sqrt(0.5), np.sqrt(0.5)]  # 90 degrees about z
+    relative = Pose([[0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [1.0, 2.0, 3.5]],
+                    [[0, 0, 0, 1], [0, 0, 0, 1], quarter_z], times=[0.0, 0.5, 1.0])
+    assert repr(relative) == ("Pose(3 samples from 0 s to 1 s: translation=(0, 0, 0) to "
+                              "(1, 2, 3.5), quaternion=(0, 0, 0, 1) to "
+                              "(0, 0, 0.707107, 0.707107))")
+    absolute = Pose([[0.0, 0.0, 0.0], [1.0, 2.0, 3.5]], times=[0.0, 2.5],
+                    reference_time=REFERENCE)
     assert repr(absolute) == ("Pose(2 samples from 0 s to 2.5 s after 2024-03-01T08:00:00, "
-                              "2024-03-01T08:00:00 to 2024-03-01T08:00:02.5)")
+                              "2024-03-01T08:00:00 to 2024-03-01T08:00:02.5: translation="
+                              "(0, 0, 0) to (1, 2, 3.5), quaternion=(0, 0, 0, 1) to "
+                              "(0, 0, 0, 1))")
     assert repr(absolute[1]) == ("Pose(1 sample at 2.5 s after 2024-03-01T08:00:00, "
-                                 "2024-03-01T08:00:02.5)")
+                                 "2024-03-01T08:00:02.5: translation=(1, 2, 3.5), "
+                                 "quaternion=(0, 0, 0, 1))")
 
 
 def test_quaternion_series_is_sign_continuous_and_the_same_rotations():

@@ -18,6 +18,10 @@ def test_readme_python_examples_run(monkeypatch):
     # The seam start turns with the table about the positioner's z axis: on a circle of 0.2 m.
     seam = namespace["pose_seam_in_world"].translation
     np.testing.assert_allclose(np.hypot(seam[:, 0] - 1.5, seam[:, 1]), 0.2, atol=1e-12)
+    # what the load_geometry example says it prints: 17 pieces, the torch's mesh file
+    torch = namespace["torch"]
+    assert (len(namespace["pieces"]), torch.source, torch.faces.shape) == (
+        17, "meshes/torch.stl", (352, 3))
 
 
 def test_readme_kinematics_example_prints_hand_derived_numbers(monkeypatch):

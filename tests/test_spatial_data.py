@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from pinframes import (
+    DataNotFoundError,
     FrameExistsError,
     FrameNotFoundError,
     FrameTree,
@@ -121,7 +122,7 @@ def test_data_names_are_unique_and_frames_must_exist():
         tree.assign_data("cloud", POINTS, "tool")
     with pytest.raises(FrameNotFoundError):
         tree.assign_data("other", POINTS, "nowhere")
-    with pytest.raises(FrameNotFoundError):
+    with pytest.raises(DataNotFoundError):
         tree.get_data("missing")
     tree.delete_data("cloud")
     assert tree.data_names == []

@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 
 from hardening.tree_model import build_tree
 from hardening.tree_strategies import absolute_trees, trees
-from pinframes import FrameTree, InvalidDataError, Pose
+from pinframes import FrameTree, InvalidDataError, Pose, SpatialData
 from pinframes.errors import ExtrapolationError, FrameNotFoundError
 
 from geometry import rot_z
@@ -39,9 +39,9 @@ def test_a_point_on_a_turning_table_follows_its_circle():
 def test_one_point_per_time_and_profiles_per_time():
     tree = turning_table()
     times = [0.0, 5.0, 10.0]
-    # (T, 3): row i at time i
+    # (T, 3) with per_time=True: row i at time i
     rows = tree.transform_points([[0.1, 0, 0], [0.1, 0, 0], [0, 0.1, 0]], "table", "world",
-                                 times)
+                                 times, per_time=True)
     np.testing.assert_allclose(rows, [[1.6, 0, 0.8], [1.5 + 0.1 / np.sqrt(2),
                                                       0.1 / np.sqrt(2), 0.8],
                                       [1.4, 0, 0.8]], atol=1e-15)
@@ -57,9 +57,31 @@ def test_one_point_per_time_and_profiles_per_time():
     out = tree.transform_points(per_time, "table", "world", times)
     np.testing.assert_allclose(out[2], (3 * profile) @ rot_z(np.pi / 2).T + [1.5, 0, 0.8],
                                atol=1e-15)
-    square = np.eye(3)  # M == T: one point per time, unless given as (1, M, 3)
-    assert tree.transform_points(square, "table", "world", times).shape == (3, 3)
+    square = np.eye(3)  # M == T: still every point at every time, unless paired on request
+    assert tree.transform_points(square, "table", "world", times).shape == (3, 3, 3)
     assert tree.transform_points(square[None], "table", "world", times).shape == (3, 3, 3)
+    assert tree.transform_points(square, "table", "world", times, per_time=True).shape == (3, 3)
+
+
+def test_without_times_every_point_is_at_every_keyframe_whatever_their_count():
+    tree = turning_table()  # two keyframes, at 0 s and 10 s
+    points = np.array([[0.1, 0.0, 0.0], [0.0, 0.2, 0.0]])  # as many points as keyframes
+    expected = np.stack([points @ rot_z(angle).T + [1.5, 0.0, 0.8]
+                         for angle in (0.0, np.pi / 2)])
+    np.testing.assert_allclose(tree.transform_points(points, "table", "world"), expected,
+                               atol=1e-15)
+    np.testing.assert_allclose(tree.transform_vectors(points, "table", "world"),
+                               expected - [1.5, 0.0, 0.8], atol=1e-15)
+    # the same rule as get_data
+    tree.assign_data("profile", SpatialData(points), "table")
+    np.testing.assert_allclose(tree.get_data("profile", relative_to="world").points, expected,
+                               atol=1e-15)
+    # pairing is asked for explicitly, and a count that does not match is an error
+    paired = tree.transform_points(points, "table", "world", per_time=True)
+    np.testing.assert_allclose(paired, [expected[0, 0], expected[1, 1]], atol=1e-15)
+    with pytest.raises(InvalidDataError, match="3 rows were given for 2 times") as info:
+        tree.transform_points(np.zeros((3, 3)), "table", "world", per_time=True)
+    assert info.value.field == "points" and info.value.frame == "table"
 
 
 def test_vectors_only_rotate():
@@ -81,7 +103,9 @@ def test_pose_transforms_static_and_sampled():
     sampled = Pose([[0, 0, 0], [1, 0, 0]], times=[0.0, 1.0])
     assert sampled.transform_points([0.0, 0.0, 1.0]).tolist() == [[0, 0, 1], [1, 0, 1]]
     assert sampled.transform_points(np.zeros((5, 3))).shape == (2, 5, 3)
-    assert sampled.transform_vectors(np.ones((2, 3))).tolist() == [[1, 1, 1], [1, 1, 1]]
+    assert sampled.transform_vectors(np.ones((2, 3))).shape == (2, 2, 3)
+    assert sampled.transform_vectors(np.ones((2, 3)), per_time=True).tolist() == [
+        [1, 1, 1], [1, 1, 1]]
 
 
 def test_round_trip_a_to_b_to_a(rng):
@@ -89,8 +113,8 @@ def test_round_trip_a_to_b_to_a(rng):
     tree.add("arm", "world", Pose([[0, 0, 1], [1, 1, 1]], times=[2.0, 4.0]))
     times = np.linspace(-1.0, 12.0, 27)
     points = rng.normal(size=(27, 3))
-    there = tree.transform_points(points, "table", "arm", times)
-    back = tree.transform_points(there, "arm", "table", times)
+    there = tree.transform_points(points, "table", "arm", times, per_time=True)
+    back = tree.transform_points(there, "arm", "table", times, per_time=True)
     np.testing.assert_allclose(back, points, atol=1e-13)
 
 
@@ -106,7 +130,7 @@ def test_transformed_points_match_numpy_composition(spec, data):
     world = spec.poses_in_root(instants)
     a_in_b = np.linalg.inv(world[b]) @ world[a]
     expected = np.einsum("nij,nj->ni", a_in_b[:, :3, :3], points) + a_in_b[:, :3, 3]
-    ours = tree.transform_points(points, a, b, spec.query_times(instants))
+    ours = tree.transform_points(points, a, b, spec.query_times(instants), per_time=True)
     np.testing.assert_allclose(ours, expected, rtol=0, atol=1e-11)
 
 

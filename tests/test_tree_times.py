@@ -37,6 +37,22 @@ def test_time_union_of_the_whole_tree_and_of_some_frames():
         tree().time_union(["nowhere"])
 
 
+def test_the_time_union_goes_back_into_queries_as_times():
+    t = tree()
+    union = t.time_union()  # 0, 2, 4, 11, 13 s after T0
+    pose = t.pose("cart", relative_to="world", times=union)
+    np.testing.assert_array_equal(pose.times.astype(np.int64), union.offsets)
+    assert pose.reference_time == T0
+    # by hand: the slide holds x = 2 m after 2 s; the cart's y runs 0..1 m over 11..13 s
+    np.testing.assert_allclose(pose.translation, [[0, 0, 0], [2, 0, 0], [2, 0, 0],
+                                                  [2, 0, 0], [2, 1, 0]], atol=1e-15)
+    relative = FrameTree("world")
+    relative.add("a", "world", Pose([[0, 0, 0], [1, 0, 0]], times=[0.0, 10.0]))
+    np.testing.assert_allclose(relative.pose("a", times=relative.time_union()).seconds,
+                               [0.0, 10.0])
+    np.testing.assert_allclose(Pose([0, 0, 0], times=union).seconds, [0, 2, 4, 11, 13])
+
+
 def test_time_union_without_a_tree_reference_uses_the_earliest_frame_reference():
     t = FrameTree("world")
     t.add("a", "world", Pose([[0, 0, 0], [1, 0, 0]], times=["2024-01-01T00:00:05",

@@ -4,6 +4,7 @@ from .errors import (
     ArgumentTypeError,
     BagWarning,
     BrokenMimicWarning,
+    DataNotFoundError,
     ExtrapolationError,
     FileFormatError,
     FrameExistsError,
@@ -15,7 +16,9 @@ from .errors import (
     InvalidTimeError,
     JointError,
     JointLimitWarning,
+    JointNotFoundError,
     JointWithoutSamplesWarning,
+    NameNotFoundError,
     PinframesError,
     ReadError,
     ReferenceTimeError,
@@ -30,7 +33,8 @@ from .formats.limits import Limits
 from .formats.pose_files import write_poses
 from .formats.rosbag import read_rosbag
 from .formats.scene import read_scene, write_scene
-from .formats.urdf import read_urdf, write_urdf
+from .formats.urdf import write_urdf
+from .formats.urdf_files import read_urdf
 from .kinematics import (
     Clearance,
     FrameJacobian,
@@ -57,6 +61,7 @@ __all__ = [
     "BagWarning",
     "BrokenMimicWarning",
     "Clearance",
+    "DataNotFoundError",
     "ExtrapolationError",
     "FileFormatError",
     "FrameExistsError",
@@ -72,12 +77,14 @@ __all__ = [
     "Joint",
     "JointError",
     "JointLimitWarning",
+    "JointNotFoundError",
     "JointSolution",
     "JointTrack",
     "JointTrajectory",
     "JointWithoutSamplesWarning",
     "Limits",
     "Mimic",
+    "NameNotFoundError",
     "PinframesError",
     "PinocchioTree",
     "Pose",

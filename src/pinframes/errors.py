@@ -1,9 +1,10 @@
 """Exceptions raised by pinframes, and the warnings it gives.
 
-Every error carries, where known, the ``file`` it came from, the ``frame`` it concerns and the
-``field`` that is wrong, and puts them at the front of its message::
+Every error carries, where known, the ``file`` it came from, the ``frame`` or ``joint`` it
+concerns and the ``field`` that is wrong, and puts them at the front of its message::
 
     scene.yaml: frame 'torch': field 'pose.yaw': expected a number, got 'abc'
+    run.csv: joint 'robot/joint_3': field 'line 4': expected a number, got 'abc'
 
 Each class also subclasses the built-in exception a caller would naturally catch
 (``ValueError``, ``KeyError``, ``TypeError``, ``OSError``).
@@ -13,12 +14,16 @@ from __future__ import annotations
 
 import difflib
 import os
+import sys
+import warnings
 from collections.abc import Iterable
+from types import FrameType
 
 __all__ = [
     "ArgumentTypeError",
     "BagWarning",
     "BrokenMimicWarning",
+    "DataNotFoundError",
     "ExtrapolationError",
     "FileFormatError",
     "FrameExistsError",
@@ -30,7 +35,10 @@ __all__ = [
     "InvalidTimeError",
     "JointError",
     "JointLimitWarning",
+    "JointNotFoundError",
     "JointWithoutSamplesWarning",
+    "ManifestWarning",
+    "NameNotFoundError",
     "PinframesError",
     "ReadError",
     "ReferenceTimeError",
@@ -39,6 +47,7 @@ __all__ = [
     "UnsupportedFeatureError",
     "WriteError",
     "near_misses",
+    "warn_at_caller",
 ]
 
 
@@ -52,9 +61,11 @@ class PinframesError(Exception):
     file : str or None
         The file the bad input came from.
     frame : str or None
-        The frame (or key, link, joint) concerned.
+        The frame (or key, link) concerned.
+    joint : str or None
+        The robot joint concerned (a joint trajectory's column, a URDF joint).
     field : str or None
-        The field within that frame, dotted for nested fields (``pose.yaw``).
+        The field within that frame or joint, dotted for nested fields (``pose.yaw``).
     """
 
     def __init__(
@@ -64,10 +75,12 @@ class PinframesError(Exception):
         file: str | os.PathLike[str] | None = None,
         frame: str | None = None,
         field: str | None = None,
+        joint: str | None = None,
     ) -> None:
         self.message = message
         self.file = os.fspath(file) if file is not None else None
         self.frame = frame
+        self.joint = joint
         self.field = field
         super().__init__(str(self))
 
@@ -77,6 +90,8 @@ class PinframesError(Exception):
             parts.append(self.file)
         if self.frame is not None:
             parts.append(f"frame {self.frame!r}")
+        if self.joint is not None:
+            parts.append(f"joint {self.joint!r}")
         if self.field is not None:
             parts.append(f"field {self.field!r}")
         parts.append(self.message)
@@ -88,6 +103,7 @@ class PinframesError(Exception):
         file: str | os.PathLike[str] | None = None,
         frame: str | None = None,
         field: str | None = None,
+        joint: str | None = None,
     ) -> PinframesError:
         """Return a copy of this error with missing location parts filled in."""
         return type(self)(
@@ -95,11 +111,17 @@ class PinframesError(Exception):
             file=self.file if self.file is not None else file,
             frame=self.frame if self.frame is not None else frame,
             field=self.field if self.field is not None else field,
+            joint=self.joint if self.joint is not None else joint,
         )
 
 
-class FrameNotFoundError(PinframesError, KeyError):
-    """A frame (or joint) name that the tree does not hold."""
+class NameNotFoundError(PinframesError, KeyError):
+    """A name the tree does not hold: a frame, a robot joint or a data set. Every lookup
+    that misses raises one of its kinds below; catch this class (or ``KeyError``) for all."""
+
+
+class FrameNotFoundError(NameNotFoundError):
+    """A frame name that the tree does not hold."""
 
 
 class FrameExistsError(PinframesError, ValueError):
@@ -134,6 +156,16 @@ class ExtrapolationError(PinframesError, ValueError):
 
 class JointError(PinframesError, ValueError):
     """A robot joint that is unknown, mis-specified or driven with bad values."""
+
+
+class JointNotFoundError(NameNotFoundError, JointError):
+    """A robot joint name that the tree does not hold: a :class:`NameNotFoundError` (a
+    ``KeyError``) like every missed lookup, and still a :class:`JointError` (a
+    ``ValueError``), which unknown joint names raised before."""
+
+
+class DataNotFoundError(NameNotFoundError):
+    """A data set name that no frame of the tree holds."""
 
 
 class TargetNotReachedError(PinframesError, ValueError):
@@ -183,6 +215,18 @@ def near_misses(name: object, known: Iterable[str], kind: str = "frame") -> str:
     return f"; did you mean {kind} " + " or ".join(repr(match) for match in matches) + "?"
 
 
+def warn_at_caller(message: str, category: type[Warning] = UserWarning) -> None:
+    """Warn about the line that called pinframes: the warning's file and line are those of
+    the first frame outside the ``pinframes`` package (however deep inside pinframes the
+    warning arises), so that Python shows the user's line and filters on it work."""
+    frame: FrameType | None = sys._getframe(1)  # the function that warns: stacklevel 2
+    level = 2
+    while frame is not None and frame.f_globals.get("__name__", "").partition(".")[0] == (
+            "pinframes"):
+        frame, level = frame.f_back, level + 1
+    warnings.warn(message, category, stacklevel=level)
+
+
 class JointLimitWarning(UserWarning):
     """Joint values outside the limits written in the URDF."""
 
@@ -205,3 +249,8 @@ class BrokenMimicWarning(UserWarning):
 class JointWithoutSamplesWarning(UserWarning):
     """Robot joints evaluated without samples: they hold their rest value
     (:attr:`pinframes.Joint.rest_value`). Issued once until the tree changes."""
+
+
+class ManifestWarning(UserWarning):
+    """Lines of a batch's ``manifest.jsonl`` that are no run record (torn by an interrupted
+    write, or edited by hand): they are skipped, and their runs computed again."""

@@ -15,7 +15,7 @@ from pinframes.batch._compute import POSE_SCHEMA, output_schema, pose_chunks
 from pinframes.batch._manifest import Manifest
 from pinframes.batch._options import BatchOptions
 from pinframes.batch._partition import PartitionWriter, clear_staging
-from pinframes.errors import FrameNotFoundError, InvalidTimeError
+from pinframes.errors import FrameNotFoundError, InvalidTimeError, ManifestWarning
 
 REFERENCE = np.datetime64("2024-03-01T08:00:00", "ns")
 
@@ -141,9 +141,25 @@ def test_the_manifest_keeps_the_last_record_and_ignores_a_torn_last_line(tmp_pat
     manifest.append({"run": "a", "status": "ok"})
     with open(manifest.path, "a", encoding="utf-8") as handle:
         handle.write('{"run": "c", "sta')
-    again = Manifest(tmp_path)
+    with pytest.warns(ManifestWarning, match="line 4 is no run record"):
+        again = Manifest(tmp_path)
     assert again.records == {"a": {"run": "a", "status": "ok"},
                              "b": {"run": "b", "status": "ok"}}
     again.rewrite(["b", "x"])
     lines = manifest.path.read_text(encoding="utf-8").splitlines()
     assert [json.loads(line)["run"] for line in lines] == ["b", "a"]
+
+
+def test_a_record_appended_after_a_torn_line_starts_a_line_of_its_own(tmp_path):
+    manifest = Manifest(tmp_path)
+    manifest.append({"run": "a", "status": "ok"})
+    with open(manifest.path, "a", encoding="utf-8") as handle:
+        handle.write('{"run": "b", "sta')  # the driver stopped while appending
+    with pytest.warns(ManifestWarning, match="line 2"):
+        again = Manifest(tmp_path)
+    again.append({"run": "c", "status": "ok"})
+    lines = manifest.path.read_text(encoding="utf-8").splitlines()
+    assert lines[1] == '{"run": "b", "sta' and json.loads(lines[2]) == {"run": "c",
+                                                                        "status": "ok"}
+    with pytest.warns(ManifestWarning, match="line 2 is"):
+        assert set(Manifest(tmp_path).records) == {"a", "c"}

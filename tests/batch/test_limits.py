@@ -77,7 +77,7 @@ def test_limits_reach_the_workers_and_changed_limits_rerun_what_they_change(
 
     # lower again: the run read under the defaults is checked once more, and refused
     summary, records = _batch(campaign, out, scheduler, strict)
-    assert summary.computed == [BIG] and records[BIG]["status"] == "error"
+    assert summary.without_poses == [BIG] and records[BIG]["status"] == "error"
     assert not (out / "poses" / f"{BIG}.parquet").exists()
 
 

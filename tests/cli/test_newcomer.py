@@ -54,7 +54,7 @@ def test_every_option_names_its_default(name, parser):
 
 def test_help_of_convert_names_the_default_schema(run_cli):
     text = " ".join(run_cli("convert", "--help").stdout.split())
-    assert "(default: 1.0.0)" in text
+    assert "(default: 0.1.0)" in text
 
 
 def test_tree_files_are_told_by_content_whatever_their_name(run_cli, tmp_path):
@@ -127,6 +127,27 @@ def test_plot_refuses_a_suffix_without_an_image_format(run_cli, turntable, tmp_p
     assert "cannot tell an image format from the suffix '.txt'" in result.stderr
     assert ".png" in result.stderr and ".jpg" in result.stderr
     assert not (tmp_path / "frames.txt").exists()
+
+
+@pytest.mark.parametrize(("command", "name", "expected"), [
+    ("pose", "out.xlsx", "name the file .csv, .json, .npz, or pass --format"),
+    ("transform", "out.xlsx", "this command writes CSV: name the file .csv"),
+    ("view", "cell.png", "this command writes an HTML page: name the file .html or .htm"),
+])
+def test_outputs_refuse_a_suffix_that_names_another_format(run_cli, turntable, tmp_path,
+                                                           command, name, expected):
+    data = tmp_path / "points.csv"
+    data.write_text("x_m,y_m,z_m\n0,0,0\n")
+    arguments = {"pose": ["tip"], "transform": [data, "tip", "-r", "table"],
+                 "view": []}[command]
+    result = run_cli(command, turntable, *arguments, "-o", tmp_path / name)
+    assert result.returncode == 1, result.stderr
+    assert expected in result.stderr and name in result.stderr, result.stderr
+    assert not (tmp_path / name).exists()
+    if command == "pose":  # the format said outright goes into any name
+        result = run_cli("pose", turntable, "tip", "--format", "json", "-o", tmp_path / name)
+        assert result.returncode == 0, result.stderr
+        assert json.loads((tmp_path / name).read_text())
 
 
 def test_bundled_cell_exports_to_frames_yaml_with_a_slash_replacement(run_cli, tmp_path):

@@ -3,6 +3,7 @@
 import io
 
 import numpy as np
+import pytest
 
 
 def read_rows(text, header):
@@ -62,3 +63,45 @@ def test_bad_data_files_name_file_and_field(run_cli, turntable, tmp_path):
         assert message in result.stderr, result.stderr
     result = run_cli("transform", turntable, tmp_path / "missing.csv", "table", "-r", "world")
     assert result.returncode == 1 and "missing.csv" in result.stderr
+
+
+def test_points_in_millimetres_stay_millimetres(run_cli, turntable, tmp_path):
+    # tip is 0.2 m out on the table: 100 mm along tip's x is 300 mm along the table's x
+    data = tmp_path / "points.csv"
+    data.write_text("x_mm,y_mm,z_mm\n100,0,0\n0,50,0\n")
+    result = run_cli("transform", turntable, data, "tip", "-r", "table")
+    assert result.returncode == 0, result.stderr
+    np.testing.assert_allclose(read_rows(result.stdout, "x_mm,y_mm,z_mm"),
+                               [[300, 0, 0], [200, 50, 0]], atol=1e-9)
+    data.write_text("time_s,x_cm,y_cm,z_cm\n10,10,0,0\n")  # at 10 s the table has turned 90 deg
+    result = run_cli("transform", turntable, data, "tip", "-r", "world")
+    assert result.returncode == 0, result.stderr
+    np.testing.assert_allclose(read_rows(result.stdout, "time_s,x_cm,y_cm,z_cm"),
+                               [[10, 100, 30, 50]], atol=1e-9)
+
+
+def test_vectors_keep_any_unit_they_share(run_cli, turntable, tmp_path):
+    data = tmp_path / "speeds.csv"
+    data.write_text("vx_mm_s,vy_mm_s,vz_mm_s\n3,0,0\n")
+    result = run_cli("transform", turntable, data, "table", "-r", "world", "--vectors",
+                     "--times", "10")
+    assert result.returncode == 0, result.stderr
+    np.testing.assert_allclose(read_rows(result.stdout, "time_s,point,vx_mm_s,vy_mm_s,vz_mm_s"),
+                               [[10, 0, 0, 3, 0]], atol=1e-12)
+
+
+@pytest.mark.parametrize(("header", "vectors", "message"), [
+    ("x_mm,y_m,z_mm", False, "different units"),
+    ("x,y_mm,z_mm", True, "different units"),
+    ("x_ft,y_ft,z_ft", False, "'ft' is not a length unit"),
+    ("vx_m_s,vy_m_s,vz_m_s", False, "--vectors"),
+    ("x (mm),y (mm),z (mm)", False, "no unit pinframes knows"),
+])
+def test_unknown_or_mixed_units_are_refused(run_cli, turntable, tmp_path, header, vectors,
+                                            message):
+    data = tmp_path / "points.csv"
+    data.write_text(f"{header}\n1,2,3\n")
+    result = run_cli("transform", turntable, data, "tip", "-r", "table",
+                     *(["--vectors"] if vectors else []))
+    assert result.returncode == 1, result.stdout
+    assert message in result.stderr and "points.csv" in result.stderr, result.stderr

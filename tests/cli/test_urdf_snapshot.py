@@ -8,6 +8,7 @@ Pinocchio's own joint indices; nothing of pinframes is used on the loading side.
 from __future__ import annotations
 
 import csv
+import json
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -69,6 +70,28 @@ def test_urdf_at_a_time_with_its_joint_values_is_the_tree_at_that_time(tmp_path,
     for frame in tree.frames:
         expected = tree.pose(frame, tree.root, times=[time]).matrix.reshape(-1, 4, 4)[0]
         np.testing.assert_allclose(placed[frame], expected, atol=1e-9, err_msg=frame)
+
+
+def test_a_urdf_reads_back_with_the_joint_values_beside_it(tmp_path, run_cli):
+    tree = pinframes.read(CELL)
+    out = tmp_path / "cell.urdf"
+    pinframes.write(tree, out, time=5.0)
+    # Pinocchio with the values of cell.joints.csv put in by hand, vs pinframes reading both
+    placed = _frames_in_pinocchio(out, _joint_values(joint_state_path(out)))
+    read_back = pinframes.read_urdf(out)
+    for frame in read_back.frames:
+        pose = read_back.pose(frame, read_back.root)  # the one sample time: 5 s
+        np.testing.assert_allclose(pose.matrix.reshape(-1, 4, 4)[0], placed[frame],
+                                   atol=1e-9, err_msg=frame)
+    np.testing.assert_allclose(read_back.joint_trajectory("robot/joint_1").times, [5e9])
+    without = pinframes.read_urdf(out, joint_state=False)
+    assert all(without.joint_trajectory(name) is None for name in without.joints)
+    # the command line reads the pair too: the tip where it was at 5 s, not at joint values 0
+    result = run_cli("pose", out, "torch_tcp", "-r", "robot_base", "-f", "json")
+    assert result.returncode == 0, result.stderr
+    tip = np.linalg.inv(placed["robot_base"]) @ placed["torch_tcp"]
+    np.testing.assert_allclose(json.loads(result.stdout)["poses"][0]["x_m"], tip[0, 3],
+                               atol=1e-9)
 
 
 def test_frozen_joints_need_no_joint_values(tmp_path):

@@ -34,7 +34,7 @@ def test_view_of_the_bundled_scene_on_a_grid(run_cli, tmp_path):
     data, decoded = commands(out)
     assert data["duration"] == 20.0
     np.testing.assert_allclose(track_times(decoded, "torch_tcp"), np.arange(41) * 0.5)
-    assert any(c["type"] == "set_object" and c["path"].endswith("/paths/torch_tcp")
+    assert any(c["type"] == "set_object" and c["path"].endswith("/paths/path:torch_tcp")
                for c in decoded)
     meshes = [c for c in decoded if c["type"] == "set_object" and "/geometry/" in c["path"]]
     assert len(meshes) == 8 + 3 + 4 + 1 + 1  # robot, fixtures, faceplate and jaws, pipe, torch
@@ -64,7 +64,7 @@ def test_view_finds_packages_in_package_dir(run_cli, tmp_path):
     assert found.returncode == 0 and "GeometryWarning" not in found.stderr
     _, decoded = commands(tmp_path / "b.html")
     meshes = [c["path"] for c in decoded if c["type"] == "set_object" and "/geometry/" in c["path"]]
-    assert meshes == ["/pinframes/frames/base/geometry/0"]
+    assert meshes == ["/pinframes/frames/frame:base/geometry/0"]
 
 
 def test_demo_without_meshcat_writes_the_rest_and_says_what_the_extra_adds(

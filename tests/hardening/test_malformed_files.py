@@ -40,7 +40,9 @@ def test_malformed_file_raises_a_located_pinframes_error(case: Case, tmp_path):
     assert isinstance(error, BUILT_INS)
     expected_file = path if case.file == "" else tmp_path / case.file
     assert error.file is not None and Path(error.file) == expected_file, str(error)
-    assert (error.frame, error.field) == (case.frame, case.field), str(error)
+    # the frame, or the joint for errors about a robot joint (a URDF joint, a trajectory column)
+    subject = error.frame if error.frame is not None else error.joint
+    assert (subject, error.field) == (case.frame, case.field), str(error)
     assert case.message in error.message, str(error)
     assert str(error).startswith(error.file)
 

@@ -53,7 +53,7 @@ def test_not_a_time_is_an_invalid_time(times):
 def test_a_joint_axis_that_is_no_vector_is_a_joint_error(axis):
     with pytest.raises(JointError) as info:
         Joint("j", "revolute", axis=axis)
-    assert (info.value.frame, info.value.field) == ("j", "axis")
+    assert (info.value.joint, info.value.field) == ("j", "axis")
 
 
 @pytest.mark.parametrize("multiplier", ["2", b"2", None, float("nan"), float("inf"), 1e200])

@@ -118,3 +118,20 @@ def test_the_issue_examples(writer, tmp_path):
         for name, parent in frames:
             tree.add(name, parent, Pose([0.5, 0.0, 0.0]))
         check_rule(tree, writer, tmp_path)
+
+
+@pytest.mark.parametrize("writer", ["urdf", "frames.yaml", "scene", "asdf-1.0.0"])
+def test_writers_that_cannot_hold_data_refuse_it_by_name(tmp_path, writer):
+    suffix, write, _ = WRITERS[writer]
+    tree = FrameTree("world")
+    tree.add("torch", "world", Pose([0.5, 0.0, 0.3]))
+    tree.assign_data("seam", pinframes.SpatialData([[0.01, 0.0, 0.0]]), "torch")
+    path = tmp_path / f"cell{suffix}"
+    with pytest.raises(pinframes.UnsupportedFeatureError, match="'seam' on frame 'torch'") as info:
+        write(tree, path)
+    assert info.value.file == str(path) and info.value.frame == "torch"
+    assert "schema '0.1.0'" in info.value.message
+    assert not path.exists()
+    tree.delete_data("seam")  # without the data the same tree is written
+    write(tree, path)
+    assert path.exists()

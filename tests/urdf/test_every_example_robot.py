@@ -91,7 +91,7 @@ def test_a_mimic_of_an_unknown_joint_warns_once_and_moves_on_its_own():
                                                   [np.sin(0.5), np.cos(0.5)]], atol=1e-15)
     with pytest.raises(FileFormatError, match="mimics unknown joint 'x'") as info:
         read_urdf(urdf, strict=True)
-    assert (info.value.frame, info.value.field) == ("j1", "mimic.joint")
+    assert (info.value.joint, info.value.field) == ("j1", "mimic.joint")
 
 
 @needs_robots
@@ -99,5 +99,5 @@ def test_a_missing_mimic_primary_is_an_error_when_strict():
     urdf = ROBOTS / "alex_description/urdf/alex_psyonic_hands.urdf"
     with pytest.raises(FileFormatError, match="mimics unknown joint 'index_q1'") as info:
         FrameTree().attach_urdf(urdf, "world", strict=True)
-    assert info.value.frame == "Left_index_q2"
+    assert info.value.joint == "Left_index_q2"
     assert info.value.file == str(urdf)

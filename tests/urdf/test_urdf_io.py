@@ -7,7 +7,7 @@ import pinocchio as pin
 import pytest
 import yourdfpy
 
-from pinframes import FrameTree, JointLimitWarning, Pose
+from pinframes import FrameTree, JointLimitWarning, Pose, read_urdf
 from pinframes.errors import (
     FileFormatError,
     FrameExistsError,
@@ -16,7 +16,7 @@ from pinframes.errors import (
     ReadError,
     UnsupportedFeatureError,
 )
-from pinframes.formats.urdf import read_urdf, write_urdf
+from pinframes.formats.urdf import write_urdf
 
 from geometry import rot_z
 

@@ -152,7 +152,7 @@ def test_a_mimic_chain_longer_than_max_depth_is_refused(tmp_path):
     with pytest.raises(FileFormatError, match="max_depth=30") as info:
         read_urdf(path, limits=Limits(max_depth=30))
     # j30 is the first joint (root outwards) with 31 joints in its chain: j30 .. j0
-    assert (info.value.file, info.value.frame, info.value.field) == (
+    assert (info.value.file, info.value.joint, info.value.field) == (
         str(path), "j30", "mimic.joint")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

@@ -29,7 +29,7 @@ pytestmark = pytest.mark.skipif(not available(), reason="chromium is not install
 WIDTH, HEIGHT = 1000, 700
 FLANGE_ON_SCREEN = """(() => {
   const v = new MeshCat.THREE.Vector3();
-  pinframes.viewer.scene_tree.find(["pinframes", "frames", "robot\u2215flange"])
+  pinframes.viewer.scene_tree.find(["pinframes", "frames", "frame:robot%2Fflange"])
     .object.getWorldPosition(v);
   v.project(pinframes.viewer.camera);
   return [(v.x + 1) / 2 * innerWidth, (1 - v.y) / 2 * innerHeight];

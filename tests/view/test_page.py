@@ -64,7 +64,7 @@ def test_moving_frames_get_tracks_that_follow_the_circle():
     np.testing.assert_allclose(floats(tip[".quaternion"]["values"]).reshape(-1, 4),
                                quaternions, atol=1e-6)
     (line,) = [c for c in data["commands"] if c["type"] == "set_object"
-               and c["path"].endswith("/paths/tip")]
+               and c["path"].endswith("/paths/path:tip")]
     geometry = line["object"]["geometries"][0]["data"]["attributes"]["position"]
     np.testing.assert_allclose(floats(geometry["array"]).reshape(-1, 3), expected, atol=1e-6)
     assert data["duration"] == pytest.approx(2.0)

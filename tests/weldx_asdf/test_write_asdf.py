@@ -53,8 +53,14 @@ def seed_tree():
     return tree
 
 
-def test_schema_1_0_0_writes_the_seed_example(tmp_path):
+def test_the_default_is_the_schema_current_weldx_writes(tmp_path):
     write_asdf(seed_tree(), tmp_path / "seed.asdf")
+    assert hierarchy_of(tmp_path / "seed.asdf")._tag == (
+        CURRENT + "core/transformations/coordinate_system_hierarchy-0.1.0")
+
+
+def test_schema_1_0_0_writes_the_seed_example(tmp_path):
+    write_asdf(seed_tree(), tmp_path / "seed.asdf", schema="1.0.0")
     csm = hierarchy_of(tmp_path / "seed.asdf")
     assert csm._tag == LEGACY + "core/transformations/coordinate_system_hierarchy-1.0.0"
     assert list(csm) == ["name", "root_system_name", "subsystems", "coordinate_systems",
@@ -194,7 +200,7 @@ def test_static_parts_have_no_time_dimension(tmp_path):
     turns = np.stack([rot_z(angle) for angle in (0.0, 0.5, 1.0)])
     tree.add("turning", "world", Pose([0.1, 0.2, 0.3], turns, times=[0, 1, 2]))
     tree.add("still", "world", Pose([[0.0, 0, 0], [0.0, 0, 0]], times=[0, 1]))
-    write_asdf(tree, tmp_path / "p.asdf")
+    write_asdf(tree, tmp_path / "p.asdf", schema="1.0.0")
     turning, still = (entry["transformation"]
                       for entry in hierarchy_of(tmp_path / "p.asdf")["coordinate_systems"])
     assert turning["orientations"]["dimensions"] == ["time", "c", "v"]
@@ -276,7 +282,7 @@ def subsystem_tree():
 
 
 def test_legacy_subsystems_are_flattened(tmp_path):
-    write_asdf(subsystem_tree(), tmp_path / "s.asdf")
+    write_asdf(subsystem_tree(), tmp_path / "s.asdf", schema="1.0.0")
     csm = hierarchy_of(tmp_path / "s.asdf")
     assert csm["subsystem_names"] == ["robot", "clamp"]  # attached directly
     robot, clamp, scanner = csm["subsystems"]

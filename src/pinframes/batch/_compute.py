@@ -12,15 +12,21 @@ rad/s), both in ``relative_to``'s axes: :meth:`FrameTree.velocity` at the same t
 from __future__ import annotations
 
 from collections.abc import Iterator
+from dataclasses import dataclass
 
 import numpy as np
 import pyarrow as pa  # type: ignore[import-untyped]
 
 from .. import FrameTree, Pose, TimeAxis, Velocity
-from ..errors import FrameNotFoundError, InvalidTimeError
+from ..errors import FrameNotFoundError, InvalidTimeError, near_misses
 from ._options import BatchOptions
 
-__all__ = ["POSE_SCHEMA", "VELOCITY_SCHEMA", "output_schema", "pose_chunks"]
+__all__ = ["MAX_GRID_SAMPLES", "POSE_SCHEMA", "VELOCITY_SCHEMA", "output_schema",
+           "pose_chunks"]
+
+MAX_GRID_SAMPLES = 50_000_000
+"""The most times a ``step`` may resample one run to (about 4 GB of rows); the grid is
+checked before any of it is made, and made one chunk at a time."""
 
 POSE_SCHEMA = pa.schema([
     ("run", pa.string()),
@@ -48,34 +54,64 @@ def pose_chunks(tree: FrameTree, run_id: str, options: BatchOptions) -> Iterator
     ``options.velocity``, the velocity columns too (see the module docstring)."""
     for name in (options.frame, options.relative_to):
         if name is not None and name not in tree:
-            raise FrameNotFoundError("no frame of this name in this run", frame=name)
+            raise FrameNotFoundError("no frame of this name in this run"
+                                     + near_misses(name, tree.frames), frame=name)
     relative_to = options.relative_to or tree.parent(options.frame)
     if relative_to is None:
         tree.pose(options.frame)  # raises the error for the root, which has no parent
         raise AssertionError("unreachable: the root has no pose in its parent")
-    values, time_ref = _query_times(tree, options.frame, relative_to, options)
-    for start in range(0, values.shape[0], options.chunk_size):
-        chunk = values[start:start + options.chunk_size]
+    times = _query_times(tree, options.frame, relative_to, options)
+    for start in range(0, times.count, options.chunk_size):
+        chunk = times.chunk(start, start + options.chunk_size)
         pose = tree.pose(options.frame, relative_to=relative_to, times=chunk,
-                         time_ref=time_ref)
+                         time_ref=times.time_ref)
         velocity = tree.velocity(options.frame, relative_to, chunk,
-                                 time_ref=time_ref) if options.velocity else None
+                                 time_ref=times.time_ref) if options.velocity else None
         yield _table(run_id, pose, velocity, output_schema(options))
 
 
+@dataclass(frozen=True)
+class _QueryTimes:
+    """The times of one run's query, made chunk by chunk: ``offsets`` (int64 ns) or, for
+    a resampled run, the grid ``offsets[0] + k * step_ns`` for ``k < count``."""
+
+    offsets: np.ndarray
+    reference: np.datetime64 | None
+    time_ref: np.datetime64 | None
+    step_ns: int | None
+    count: int
+
+    def chunk(self, start: int, stop: int) -> np.ndarray:
+        """Times ``start`` to ``stop`` (timedelta64 or datetime64 [ns])."""
+        stop = min(stop, self.count)
+        if self.step_ns is None:
+            offsets = self.offsets[start:stop]
+        else:
+            offsets = self.offsets[0] + self.step_ns * np.arange(start, stop, dtype=np.int64)
+        return TimeAxis(offsets, self.reference).as_numpy()
+
+
 def _query_times(tree: FrameTree, frame: str, relative_to: str, options: BatchOptions
-                 ) -> tuple[np.ndarray, np.datetime64 | None]:
-    """The times to evaluate (timedelta64 or datetime64 [ns]) and the query's time_ref."""
+                 ) -> _QueryTimes:
+    """The times to evaluate and the query's time_ref; a resampling grid of more than
+    :data:`MAX_GRID_SAMPLES` times is an :class:`InvalidTimeError` at ``step``, found
+    before any of it is made."""
     axis = options.times if options.times is not None else tree.sample_times(frame, relative_to)
     if axis is None:
         raise InvalidTimeError(f"nothing moves between {frame!r} and {relative_to!r} in "
                                "this run: give explicit times", field="times")
     time_ref = options.time_ref if options.times is not None else axis.reference
+    offsets = axis.offsets
+    count = offsets.shape[0]
     if options.step_ns is not None:
-        offsets = axis.offsets
-        axis = TimeAxis(np.arange(offsets[0], offsets[-1] + 1, options.step_ns, dtype=np.int64),
-                        axis.reference)
-    return axis.as_numpy(), time_ref
+        count = (int(offsets[-1]) - int(offsets[0])) // options.step_ns + 1
+        if count > MAX_GRID_SAMPLES:
+            raise InvalidTimeError(
+                f"resampling this run from its first to its last sample "
+                f"({(int(offsets[-1]) - int(offsets[0])) / 1e9:g} s) every "
+                f"{options.step_ns / 1e9:g} s gives {count:,} times, more than "
+                f"{MAX_GRID_SAMPLES:,}; take a larger step", field="step")
+    return _QueryTimes(offsets, axis.reference, time_ref, options.step_ns, count)
 
 
 def _table(run_id: str, pose: Pose, velocity: Velocity | None, schema: pa.Schema

@@ -19,9 +19,10 @@ from ..errors import WriteError
 from ..formats.limits import Limits, checked_limits
 from ._engine import dask_client
 from ._manifest import Manifest
+from ._names import check_frame_names
 from ._options import DEFAULT_CHUNK_SIZE, BatchOptions
-from ._partition import POSES_FOLDER, clear_staging
-from ._runs import find_runs
+from ._partition import POSES_FOLDER, clear_staging, partition_path
+from ._runs import find_runs, keep_known_ids
 from ._task import RunResult, RunTask, process_run
 
 __all__ = ["BatchSummary", "run_batch"]
@@ -41,14 +42,19 @@ class BatchSummary:
         ``OUT/manifest.jsonl``, one record per run.
     records : list of dict
         This batch's runs' manifest records, in the order of the runs.
-    computed, skipped : list of str
-        Ids of the runs computed now, and of those unchanged since an earlier batch.
+    computed : list of str
+        Ids of the runs whose poses were computed now.
+    without_poses : list of str
+        Ids of the runs tried now that have no poses (status ``error`` or ``failed``).
+    skipped : list of str
+        Ids of the runs unchanged since an earlier batch (with or without poses).
     """
 
     dataset: Path
     manifest: Path
     records: list[dict[str, Any]] = field(default_factory=list)
     computed: list[str] = field(default_factory=list)
+    without_poses: list[str] = field(default_factory=list)
     skipped: list[str] = field(default_factory=list)
 
     @property
@@ -98,15 +104,23 @@ def run_batch(runs: Iterable[str | os.PathLike[str]], out: str | os.PathLike[str
         Show Dask's progress bar (on standard error); where to say where the dashboard is.
 
     Bad runs do not raise: they are in ``summary.bad`` and the manifest with their error.
+    Only ``frame`` and ``relative_to`` are checked before the cluster starts, on the first
+    run that reads: a name that run lacks is a :class:`~pinframes.errors.FrameNotFoundError`
+    suggesting near names.
     """
     options = BatchOptions.create(frame, relative_to, times, step, time_ref, chunk_size,
                                   velocity)
     limits = checked_limits(limits)
-    all_runs = find_runs(runs)
+    found = find_runs(runs)
+    check_frame_names(found, options, limits)
     out_path = Path(out)
     with _exclusive(out_path):
         clear_staging(out_path)
         manifest = Manifest(out_path)
+        all_runs, moved = keep_known_ids(found, manifest.records)
+        for run_id in moved:  # the file is another run's now: one file, one set of poses
+            manifest.records.pop(run_id)
+            partition_path(out_path, run_id).unlink(missing_ok=True)
         digest = options.digest()
         tasks = [RunTask(run, out_path, options, digest, manifest.records.get(run.run_id),
                          limits) for run in all_runs]
@@ -119,13 +133,22 @@ def run_batch(runs: Iterable[str | os.PathLike[str]], out: str | os.PathLike[str
                     for future in as_completed(futures):
                         result = _result(future, task_of.pop(future))
                         manifest.append(result.record)
-                        (summary.computed if result.computed else summary.skipped).append(
-                            result.record["run"])
+                        _count(summary, result)
         finally:
             manifest.rewrite(run.run_id for run in all_runs)
             clear_staging(out_path)
     summary.records = [manifest.records[run.run_id] for run in all_runs]
     return summary
+
+
+def _count(summary: BatchSummary, result: RunResult) -> None:
+    run_id = result.record["run"]
+    if not result.computed:
+        summary.skipped.append(run_id)
+    elif result.record["status"] == "ok":
+        summary.computed.append(run_id)
+    else:
+        summary.without_poses.append(run_id)
 
 
 def _result(future: Future, task: RunTask) -> RunResult:
@@ -134,7 +157,7 @@ def _result(future: Future, task: RunTask) -> RunResult:
         result = future.result()
     except Exception as exc:  # KilledWorker after Dask's retries, a lost connection
         record = {"run": task.run.run_id, "file": os.fspath(task.run.path),
-                  "status": "failed", "samples": None, "checksums": None,
+                  "input": task.run.input, "status": "failed", "samples": None, "checksums": None,
                   "error": f"{type(exc).__name__}: {exc}", "options": task.options_digest,
                   "limits": asdict(task.limits)}
         return RunResult(record, computed=True)

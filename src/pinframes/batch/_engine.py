@@ -10,8 +10,12 @@ from typing import TextIO
 
 import dask.config
 from distributed import Client, LocalCluster
+from distributed.security import Security
 
-__all__ = ["SINGLE_THREAD_ENV", "dask_client", "local_cluster", "worker_spawn_environment"]
+from ..errors import UnsupportedFeatureError
+
+__all__ = ["SINGLE_THREAD_ENV", "cluster_security", "dask_client", "local_cluster",
+           "worker_spawn_environment"]
 
 SINGLE_THREAD_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1",
                      "MKL_NUM_THREADS": "1"}
@@ -39,7 +43,7 @@ def dask_client(scheduler: str | None = None, workers: int | None = None,
 
     The local cluster has ``workers`` worker processes (default: one per core), one thread
     each, on 127.0.0.1 only; its dashboard (needs bokeh) on a free port. Where the dashboard
-    is goes to ``log``.
+    is goes to ``log``, when there is one.
     """
     if scheduler is not None:
         with Client(scheduler) as client:
@@ -56,13 +60,30 @@ def dask_client(scheduler: str | None = None, workers: int | None = None,
 def local_cluster(workers: int | None = None) -> Iterator[LocalCluster]:
     """A local cluster of ``workers`` single-threaded worker processes (default: one per
     core) on 127.0.0.1, BLAS limited to one thread and glibc's malloc left as it is in them;
-    the dashboard on a free port."""
+    the dashboard on a free port.
+
+    The scheduler, nanny and workers speak TLS and require a certificate of this cluster's
+    own authority, made anew in memory for it (:meth:`Security.temporary`): on a machine
+    shared with other users, a process that only reaches 127.0.0.1 can neither connect nor
+    run code in a worker. ``Client(cluster)`` takes the cluster's certificate.
+    """
     spawn = {"distributed.nanny.pre-spawn-environ": worker_spawn_environment()}
     with dask.config.set(spawn), _unset_in_this_process(_GLIBC_MALLOC_TUNING), LocalCluster(
             n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
-            host="127.0.0.1", dashboard_address="127.0.0.1:0",
-            env=SINGLE_THREAD_ENV) as cluster:
+            host="127.0.0.1", protocol="tls://", security=cluster_security(),
+            dashboard_address="127.0.0.1:0", env=SINGLE_THREAD_ENV) as cluster:
         yield cluster
+
+
+def cluster_security() -> Security:
+    """TLS with a new certificate authority and keys, held in memory only (needs the
+    ``cryptography`` package, in the ``batch`` extra)."""
+    try:
+        return Security.temporary()
+    except ImportError as exc:
+        raise UnsupportedFeatureError("the local cluster's TLS keys need the cryptography "
+                                      f"package (pip install 'pinframes[batch]'): {exc}"
+                                      ) from None
 
 
 @contextlib.contextmanager
@@ -90,8 +111,6 @@ def _remote_dashboard(client: Client) -> str | None:
 
 
 def _say_dashboard(link: str | None, log: TextIO | None) -> None:
-    if log is None:
-        return
-    print(f"pinframes: dask dashboard at {link}" if link else
-          "pinframes: dask dashboard unavailable (it needs bokeh: pip install bokeh)",
-          file=log)
+    """One line with the dashboard's address, when there is a dashboard."""
+    if log is not None and link:
+        print(f"pinframes: dask dashboard at {link}", file=log)

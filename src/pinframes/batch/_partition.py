@@ -9,11 +9,15 @@ Layout of ``OUT``::
 A run's file is written in ``.staging`` and renamed onto its place in ``poses/`` (the same
 file system, so the rename is atomic and replaces an older version in one step): readers
 of ``poses/`` never see a half-written file, and a worker killed mid-run leaves only a file
-in ``.staging``, which the next batch removes. Run ids are percent-encoded in file names.
+in ``.staging``, which the next batch removes. Run ids are percent-encoded in file names;
+an id whose encoded name would pass :data:`MAX_NAME_BYTES` (28 CJK characters take 252
+bytes) is cut and ends in ``+`` and a hash of the whole id (``+`` is always encoded, so no
+short id gives such a name). The ``run`` column always holds the whole id.
 """
 
 from __future__ import annotations
 
+import hashlib
 import os
 import shutil
 import uuid
@@ -28,6 +32,11 @@ __all__ = ["POSES_FOLDER", "PartitionWriter", "clear_staging", "partition_path"]
 
 POSES_FOLDER = "poses"
 _STAGING_FOLDER = ".staging"
+_SUFFIX = ".parquet"
+MAX_NAME_BYTES = 200
+"""The longest partition file name written; file systems allow 255 bytes, and tools that
+add a suffix of their own to a name keep working."""
+_HASH_CHARACTERS = 16
 
 
 def partition_path(out: Path, run_id: str) -> Path:
@@ -35,7 +44,13 @@ def partition_path(out: Path, run_id: str) -> Path:
     name = quote(run_id, safe="")
     if name[0] in "._":  # readers skip files starting so
         name = f"%{ord(name[0]):02X}{name[1:]}"
-    return out / POSES_FOLDER / f"{name}.parquet"
+    if len(name) + len(_SUFFIX) > MAX_NAME_BYTES:
+        keep = MAX_NAME_BYTES - len(_SUFFIX) - 1 - _HASH_CHARACTERS
+        cut = name[:keep]
+        cut = cut[:cut.rfind("%")] if "%" in cut[-2:] else cut  # no half of a %XX
+        digest = hashlib.sha256(run_id.encode("utf-8")).hexdigest()[:_HASH_CHARACTERS]
+        name = f"{cut}+{digest}"
+    return out / POSES_FOLDER / f"{name}{_SUFFIX}"
 
 
 def clear_staging(out: Path) -> None:

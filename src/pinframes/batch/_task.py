@@ -24,11 +24,11 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
-from .. import FrameTree, Limits, read
+from .. import FrameTree, Limits
 from ..errors import PinframesError
 from ..formats.limits import using_limits
 from ._compute import output_schema, pose_chunks
-from ._inputs import checksums, run_inputs
+from ._inputs import checksums, read_run, run_inputs
 from ._options import BatchOptions
 from ._partition import PartitionWriter, partition_path
 from ._runs import Run
@@ -64,7 +64,8 @@ class RunResult:
 
 
 def process_run(task: RunTask) -> RunResult:
-    """Bring one run's output up to date (see the module docstring)."""
+    """Bring one run's output up to date (see the module docstring); ``computed`` is False
+    for a run skipped as unchanged."""
     started = time.perf_counter()
     with using_limits(task.limits):
         inputs = run_inputs(task.run.path)
@@ -73,12 +74,12 @@ def process_run(task: RunTask) -> RunResult:
         assert task.previous is not None
         return RunResult(task.previous, computed=False)
     record: dict[str, Any] = {
-        "run": task.run.run_id, "file": os.fspath(task.run.path), "status": "ok",
+        "run": task.run.run_id, "file": os.fspath(task.run.path), "input": task.run.input,
+        "status": "ok",
         "samples": None, "error": None, "checksums": files, "options": task.options_digest,
         "limits": asdict(task.limits)}
     try:
-        tree = read(task.run.path, format="scene" if inputs.is_scene else None,
-                    limits=task.limits)
+        tree = read_run(task.run.path, inputs, task.limits)
         record["samples"] = _write_poses(tree, task)
     except PinframesError as exc:
         record.update(status="error", error=_located(exc, task.run.path))
@@ -103,11 +104,14 @@ def _unchanged(task: RunTask, files: dict[str, str]) -> bool:
 
 def _limits_still_hold(previous: dict[str, Any], limits: Limits) -> bool:
     """Whether ``limits`` give the outcome ``previous`` had (see the module docstring)."""
-    before = asdict(Limits())
-    before.update(previous.get("limits") or {})
+    before: dict[str, Any] = asdict(Limits())
+    recorded = previous.get("limits")
+    before.update(recorded if isinstance(recorded, dict) else {})
     now = asdict(limits)
+    if not all(isinstance(before.get(name), int) for name in now):
+        return False  # an edited record: read the run again
     if previous["status"] == "ok":
-        return all(now[name] >= before.get(name, now[name]) for name in now)
+        return all(now[name] >= before[name] for name in now)
     return before == now
 
 

@@ -4,6 +4,7 @@ file or standard output."""
 from __future__ import annotations
 
 import sys
+from pathlib import Path
 
 from ..errors import FileFormatError
 from ..formats.atomic import atomic_write
@@ -12,16 +13,35 @@ from ..formats.pose_files import write_poses as write_pose_file
 from ..kinematics import Velocity
 from ..values.pose import Pose
 
-__all__ = ["OUTPUT_FORMATS", "output_format", "write_poses", "write_text"]
+__all__ = ["OUTPUT_FORMATS", "output_format", "require_suffix", "write_poses", "write_text"]
 
 OUTPUT_FORMATS = POSE_FILE_FORMATS
 
 
 def output_format(requested: str | None, out: str | None) -> str:
-    """The format asked for, else the one the output file name implies, else CSV."""
+    """The format asked for, else the one the output file name implies, else (standard
+    output) CSV. A file name with another suffix is a :class:`FileFormatError`: nothing is
+    written in a format the name does not say."""
     if requested is not None:
         return requested
-    return (pose_file_format(out) if out is not None else None) or "csv"
+    if out is None:
+        return "csv"
+    named = pose_file_format(out)
+    if named is None:
+        raise FileFormatError(
+            f"cannot tell the output format from the name: name the file "
+            f"{', '.join('.' + name for name in OUTPUT_FORMATS)}, or pass --format",
+            file=out, field="-o")
+    return named
+
+
+def require_suffix(out: str | None, suffixes: tuple[str, ...], what: str) -> None:
+    """Refuse an output file ``out`` whose suffix is none of ``suffixes`` (``.csv``): the
+    command writes only ``what``, and a name such as ``out.xlsx`` would promise another
+    format."""
+    if out is not None and Path(out).suffix.lower() not in suffixes:
+        raise FileFormatError(f"this command writes {what}: name the file "
+                              f"{' or '.join(suffixes)}", file=out, field="-o")
 
 
 def write_poses(pose: Pose, fmt: str, out: str | None, *, frame: str, relative_to: str,

@@ -77,7 +77,8 @@ def run(args: argparse.Namespace) -> int:
                         progress_bar=terminal_stderr() is not None, log=sys.stderr, **extra)
     total = len(summary.records)
     print(f"pinframes: {total} runs: {len(summary.computed)} computed, "
-          f"{len(summary.skipped)} unchanged; poses in {summary.dataset}", file=sys.stderr)
+          f"{len(summary.without_poses)} without poses, {len(summary.skipped)} unchanged; "
+          f"poses in {summary.dataset}", file=sys.stderr)
     if summary.bad:
         for record in summary.bad:
             print(f"pinframes: run {record['run']}: {record['error']}", file=sys.stderr)

@@ -25,8 +25,8 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     parser.add_argument("--to", choices=registered_formats(),
                         help="format of OUT (default: from its name)")
     parser.add_argument("--schema", choices=("1.0.0", "0.1.0"),
-                        help="ASDF schema version: 0.1.0 (weldx 0.6 and later) or 1.0.0 "
-                        "(legacy, weldx up to 0.4) (default: 1.0.0)")
+                        help="ASDF schema version: 0.1.0 (what weldx 0.6 to 0.8.2 writes) "
+                        "or 1.0.0 (legacy, weldx up to 0.4) (default: 0.1.0)")
     parser.add_argument("--time", metavar="T",
                         help="write every frame at its pose at time T (seconds, duration or "
                         "timestamp); needed where OUT holds one pose per frame (URDF, "

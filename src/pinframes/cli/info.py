@@ -154,17 +154,20 @@ def _frame_columns(tree: FrameTree, name: str) -> tuple[str, str, str]:
         trajectory = tree.joint_trajectory(joint.name)
         if trajectory is None:
             return kind, "mimic" if joint.mimic is not None else "no trajectory", ""
-        return kind, _span(trajectory.times, "samples"), _reference(trajectory.reference, tree)
+        return kind, _span(trajectory.times, "sample"), _reference(trajectory.reference, tree)
     pose = tree.local_pose(name)
     if not pose.is_time_dependent:
         return "static", "", ""
-    return ("moving", _span(pose.keyframes.times, "keyframes"),
+    return ("moving", _span(pose.keyframes.times, "keyframe"),
             _reference(pose.reference_time, tree))
 
 
 def _span(nanoseconds: np.ndarray, what: str) -> str:
+    """``0 s .. 10 s (2 samples)``; one sample (``what`` singular) is ``5 s (1 sample)``."""
     first, last = nanoseconds[0] / 1e9, nanoseconds[-1] / 1e9
-    return f"{first:g} s .. {last:g} s ({nanoseconds.shape[0]} {what})"
+    if nanoseconds.shape[0] == 1:
+        return f"{first:g} s (1 {what})"
+    return f"{first:g} s .. {last:g} s ({nanoseconds.shape[0]} {what}s)"
 
 
 def _reference(own: np.datetime64 | None, tree: FrameTree) -> str:

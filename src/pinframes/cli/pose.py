@@ -48,6 +48,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Evaluate and write the poses."""
+    fmt = output_format(args.format, args.output)  # a bad name fails before the work
     tree = read_tree(args.file, args.robot_description)
     require_frames(tree, args.file, args.frame, args.relative_to)
     relative_to = args.relative_to
@@ -62,7 +63,6 @@ def run(args: argparse.Namespace) -> int:
     if args.velocity or args.expressed_in is not None:
         require_frames(tree, args.file, args.expressed_in)
         velocity = pose_velocity(tree, pose, args.frame, relative_to, args.expressed_in)
-    fmt = output_format(args.format, args.output)
     write_poses(pose, fmt, args.output, frame=args.frame, relative_to=relative_to,
                 velocity=velocity)
     if pose.reference_time is not None and fmt == "csv":

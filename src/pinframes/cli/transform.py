@@ -1,10 +1,11 @@
 """``pinframes transform FILE DATA FRAME -r OTHER``: measured points or vectors into a frame.
 
-``DATA`` is a CSV file with a header: three data columns (any names, such as ``x_m, y_m,
-z_m``) and optionally ``time_s``. With ``time_s`` every row is one point at its own time
-(seconds after the tree's reference time, or after ``--time-ref``); without it every point
-is taken at every time of the time options (default: every keyframe and joint sample on the
-path; a static path needs none).
+``DATA`` is a CSV file with a header: three data columns and optionally ``time_s``. The
+data columns name their unit (``x_mm``; see :mod:`._column_units`): points are converted
+to metres, moved, and written back in that unit. With ``time_s`` every row is one point at
+its own time (seconds after the tree's reference time, or after ``--time-ref``); without it
+every point is taken at every time of the time options (default: every keyframe and joint
+sample on the path; a static path needs none).
 """
 
 from __future__ import annotations
@@ -19,9 +20,10 @@ import numpy as np
 from ..errors import FileFormatError, InvalidDataError
 from ..formats.reading import read_text
 from ..values.timeconv import TimeAxis
+from ._column_units import LENGTH_UNITS, metres_per_unit
 from ._evaluate import add_time_arguments, requested_times
 from ._files import read_tree, require_frames
-from ._output import write_text
+from ._output import require_suffix, write_text
 
 __all__ = ["add_parser", "run"]
 
@@ -34,10 +36,12 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "transform", parents=parents, help="points or vectors measured in one frame, in another",
         description="Read points (or, with --vectors, directions) given in FRAME from the CSV "
         "file DATA and write them in --relative-to. DATA has a header row naming three data "
-        "columns (kept in the output, so units stay in the names, e.g. x_m,y_m,z_m) and "
-        f"optionally '{TIME_COLUMN}': then each row is one point at its own time (seconds "
-        "after the reference time). Without it every point is written at every time of the "
-        "time options, with columns time_s, point (its row number) and the data columns.")
+        "columns in one unit, LABEL_UNIT (points: "
+        f"{', '.join(LENGTH_UNITS)}, or no unit for metres; e.g. x_mm,y_mm,z_mm), kept in "
+        f"the output with the data in that unit, and optionally '{TIME_COLUMN}': then each "
+        "row is one point at its own time (seconds after the reference time). Without it "
+        "every point is written at every time of the time options, with columns time_s, "
+        "point (its row number) and the data columns.")
     parser.add_argument("file", metavar="FILE", help="scene, frames.yaml, ASDF or URDF file")
     parser.add_argument("data", metavar="DATA", help="CSV file of points or vectors")
     parser.add_argument("frame", metavar="FRAME", help="the frame the data are given in")
@@ -54,6 +58,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Transform the data and write them."""
+    require_suffix(args.output, (".csv",), "CSV")
     tree = read_tree(args.file, args.robot_description)
     require_frames(tree, args.file, args.frame, args.relative_to)
     names, times, data = _read_data(args.data)
@@ -61,12 +66,15 @@ def run(args: argparse.Namespace) -> int:
         row = int(np.argwhere(~np.isfinite(data))[0][0])
         raise InvalidDataError(f"line {row + 2}: not a finite number", file=args.data,
                                field=names[int(np.argwhere(~np.isfinite(data[row]))[0][0])])
+    factor = metres_per_unit(names, not args.vectors, args.data)
+    data = data * factor
     method = tree.transform_vectors if args.vectors else tree.transform_points
     if times is not None:
         if args.times is not None or args.start or args.stop or args.step:
             raise FileFormatError(f"has a '{TIME_COLUMN}' column: leave out the time options",
                                   file=args.data, field=TIME_COLUMN)
-        out = method(data, args.frame, args.relative_to, times, time_ref=args.time_ref)
+        out = method(data, args.frame, args.relative_to, times, per_time=True,
+                     time_ref=args.time_ref)
         header, rows = [TIME_COLUMN, *names], np.column_stack([times, out])
     else:
         axis = (requested_times(args, tree, args.frame, args.relative_to)
@@ -75,6 +83,8 @@ def run(args: argparse.Namespace) -> int:
             header, rows = names, method(data, args.frame, args.relative_to)
         else:
             header, rows = _every_point_at_every_time(method, args, axis, data, names)
+    rows = np.array(rows)
+    rows[..., -3:] /= factor
     _write(header, rows, args.output)
     return 0
 
@@ -85,7 +95,7 @@ def _every_point_at_every_time(
 ) -> tuple[list[str], np.ndarray]:
     """Every point at every time of ``axis``."""
     time_ref = args.time_ref if axis.reference is None else axis.reference
-    out = method(data[None], args.frame, args.relative_to, axis.as_numpy(), time_ref=time_ref)
+    out = method(data, args.frame, args.relative_to, axis.as_numpy(), time_ref=time_ref)
     count, points = out.shape[:2]
     seconds = np.repeat(axis.offsets / 1e9, points)
     index = np.tile(np.arange(points), count)

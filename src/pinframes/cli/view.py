@@ -8,6 +8,7 @@ import sys
 from ..view import PACKAGE_PATH_VARIABLE, write_view
 from ._evaluate import add_time_arguments, requested_times
 from ._files import read_tree, require_frames
+from ._output import require_suffix
 from .clearance import frame_names
 
 __all__ = ["add_parser", "run"]
@@ -53,6 +54,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Build and write the page."""
+    require_suffix(args.output, (".html", ".htm"), "an HTML page")
     tree = read_tree(args.file, args.robot_description)
     paths = None if args.path is None else dict(args.path)
     require_frames(tree, args.file, args.relative_to, *(args.frames or []),

@@ -32,7 +32,8 @@ from .trajectory_files import (
     read_joint_trajectory,
     read_npz_trajectory,
 )
-from .urdf import mount_urdf, read_urdf, write_urdf
+from .urdf import mount_urdf, write_urdf
+from .urdf_files import read_urdf
 
 __all__ = [
     "FileFormat",

@@ -14,7 +14,8 @@ from typing import NoReturn
 
 from ..errors import ArgumentTypeError, ReadError
 
-__all__ = ["check_regular_file", "is_regular_file", "path_argument", "read_regular_file"]
+__all__ = ["check_regular_file", "is_regular_file", "path_argument", "read_regular_file",
+           "regular_file_problem"]
 
 
 def path_argument(path: object, field: str = "path") -> str:
@@ -72,6 +73,20 @@ def is_regular_file(path: str | os.PathLike[str]) -> bool:
         return False
 
 
+def regular_file_problem(path: str | os.PathLike[str]) -> str | None:
+    """Why ``path`` is no regular file to read (``"no such file"``, ``"is a folder, not a
+    file"``, ...), or None when it is one; without opening it."""
+    try:
+        mode = os.stat(path).st_mode
+    except FileNotFoundError:
+        return "no such file"
+    except (OSError, ValueError) as exc:
+        return f"cannot read: {getattr(exc, 'strerror', None) or exc}"
+    if stat.S_ISREG(mode):
+        return None
+    return _IS_FOLDER if stat.S_ISDIR(mode) else _IRREGULAR
+
+
 def check_regular_file(path: object) -> str:
     """``path`` as a ``str`` if it names a readable regular file, else a pinframes error."""
     file = path_argument(path)
@@ -86,7 +101,9 @@ def check_regular_file(path: object) -> str:
     return file
 
 
+_IS_FOLDER = "is a folder, not a file"
+_IRREGULAR = "not a regular file (a device, FIFO or socket): refused"
+
+
 def _refuse_irregular(mode: int, file: str) -> NoReturn:
-    if stat.S_ISDIR(mode):
-        raise ReadError("is a folder, not a file", file=file)
-    raise ReadError("not a regular file (a device, FIFO or socket): refused", file=file)
+    raise ReadError(_IS_FOLDER if stat.S_ISDIR(mode) else _IRREGULAR, file=file)

@@ -22,7 +22,7 @@ from ..errors import (
 from ..tree import FrameTree
 from ._paths import path_argument
 
-__all__ = ["check_writable_tree"]
+__all__ = ["check_writable_tree", "refuse_attached_data"]
 
 
 def check_writable_tree(tree: FrameTree, path: object) -> None:
@@ -41,6 +41,22 @@ def check_writable_tree(tree: FrameTree, path: object) -> None:
         _check_tree(tree)
     except PinframesError as exc:
         raise exc.located(file=file) from None
+
+
+def refuse_attached_data(tree: FrameTree, path: object, what: str, field: str = "data"
+                         ) -> None:
+    """Refuse to write ``tree`` to a ``what`` file, which cannot hold data, when data is
+    attached to its frames: an :class:`UnsupportedFeatureError` naming the data, their
+    frames and the one format that holds them (a writer never drops data silently)."""
+    names = tree.data_names
+    if not names:
+        return
+    attached = ", ".join(f"{name!r} on frame {tree.data_frame(name)!r}" for name in names)
+    raise UnsupportedFeatureError(
+        f"data is attached to frames ({attached}) and {what} cannot hold data: pinframes "
+        "writes data in ASDF schema '0.1.0' only (or detach it first: "
+        "tree.delete_data(name))", file=path_argument(path), frame=tree.data_frame(names[0]),
+        field=field)
 
 
 def _check_tree(tree: FrameTree) -> None:

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import contextlib
 import os
+import secrets
 import stat
-import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 from typing import IO
@@ -34,15 +34,12 @@ def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO]
     _check_target(target, folder, file)
     remove_stale_temporaries(folder)
     try:
-        # a short name of our own: legal names up to 255 bytes get a temporary name that
-        # fits, and the writer's process id tells a later write whether it was left behind
-        fd, tmp_name = tempfile.mkstemp(prefix=f"{_TEMPORARY_PREFIX}{os.getpid()}-",
-                                        suffix=_TEMPORARY_SUFFIX, dir=folder)
+        fd, tmp_name = _create_temporary(folder)
     except OSError as exc:
         raise WriteError(f"cannot create a file here: {exc.strerror}", file=file) from exc
     try:
         try:
-            os.fchmod(fd, _mode_for(target))
+            _keep_mode_of(target, fd)
             handle = os.fdopen(fd, mode, encoding=None if "b" in mode else "utf-8")
         except BaseException:
             os.close(fd)
@@ -104,12 +101,30 @@ def _running(pid: int) -> bool:
     return True
 
 
-def _mode_for(target: Path) -> int:
-    """The permissions of the file being replaced, else what a new file gets (0o666 - umask);
-    ``mkstemp`` alone would leave every written file readable by its owner only."""
+def _create_temporary(folder: Path) -> tuple[int, str]:
+    """A new empty file in ``folder`` and its name, created with mode 0o666 so that the
+    kernel applies the process's umask (and the folder's default ACL) as it does to any new
+    file; the process umask is never changed, so other threads' files keep theirs.
+
+    A short name of our own: legal names up to 255 bytes get a temporary name that fits, and
+    the writer's process id tells a later write whether it was left behind.
+    """
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_CLOEXEC", 0)
+    for _ in range(100):
+        name = os.path.join(folder, f"{_TEMPORARY_PREFIX}{os.getpid()}-"
+                                    f"{secrets.token_hex(6)}{_TEMPORARY_SUFFIX}")
+        try:
+            return os.open(name, flags, 0o666), name
+        except FileExistsError:
+            continue
+    raise FileExistsError(f"no free temporary name in {os.fspath(folder)}")
+
+
+def _keep_mode_of(target: Path, fd: int) -> None:
+    """Give the file ``fd`` the permissions of ``target`` when it exists (a replaced file
+    keeps its mode); a new file keeps the mode it was created with."""
     try:
-        return stat.S_IMODE(target.stat().st_mode)
+        mode = stat.S_IMODE(target.stat().st_mode)
     except FileNotFoundError:
-        umask = os.umask(0)
-        os.umask(umask)
-        return 0o666 & ~umask
+        return
+    os.fchmod(fd, mode)

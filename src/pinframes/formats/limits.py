@@ -39,13 +39,15 @@ class Limits:
     ----------
     max_samples : int
         Time samples of one frame or joint trajectory: keyframes, the points of a regular
-        time grid (``{start, end, freq}``), rows of a joint trajectory file.
+        time grid (``{start, end, freq}``), rows of a joint trajectory file, the transforms
+        of a frame or joint states of a joint in a ROS bag.
     max_yaml_nodes : int
         YAML nodes of a document after expanding aliases (``*name`` counts the whole node
         it repeats, each time it is used); scalars, lists and mappings count one each.
     max_decompressed_bytes : int
-        Bytes of all arrays of one NPZ file, or of one array of an ASDF file, once
-        decompressed.
+        Bytes of all arrays of one NPZ file once decompressed, or of all that the arrays of
+        an ASDF file's hierarchy decode to: each binary block once, at its decompressed
+        size, and each array read from it; bytes of the messages read from a ROS bag.
     max_depth : int
         Nesting depth of a YAML document (lists and mappings inside each other), path
         segments of a frames.yaml key (``a/b/c`` has 3), and nesting depth of the XML

@@ -1,13 +1,18 @@
-"""Reading a whole input file; every way that can fail is a :class:`ReadError` naming it."""
+"""Reading a whole input file; every way that can fail is a :class:`ReadError` naming it.
+
+Also the public door to the regular-file checks of ``_paths`` (only regular files are
+read: a device never ends, a FIFO blocks): :func:`is_regular_file`,
+:func:`regular_file_problem`.
+"""
 
 from __future__ import annotations
 
 import os
 
 from ..errors import ReadError
-from ._paths import read_regular_file
+from ._paths import is_regular_file, read_regular_file, regular_file_problem
 
-__all__ = ["read_bytes", "read_text"]
+__all__ = ["is_regular_file", "read_bytes", "read_text", "regular_file_problem"]
 
 
 def read_bytes(path: str | os.PathLike[str], size: int = -1) -> bytes:

@@ -9,6 +9,10 @@ CSV
 NPZ
     ``numpy.savez`` arrays ``times`` (T,) (float seconds, ``timedelta64`` or
     ``datetime64``), ``positions`` (T, n) and ``joint_names`` (n,) strings.
+
+Errors name the joint (column) and where the sample is: the line of a CSV file (counted from
+1, as editors do, the header included), the sample of an NPZ file (its index in the arrays,
+counted from 0, as numpy does).
 """
 
 from __future__ import annotations
@@ -19,6 +23,7 @@ import math
 import os
 import zipfile
 import zlib
+from collections.abc import Callable
 from typing import IO
 
 import numpy as np
@@ -78,13 +83,7 @@ def read_joint_trajectory(
     path = path_argument(path)
     reader = file_format(detect_format(path, kind=JOINT_TRAJECTORY), JOINT_TRAJECTORY).read
     assert reader is not None
-    times, positions, names = reader(path)
-    _check_times(times, path)
-    if not np.all(np.isfinite(positions)):
-        row, column = np.argwhere(~np.isfinite(positions))[0]
-        raise FileFormatError(f"joint value at sample {row + 1} is not finite", file=path,
-                              frame=names[column], field="positions")
-    return times, positions, names
+    return reader(path)
 
 
 def joint_trajectory_csv(times: np.ndarray, positions: NDArray[np.float64],
@@ -145,8 +144,10 @@ def read_csv_trajectory(
                 positions[index, column] = float(cell)
             except ValueError:
                 raise FileFormatError(f"expected a number, got {cell.strip()!r}", file=path,
-                                      frame=names[column], field=f"line {number}") from None
-    return _csv_times(time_cells, header[0], rows, path), positions, names
+                                      joint=names[column], field=f"line {number}") from None
+    times = _csv_times(time_cells, header[0], rows, path)
+    _check_samples(times, positions, names, path, lambda index: f"line {rows[index][0]}")
+    return times, positions, names
 
 
 def _csv_times(cells: list[str], column: str, rows: list[tuple[int, list[str]]],
@@ -157,13 +158,13 @@ def _csv_times(cells: list[str], column: str, rows: list[tuple[int, list[str]]],
             try:
                 times[index] = float(cell)
             except ValueError:
-                raise FileFormatError(f"expected seconds, got {cell!r}", file=path,
-                                      frame=column, field=f"line {rows[index][0]}") from None
+                raise FileFormatError(f"expected seconds in '{column}', got {cell!r}",
+                                      file=path, field=f"line {rows[index][0]}") from None
         return times
     try:
         axis = parse_time_axis(cells, field=column)
     except InvalidTimeError as exc:
-        raise FileFormatError(exc.message, file=path, frame=column) from None
+        raise FileFormatError(exc.message, file=path, field=column) from None
     return axis.as_numpy()
 
 
@@ -206,7 +207,9 @@ def read_npz_trajectory(
             f"got {positions.dtype} shape {positions.shape}", file=path, field="positions")
     if times.dtype.kind in "iu":
         times = times.astype(float)
-    return times, positions.astype(float), name_list
+    positions = positions.astype(float)
+    _check_samples(times, positions, name_list, path, lambda index: f"sample {index}")
+    return times, positions, name_list
 
 
 def _check_npz_sizes(content: bytes, path: str | os.PathLike[str]) -> None:
@@ -261,23 +264,32 @@ def _check_names(names: list[str], path: str | os.PathLike[str], field: str) -> 
         if not name:
             raise FileFormatError("a joint name is empty", file=path, field=field)
         if name in seen:
-            raise FileFormatError("joint named twice", file=path, frame=name, field=field)
+            raise FileFormatError("joint named twice", file=path, joint=name, field=field)
         seen.add(name)
 
 
-def _check_times(times: np.ndarray, path: str | os.PathLike[str]) -> None:
+def _check_samples(times: np.ndarray, positions: NDArray[np.float64], names: list[str],
+                   path: str | os.PathLike[str], where: Callable[[int], str]) -> None:
+    """Check the samples a reader read: their count, finite and strictly increasing times,
+    finite joint values. ``where(index)`` says where sample ``index`` is in the file (a CSV
+    line, an NPZ array index counted from 0), the field of every error."""
     if times.shape[0] > current_limits().max_samples:
         raise exceeded("max_samples", f"{times.shape[0]:,} samples",
                        field="times").located(file=path)
     if times.dtype.kind == "f" and not np.all(np.isfinite(times)):
-        raise FileFormatError(f"time at sample {int(np.argmin(np.isfinite(times))) + 1} is not "
-                              "finite", file=path, field="times")
+        index = int(np.argmin(np.isfinite(times)))
+        raise FileFormatError(f"the time {times[index]} is not finite", file=path,
+                              field=where(index))
     try:
         parse_time_axis(times)  # the same range rules as every other time input
     except InvalidTimeError as exc:
         raise FileFormatError(exc.message, file=path, field="times") from None
     steps = np.diff(times)
     if np.any(steps <= steps.dtype.type(0)):
-        sample = int(np.argmax(steps <= steps.dtype.type(0))) + 2
-        raise FileFormatError(f"times must be strictly increasing; sample {sample} is not "
-                              "after sample " f"{sample - 1}", file=path, field="times")
+        index = int(np.argmax(steps <= steps.dtype.type(0))) + 1
+        raise FileFormatError(f"times must be strictly increasing; this time is not after "
+                              f"the one at {where(index - 1)}", file=path, field=where(index))
+    if not np.all(np.isfinite(positions)):
+        index, column = (int(i) for i in np.argwhere(~np.isfinite(positions))[0])
+        raise FileFormatError(f"the joint value {positions[index, column]} is not finite",
+                              file=path, joint=names[column], field=where(index))

@@ -23,7 +23,7 @@ from numpy.typing import NDArray
 
 from ..errors import GeometryError
 from ..values.geometry import GEOMETRY_KINDS, FrameGeometry, Shape
-from .mesh_files import HOW_TO_SEARCH, MeshFiles, package_search_dirs
+from .mesh_files import HOW_TO_SEARCH, MeshFiles, mesh_file_problem, package_search_dirs
 
 __all__ = ["CollisionShape", "ShapeLoader"]
 
@@ -135,6 +135,9 @@ class ShapeLoader:
         key = (path, scale)
         mesh = self._meshes.get(key)
         if mesh is None:
+            if (problem := mesh_file_problem(Path(path), None)) is not None:
+                raise GeometryError(f"mesh {problem}", file=path, frame=frame,
+                                    field=f"{field}.mesh")
             try:
                 mesh = coal.MeshLoader().load(path, np.array(scale, dtype=float))
             except (ValueError, RuntimeError) as exc:

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import pinocchio as pin
@@ -110,12 +111,12 @@ class TrackingProblem:
     step_ratios: FloatArray
     solver: LeastSquares
 
-    @property
+    @cached_property
     def position_region(self) -> float:
         """:func:`quadratic_region` of the position tolerance (m)."""
         return quadratic_region(self.position_tolerance)
 
-    @property
+    @cached_property
     def orientation_region(self) -> float:
         """:func:`quadratic_region` of the orientation tolerance (rad)."""
         return quadratic_region(self.orientation_tolerance)

@@ -13,14 +13,19 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import InvalidPoseError
 from ..values.interpolation import Keyframes
 from ..values.joint import Joint, mimic_chain
+from ..values.numbers import require_finite_result
 from ..values.se3 import Transform
 from ..values.timeline import TimedSource
 from ._description import ModelLayout, TreeDescription
 from ._model import CompiledModel
 
-__all__ = ["PreparedPath", "model_sources", "prepare_path"]
+__all__ = ["PreparedPath", "model_sources", "prepare_path", "require_finite_pose"]
 
 
 @dataclass(frozen=True)
@@ -59,9 +64,19 @@ def prepare_path(tree: TreeDescription, frame: str, relative_to: str) -> Prepare
         path = PreparedPath(frame, relative_to, None, model, keyframes,
                             tuple(model_sources(tree, model)))
     else:
+        require_finite_pose(layout[1], frame, relative_to)
         path = PreparedPath(frame, relative_to, layout)
     tree.store(key, path)
     return path
+
+
+def require_finite_pose(translation: NDArray[np.float64], frame: str, relative_to: str
+                        ) -> None:
+    """An :class:`~pinframes.errors.InvalidPoseError` naming the frame when the pose of
+    ``frame`` in ``relative_to``, composed from finite poses, overflowed to infinity or NaN
+    (two translations of 1e308 m)."""
+    require_finite_result(translation, f"the pose of {frame!r} in {relative_to!r}",
+                          InvalidPoseError, frame=frame, field="translation")
 
 
 def model_sources(tree: TreeDescription, model: CompiledModel) -> list[TimedSource]:

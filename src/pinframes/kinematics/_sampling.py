@@ -8,14 +8,13 @@ tree version naming the joints without samples).
 
 from __future__ import annotations
 
-import warnings
 from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import JointWithoutSamplesWarning
+from ..errors import JointWithoutSamplesWarning, warn_at_caller
 from ..values.interpolation import Keyframes, Segments
 from ..values.joint import Joint
 from ..values.se3 import samples_first
@@ -156,9 +155,8 @@ def warn_joints_without_samples(tree: TreeDescription) -> None:
         f" and {len(idle) - 4} more" if len(idle) > 4 else "")
     many = len(idle) > 1
     subject = f"joints {named} have" if many else f"joint {named} has"
-    warnings.warn(
+    warn_at_caller(
         f"{subject} no samples and {'hold' if many else 'holds'} the rest value (0, or the "
         "limit nearest to 0); give values with FrameTree.set_joint_trajectory(times, "
         "positions, joint_names) or a scene robot's 'trajectory' file",
-        JointWithoutSamplesWarning,
-        stacklevel=2)
+        JointWithoutSamplesWarning)

@@ -12,15 +12,22 @@ A search folder may be a package itself (its name is ``PKG``) or hold packages a
 sub-folders (``folder/PKG``), as ``ROS_PACKAGE_PATH`` entries do. The clearance query finds
 its meshes here, and so does the 3-D page (for which it also serves yourdfpy as its
 ``filename_handler``: names that cannot be found map to ``""``, which yourdfpy skips).
+
+:func:`mesh_file_problem` tells why a found mesh file must not be opened: mesh readers inflate
+compressed files and archives without bound (trimesh opens ``.zip``, ``.tar.gz``, ``.bz2`` by
+their names, pycollada a ``.dae`` that is a zip archive by its content), so only
+uncompressed files of at most ``max_decompressed_bytes`` (given by the caller: the limits
+live in a higher layer) are read.
 """
 
 from __future__ import annotations
 
 import os
+import stat
 from collections.abc import Iterable
 from pathlib import Path
 
-__all__ = ["PACKAGE_PATH_VARIABLE", "MeshFiles", "package_search_dirs"]
+__all__ = ["PACKAGE_PATH_VARIABLE", "MeshFiles", "mesh_file_problem", "package_search_dirs"]
 
 PACKAGE_PATH_VARIABLE = "ROS_PACKAGE_PATH"
 """Environment variable with extra search folders, as ROS users set it."""
@@ -28,6 +35,45 @@ PACKAGE_PATH_VARIABLE = "ROS_PACKAGE_PATH"
 HOW_TO_SEARCH = (f"give the folder that holds it with package_dirs=[...] (Python), "
                  f"--package-dir DIR (command line) or {PACKAGE_PATH_VARIABLE}")
 """What a warning about a mesh that was not found tells the user to do."""
+
+
+_COMPRESSED_SUFFIXES = (".zip", ".zae", ".gz", ".tgz", ".bz2", ".tbz2", ".xz", ".txz",
+                        ".lzma", ".zst", ".7z", ".tar", ".rar")
+_COMPRESSED_MAGIC = {b"PK\x03\x04": "zip", b"\x1f\x8b": "gzip", b"BZh": "bzip2",
+                     b"\xfd7zXZ\x00": "xz", b"7z\xbc\xaf\x27\x1c": "7z",
+                     b"\x28\xb5\x2f\xfd": "zstd"}
+
+
+def mesh_file_problem(path: Path, max_bytes: int | None) -> str | None:
+    """Why the mesh file at ``path`` is not opened, or None to open it: a compressed file or
+    an archive (by its name or its first bytes), no regular file, or a file of more than
+    ``max_bytes`` bytes (the limit ``max_decompressed_bytes``; None: no bound on the size)."""
+    if path.name.lower().endswith(_COMPRESSED_SUFFIXES):
+        return ("is compressed or an archive: mesh files are read uncompressed only "
+                "(unpack it and name the mesh inside)")
+    try:
+        with open(path, "rb", opener=_open_without_waiting) as handle:
+            info = os.fstat(handle.fileno())
+            if not stat.S_ISREG(info.st_mode):
+                return "is not a regular file"
+            head = handle.read(8)
+    except OSError as exc:
+        return f"cannot be read ({exc.strerror or exc})"
+    if max_bytes is not None and info.st_size > max_bytes:
+        return (f"takes {info.st_size:,} bytes, over the limit max_decompressed_bytes="
+                f"{max_bytes:,}; if the file is trusted, raise it "
+                "(limits=pinframes.Limits(max_decompressed_bytes=...) or "
+                "--max-decompressed-bytes)")
+    for magic, kind in _COMPRESSED_MAGIC.items():
+        if head.startswith(magic):
+            return (f"is {kind}-compressed data under a mesh name: mesh files are read "
+                    "uncompressed only")
+    return None
+
+
+def _open_without_waiting(file: str, flags: int) -> int:
+    """Open for reading without waiting for a FIFO's writer (fstat then refuses it)."""
+    return os.open(file, flags | getattr(os, "O_NONBLOCK", 0))
 
 
 def package_search_dirs(package_dirs: Iterable[str | os.PathLike[str]] = ()) -> list[Path]:

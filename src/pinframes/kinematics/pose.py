@@ -21,7 +21,7 @@ from ..values.timeconv import TimeAxis
 from ..values.timeline import QueryTimeline, TimedSource
 from ._description import TreeDescription
 from ._one_time import one_time_plan, takes_few_times
-from ._path import PreparedPath, prepare_path
+from ._path import PreparedPath, prepare_path, require_finite_pose
 from ._sampling import CHUNK, sample_joints, warn_joints_without_samples
 from ._times import basis_shifts, checked_timeline, plan_timeline
 
@@ -50,6 +50,8 @@ def evaluate_pose(
                                            basis_shifts(sources, timeline))
     else:
         rotation, translation = _evaluate_in_chunks(tree, path, sources, timeline)
+    if path.static is None:  # a static path was checked once, when it was prepared
+        require_finite_pose(translation, frame, relative_to)
     if offsets is None:
         return trusted_pose(rotation[0], translation[0])
     return trusted_pose(rotation, translation, offsets, timeline.reference)

@@ -97,7 +97,7 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
     and the contact tip are evaluated at exactly those times.
     """
     torch_in_seam = evaluate_pose(tree, torch, seam, times, time_ref, extrapolation)
-    rotation = np.atleast_3d(torch_in_seam.rotation).reshape(-1, 3, 3)
+    rotation = np.reshape(torch_in_seam.rotation, (-1, 3, 3))
     origin = np.reshape(torch_in_seam.translation, (-1, 3))
     same_times, same_ref = torch_in_seam.times, torch_in_seam.reference_time
     if same_times is not None and same_ref is not None:

@@ -13,6 +13,7 @@ from __future__ import annotations
 import fnmatch
 import os
 from collections.abc import Callable, Iterable, Sequence
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -21,6 +22,7 @@ from ..errors import (
     ArgumentTypeError,
     FrameNotFoundError,
     GeometryError,
+    InvalidPoseError,
     PinframesError,
     TreeStructureError,
     near_misses,
@@ -46,6 +48,7 @@ from ..kinematics import (
     snapshot,
 )
 from ..values.geometry import GEOMETRY_METADATA_KEY, FrameGeometry
+from ..values.numbers import require_finite_result
 from ..values.pose import Pose
 from ..values.pose_stack import PoseStack
 from ..values.timeconv import TimeAxis
@@ -153,36 +156,42 @@ class TreeQueries(TreeStructure):
             self._require(name, "relative_to")
         if not frames:
             return PoseStack(np.empty((0, 3, 3)), np.empty((0, 3)))
-        return evaluate_poses(self._frozen(), frames, references, times, time_ref,
-                              extrapolation)
+        stack = evaluate_poses(self._frozen(), frames, references, times, time_ref,
+                               extrapolation)
+        if not np.isfinite(stack.translation).all():  # name the first pair that overflowed
+            pair = int(np.argwhere(~np.isfinite(stack.translation))[0][0])
+            _require_finite(stack.translation[pair], "translation",
+                            f"the pose of {frames[pair]!r} in {references[pair]!r}", frames[pair])
+        return stack
 
     def transform_points(
         self, points: Any, frame: str, relative_to: str, times: Any = None, *,
-        time_ref: Any = None, extrapolation: str = "clamp",
+        per_time: bool = False, time_ref: Any = None, extrapolation: str = "clamp",
     ) -> np.ndarray:
         """Points given in ``frame`` (metres), returned in ``relative_to``, at ``times``.
 
         Times follow :meth:`pose` (None: every keyframe and joint sample on the path; a
         static path keeps the points' shape). Shapes follow :meth:`Pose.transform_points`:
-        with ``T`` times, ``(T, 3)`` is one point per time (row ``i`` at time ``i``),
-        ``(M, 3)`` (``M != T``) the same points at every time giving ``(T, M, 3)``,
-        ``(T, M, 3)`` a profile per time; ``(1, M, 3)`` forces the same points at every time
-        when ``M == T``. Bad data raise :class:`~pinframes.errors.InvalidDataError` naming
-        ``points`` and ``frame``.
+        with ``T`` times, ``(M, 3)`` is the same points at every time, giving
+        ``(T, M, 3)`` whatever ``M`` (as :meth:`get_data`), and ``(T, M, 3)`` a profile per
+        time. ``per_time=True`` pairs ``(T, 3)`` points with the times instead: row ``i`` at
+        time ``i``, giving ``(T, 3)`` (an :class:`~pinframes.errors.InvalidDataError` when
+        the counts differ). Bad data raise :class:`~pinframes.errors.InvalidDataError`
+        naming ``points`` and ``frame``.
         """
         pose = self.pose(frame, relative_to, times, time_ref, extrapolation=extrapolation)
-        return _located(pose.transform_points, points, frame)
+        return _located(partial(pose.transform_points, per_time=per_time), points, frame)
 
     def transform_vectors(
         self, vectors: Any, frame: str, relative_to: str, times: Any = None, *,
-        time_ref: Any = None, extrapolation: str = "clamp",
+        per_time: bool = False, time_ref: Any = None, extrapolation: str = "clamp",
     ) -> np.ndarray:
         """Directions given in ``frame``, returned in ``relative_to``: rotated, never moved.
 
-        Arguments, times and shapes as :meth:`transform_points`.
+        Arguments, times, shapes and ``per_time`` as :meth:`transform_points`.
         """
         pose = self.pose(frame, relative_to, times, time_ref, extrapolation=extrapolation)
-        return _located(pose.transform_vectors, vectors, frame)
+        return _located(partial(pose.transform_vectors, per_time=per_time), vectors, frame)
 
     def velocity(
         self, frame: str, relative_to: str | None = None, times: Any = None,
@@ -217,8 +226,12 @@ class TreeQueries(TreeStructure):
         if expressed_in is None:
             expressed_in = relative_to
         self._require(expressed_in, "expressed_in")
-        return evaluate_velocity(self._frozen(), frame, relative_to, times, time_ref,
-                                 extrapolation, expressed_in)
+        velocity = evaluate_velocity(self._frozen(), frame, relative_to, times, time_ref,
+                                     extrapolation, expressed_in)
+        what = f"the velocity of {frame!r} relative to {relative_to!r}"
+        _require_finite(velocity.linear, "linear", what, frame)
+        _require_finite(velocity.angular, "angular", what, frame)
+        return velocity
 
     def weld_process(
         self, torch: str, seam: str, *, times: Any = None, time_ref: Any = None,
@@ -272,8 +285,11 @@ class TreeQueries(TreeStructure):
         self._require(frame, "frame")
         relative_to = self._default_reference(frame, relative_to)
         self._require(relative_to, "relative_to")
-        return evaluate_jacobian(self._frozen(), frame, relative_to, times, time_ref,
-                                 extrapolation, joints)
+        jacobian = evaluate_jacobian(self._frozen(), frame, relative_to, times, time_ref,
+                                     extrapolation, joints)
+        _require_finite(jacobian.matrix, "matrix",
+                        f"the Jacobian of {frame!r} relative to {relative_to!r}", frame)
+        return jacobian
 
     def solve_joints(
         self, frame: str, target: str | Pose, *, relative_to: str | None = None,
@@ -495,6 +511,11 @@ class TreeQueries(TreeStructure):
             raise TreeStructureError("the root frame has no parent; pass relative_to",
                                      frame=frame, field="relative_to")
         return parent
+
+
+def _require_finite(array: np.ndarray, field: str, what: str, frame: str) -> None:
+    """An :class:`InvalidPoseError` when a result computed from finite poses overflowed."""
+    require_finite_result(array, what, InvalidPoseError, frame=frame, field=field)
 
 
 def _located(transform: Callable[[Any], np.ndarray], data: Any, frame: str) -> np.ndarray:

@@ -23,6 +23,7 @@ from ..errors import (
     FrameNotFoundError,
     InvalidPoseError,
     JointError,
+    JointNotFoundError,
     ReferenceTimeError,
     TreeStructureError,
     near_misses,
@@ -143,7 +144,10 @@ class TreeStructure:
         return {name: self._joints[frame] for name, frame in self._joint_frames.items()}
 
     def joint_trajectory(self, joint_name: str) -> JointTrajectory | None:
-        """The trajectory of a robot joint, or None when it was never set."""
+        """The trajectory of a robot joint, or None when it was never set (a
+        :class:`~pinframes.errors.JointNotFoundError` for a joint the tree lacks)."""
+        if not isinstance(joint_name, str) or joint_name not in self._joint_frames:
+            raise self._missing_joint(joint_name, "joint_name")
         return self._joint_trajectories.get(joint_name)
 
     def frame_metadata(self, name: str) -> dict[str, Any]:
@@ -191,7 +195,8 @@ class TreeStructure:
 
         Columns follow ``joint_names`` (default: every actuated joint of the tree, in the
         order the robots were mounted, URDF order within a robot). Values are radians or
-        metres, interpolated linearly between samples (continuous joints the short way
+        metres (a pint quantity is converted: degrees for revolute joints, millimetres for
+        prismatic ones), interpolated linearly between samples (continuous joints the short way
         round) and held outside them; the sample times join the default time union of
         :meth:`pose`. Values outside the URDF limits warn (``JointLimitWarning``).
         """
@@ -203,9 +208,7 @@ class TreeStructure:
                                  ) -> None:
         """Set (or with None, clear) the trajectory of a robot joint."""
         if not isinstance(joint_name, str) or joint_name not in self._joint_frames:
-            raise FrameNotFoundError(
-                f"no joint named {joint_name!r} in the tree"
-                + near_misses(joint_name, self._joint_frames, "joint"), field="joint_names")
+            raise self._missing_joint(joint_name, "joint_names")
         previous = self._joint_trajectories.pop(joint_name, None)
         if previous is not None:
             self._uncount_reference(previous.reference)
@@ -345,6 +348,10 @@ class TreeStructure:
         if name not in self._children:
             raise FrameNotFoundError("no frame of this name in the tree"
                                      + near_misses(name, self._children), frame=str(name))
+
+    def _missing_joint(self, name: object, field: str) -> JointNotFoundError:
+        return JointNotFoundError(f"no joint named {name!r} in the tree"
+                                  + near_misses(name, self._joint_frames, "joint"), field=field)
 
     def _check_new(self, name: str, parent: str) -> None:
         _check_name(name)

@@ -14,7 +14,13 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import ArgumentTypeError, FrameExistsError, FrameNotFoundError, InvalidTimeError
+from ..errors import (
+    ArgumentTypeError,
+    DataNotFoundError,
+    FrameExistsError,
+    InvalidTimeError,
+    near_misses,
+)
 from ..values.pose import Pose
 from ..values.spatial_data import SpatialData, apply_pose
 from ..values.subsystem import Subsystem
@@ -150,7 +156,8 @@ class FrameTree(TreeQueries):
     def data_frame(self, name: str) -> str:
         """The frame data ``name`` is attached to."""
         if name not in self._data:
-            raise FrameNotFoundError(f"no data named {name!r}", field="name")
+            raise DataNotFoundError(f"no data named {name!r}"
+                                    + near_misses(name, self._data, "data"), field="name")
         return self._data[name][0]
 
     def delete_data(self, name: str) -> None:

@@ -7,14 +7,14 @@ The shape rules, for a transform with ``T`` samples (``Pose.transform_points`` a
 data shape         result        meaning
 =================  ============  ===============================================
 ``(3,)``           ``(T, 3)``    one point, at every time
-``(T, 3)``         ``(T, 3)``    one point per time: row ``i`` at time ``i``
-``(M, 3)``         ``(T, M, 3)`` the same ``M`` points at every time (``M != T``)
+``(M, 3)``         ``(T, M, 3)`` the same ``M`` points at every time, whatever ``M``
 ``(T, M, 3)``      ``(T, M, 3)`` a profile of ``M`` points per time
-``(1, M, 3)``      ``(T, M, 3)`` the same ``M`` points at every time, also ``M == T``
+``(1, M, 3)``      ``(T, M, 3)`` the same ``M`` points at every time
+``(T, 3)``         ``(T, 3)``    with ``per_time=True`` only: row ``i`` at time ``i``
 =================  ============  ===============================================
 
-``(N, 3)`` with ``N == T`` is always read as one point per time; pass ``data[None]`` for the
-same points at every time. A static transform keeps the data's shape. Points move with the
+Pairing points with times is asked for explicitly (``per_time=True``), never guessed from a
+count that happens to match. A static transform keeps the data's shape. Points move with the
 whole transform (``R @ p + t``), directions only rotate (``R @ v``).
 """
 
@@ -24,6 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InvalidDataError
+from .numbers import float_array, require_finite_result
 
 __all__ = ["transform_data"]
 
@@ -31,19 +32,32 @@ FloatArray = NDArray[np.float64]
 
 
 def transform_data(
-    rotation: FloatArray, translation: FloatArray | None, data: ArrayLike, field: str
+    rotation: FloatArray, translation: FloatArray | None, data: ArrayLike, field: str,
+    per_time: bool = False,
 ) -> FloatArray:
     """``R @ x + t`` (or ``R @ x`` when ``translation`` is None) under the shape rules above.
 
     ``rotation`` is ``(3, 3)`` or ``(T, 3, 3)``, ``translation`` ``(3,)`` or ``(T, 3)``;
-    ``field`` names the argument in errors (:class:`~pinframes.errors.InvalidDataError`).
+    ``per_time`` pairs ``(T, 3)`` data row by row with the samples; ``field`` names the
+    argument in errors (:class:`~pinframes.errors.InvalidDataError`), also when finite
+    data and poses overflow to infinity.
     """
-    array = _checked(data, field)
+    out = _transformed(rotation, translation, _checked(data, field), field, per_time)
+    require_finite_result(out, f"the transformed {field}", InvalidDataError, field=field)
+    return out
+
+
+def _transformed(rotation: FloatArray, translation: FloatArray | None, array: FloatArray,
+                 field: str, per_time: bool) -> FloatArray:
     if rotation.ndim == 2:
         out = array @ rotation.T
         return out if translation is None else out + translation
     count = rotation.shape[0]
-    if array.ndim == 1 or (array.ndim == 2 and array.shape[0] == count):
+    if per_time and array.ndim == 2 and array.shape[0] != count:
+        raise InvalidDataError(
+            f"per_time=True pairs row i with time i, but {array.shape[0]} rows were given "
+            f"for {count} times", field=field)
+    if array.ndim == 1 or (per_time and array.ndim == 2):
         # one point per time: (T, 3) (a single point broadcast over the times)
         rows = np.broadcast_to(array, (count, 3))
         out = (rotation[:, :, 0] * rows[:, 0, None] + rotation[:, :, 1] * rows[:, 1, None]
@@ -59,16 +73,8 @@ def transform_data(
 
 
 def _checked(data: ArrayLike, field: str) -> FloatArray:
-    try:
-        array = np.asarray(data, dtype=float)
-    except (TypeError, ValueError, OverflowError) as exc:
-        raise InvalidDataError(f"expected numbers: {exc}", field=field) from None
+    array = float_array(data, field, InvalidDataError)
     if array.ndim not in (1, 2, 3) or array.shape[-1] != 3:
         raise InvalidDataError(
             f"expected shape (3,), (N, 3) or (T, M, 3), got {array.shape}", field=field)
-    if not np.all(np.isfinite(array)):
-        where = np.argwhere(~np.isfinite(array.reshape(-1, 3)))[0][0]
-        raise InvalidDataError(
-            f"non-finite value (NaN or infinity) in row {where} of the flattened "
-            f"(N, 3) data", field=field)
     return array

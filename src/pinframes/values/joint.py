@@ -84,7 +84,7 @@ class Joint:
     def __post_init__(self) -> None:
         if self.kind not in JOINT_KINDS:
             raise JointError(f"unknown joint kind {self.kind!r}; expected one of {JOINT_KINDS}",
-                             frame=self.name, field="type")
+                             joint=self.name, field="type")
         try:
             axis = np.asarray(self.axis, dtype=float)
         except (TypeError, ValueError):
@@ -92,7 +92,7 @@ class Joint:
         norm = float(np.linalg.norm(axis))
         if axis.shape != (3,) or not np.isfinite(norm) or norm < 1e-9:
             raise JointError(f"axis must be a non-zero 3-vector, got {self.axis!r}",
-                             frame=self.name, field="axis")
+                             joint=self.name, field="axis")
         object.__setattr__(self, "axis", tuple(float(v) for v in axis / norm))
 
     @property
@@ -203,11 +203,11 @@ def mimic_chain(joint: Joint, joints: Mapping[str, Joint]) -> list[Joint]:
         target = chain[-1].mimic.joint
         if target not in joints:
             raise JointError(f"mimics joint {target!r}, which is not in the tree",
-                             frame=chain[-1].name, field="mimic")
+                             joint=chain[-1].name, field="mimic")
         if target in seen:
             names = [link.name for link in chain]
             raise JointError(f"mimic joints form a cycle: {' -> '.join([*names, target])}",
-                             frame=chain[-1].name, field="mimic")
+                             joint=chain[-1].name, field="mimic")
         chain.append(joints[target])
         seen.add(target)
     return chain

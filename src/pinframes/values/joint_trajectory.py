@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -15,7 +14,9 @@ from ..errors import (
     InvalidTimeError,
     JointError,
     JointLimitWarning,
+    JointNotFoundError,
     near_misses,
+    warn_at_caller,
 )
 from ._readonly import readonly_copy
 from .interpolation import (
@@ -24,6 +25,8 @@ from .interpolation import (
     Segments,
 )
 from .joint import Joint
+from .numbers import float_array
+from .quantities import is_quantity, metres, radians
 from .timeconv import parse_time_axis
 
 __all__ = ["JointTrack", "JointTrajectory", "joint_trajectories_from_samples"]
@@ -122,7 +125,7 @@ def joint_trajectories_from_samples(
     joint_names = list(joint_names)
     for name in joint_names:
         if name not in joints:
-            raise JointError(f"no joint named {name!r} in the tree"
+            raise JointNotFoundError(f"no joint named {name!r} in the tree"
                              + near_misses(name, joints, "joint"), field="joint_names")
         mimic = joints[name].mimic
         if mimic is not None:
@@ -134,7 +137,8 @@ def joint_trajectories_from_samples(
     count = axis.offsets.shape[0]
     if count > 1 and np.any(np.diff(axis.offsets) <= 0):
         raise InvalidTimeError("joint sample times must be strictly increasing", field="times")
-    values = _positions(positions, count, joint_names)
+    values = _positions(_in_joint_units(positions, [joints[name] for name in joint_names]),
+                        count, joint_names)
     shared_times = readonly_copy(axis.offsets)
     trajectories = {}
     for column, name in enumerate(joint_names):
@@ -148,11 +152,24 @@ def joint_trajectories_from_samples(
     return trajectories
 
 
+def _in_joint_units(positions: Any, joints: list[Joint]) -> Any:
+    """A pint quantity of positions in radians (revolute and continuous joints) or metres
+    (prismatic joints); plain numbers unchanged. One quantity cannot drive both kinds."""
+    if not is_quantity(positions):
+        return positions
+    kinds = {"prismatic" if joint.kind == "prismatic" else "angular" for joint in joints}
+    if len(kinds) > 1:
+        raise JointError("one quantity cannot hold both angles and lengths: give radians for "
+                         "revolute and metres for prismatic joints as plain numbers",
+                         field="positions")
+    if kinds == {"prismatic"}:
+        return metres(positions, "positions", JointError)
+    return radians(positions, "positions", JointError)
+
+
 def _positions(positions: Any, count: int, joint_names: list[str]) -> np.ndarray:
-    try:
-        values = np.asarray(positions, dtype=float)  # each joint's column is copied later
-    except (TypeError, ValueError, OverflowError) as exc:
-        raise JointError(f"positions must be numbers: {exc}", field="positions") from None
+    # each joint's column is copied later
+    values = float_array(positions, "positions", JointError, finite=False)
     if values.ndim == 1 and len(joint_names) == 1:
         values = values[:, None]
     if values.shape != (count, len(joint_names)):
@@ -162,8 +179,8 @@ def _positions(positions: Any, count: int, joint_names: list[str]) -> np.ndarray
             field="positions")
     if not np.all(np.isfinite(values)):
         row, column = np.argwhere(~np.isfinite(values))[0]
-        raise JointError(f"non-finite value at sample {row}", frame=joint_names[column],
-                         field="positions")
+        raise JointError(f"non-finite value at sample {row} (counted from 0)",
+                         joint=joint_names[column], field="positions")
     return values
 
 
@@ -172,6 +189,6 @@ def _warn_outside_limits(name: str, lower: float | None, upper: float | None,
     below = lower is not None and values.min() < lower
     above = upper is not None and values.max() > upper
     if below or above:
-        warnings.warn(
+        warn_at_caller(
             f"joint {name!r}: values {values.min():.6g} to {values.max():.6g} leave its "
-            f"limits [{lower}, {upper}]", JointLimitWarning, stacklevel=4)
+            f"limits [{lower}, {upper}]", JointLimitWarning)

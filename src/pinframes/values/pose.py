@@ -18,7 +18,8 @@ from ._transform_data import transform_data
 from .curve_frames import curve_rotations, length_along_polyline
 from .euler import euler_from_matrix, matrix_from_euler
 from .interpolation import Keyframes
-from .lengths import metres
+from .numbers import float_array, require_finite_result
+from .quantities import is_quantity, magnitude_in, metres, radians
 from .rotations import (
     ROTATION_TOLERANCE,
     matrix_from_axis_vectors,
@@ -79,7 +80,7 @@ class Pose:
         reference_time: Any = None,
     ) -> None:
         translation_array = _as_float_array(metres(translation, "translation"), "translation")
-        rotation_array = _rotation_matrices(rotation)
+        rotation_array = _rotation_matrices(magnitude_in(rotation, "dimensionless", "rotation"))
         axis = _time_axis(times, reference_time)
         count = None if axis is None else axis.offsets.shape[0]
         translation_array = _broadcast_part(translation_array, (3,), count, "translation")
@@ -142,7 +143,8 @@ class Pose:
         ``R = Rz(yaw) @ Ry(pitch) @ Rx(roll)``, as in URDF.
         """
         values = _as_float_array([metres(x, "x"), metres(y, "y"), metres(z, "z"),
-                                  roll, pitch, yaw], "xyz_rpy")
+                                  radians(roll, "roll"), radians(pitch, "pitch"),
+                                  radians(yaw, "yaw")], "xyz_rpy")
         return cls._trusted(matrix_from_rpy(values[3:]), values[:3].copy())
 
     @classmethod
@@ -155,12 +157,16 @@ class Pose:
         ``sequence`` is one to three axis letters, lower case for rotations about the fixed
         axes (extrinsic, ``"xyz"``: ``R = Rz(c) Ry(b) Rx(a)``), upper case about the turning
         axes (intrinsic, ``"XYZ"``: ``R = Rx(a) Ry(b) Rz(c)``). ``angles`` has one value per
-        letter, shape ``(n,)`` or ``(T, n)`` with T ``times``; radians unless ``degrees``.
+        letter, shape ``(n,)`` or ``(T, n)`` with T ``times``; radians unless ``degrees``,
+        or a pint quantity of angles in any unit (``degrees`` then does not apply).
         ``translation`` in metres (or a pint length), default the origin.
         """
-        theta = _as_float_array(angles, "angles")
-        if degrees:
-            theta = np.deg2rad(theta)
+        if is_quantity(angles):
+            theta = _as_float_array(radians(angles, "angles"), "angles")
+        else:
+            theta = _as_float_array(angles, "angles")
+            if degrees:
+                theta = np.deg2rad(theta)
         rotation = matrix_from_euler(sequence, theta)
         return cls((0.0, 0.0, 0.0) if translation is None else translation, rotation,
                    times, reference_time)
@@ -204,7 +210,7 @@ class Pose:
         times: Any = None, reference_time: Any = None,
     ) -> Pose:
         """A pose moving along the polyline ``points`` (N, 3), metres (or a pint length):
-        a seam frame.
+        a seam frame. ``speed`` in m/s (or a pint speed).
 
         Axes at each point: x the travel direction (central difference of the neighbours;
         at the ends the one-sided difference of the same order, the parabola through the
@@ -221,11 +227,13 @@ class Pose:
         that do not increase.
         """
         path = _as_float_array(metres(points, "points"), "points")
-        rotation = curve_rotations(path, _as_float_array(normals, "normals"))
+        rotation = curve_rotations(
+            path, _as_float_array(magnitude_in(normals, "dimensionless", "normals"), "normals"))
         if (speed is None) == (times is None):
             raise InvalidPoseError("give either speed (m/s) or times (one per point)",
                                    field="speed")
         if speed is not None:
+            speed = magnitude_in(speed, "meter / second", "speed")
             if (isinstance(speed, bool) or not isinstance(speed, (int, float, np.number))
                     or not (np.isfinite(speed) and speed > 0)):
                 raise InvalidPoseError(f"expected a positive speed in m/s, got {speed!r}",
@@ -338,6 +346,8 @@ class Pose:
         """The inverse transform: the pose of B in A for a pose of A in B."""
         rotation, translation = samples_first(
             inverse(samples_last((self._rotation, self._translation))))
+        require_finite_result(translation, "the inverse pose's translation", InvalidPoseError,
+                              field="translation")
         return Pose._trusted(rotation, translation, self._times, self._reference)
 
     def __matmul__(self, other: Pose) -> Pose:
@@ -354,28 +364,30 @@ class Pose:
         rotation, translation = samples_first(compose(
             samples_last((left._rotation, left._translation)),
             samples_last((right._rotation, right._translation))))
+        require_finite_result(translation, "the composed translation", InvalidPoseError,
+                              field="translation")
         timed = left if left.is_time_dependent else right
         return Pose._trusted(rotation, translation, timed._times, timed._reference)
 
-    def transform_points(self, points: ArrayLike) -> FloatArray:
+    def transform_points(self, points: ArrayLike, *, per_time: bool = False) -> FloatArray:
         """Points given in frame A, returned in frame B (``R @ p + t``), metres.
 
-        ``points`` is ``(3,)``, ``(N, 3)`` or ``(T, M, 3)``. A static pose keeps the shape.
-        A pose with ``T`` samples gives ``(T, 3)`` for ``(3,)`` and for ``(T, 3)`` (row ``i``
-        at sample ``i``), ``(T, M, 3)`` for ``(M, 3)`` with ``M != T`` (every point at every
-        sample), for ``(T, M, 3)`` (a profile per sample) and for ``(1, M, 3)``. So
-        ``(N, 3)`` with ``N == T`` is one point per sample; pass ``points[None]`` for the
-        same points at every sample. Bad shapes and NaN are an
-        :class:`~pinframes.errors.InvalidDataError` naming ``points``.
+        ``points`` is ``(3,)``, ``(M, 3)`` or ``(T, M, 3)``. A static pose keeps the shape.
+        A pose with ``T`` samples gives ``(T, 3)`` for ``(3,)``, and ``(T, M, 3)`` for
+        ``(M, 3)`` (every point at every sample, whatever ``M``), for ``(T, M, 3)`` (a
+        profile per sample) and for ``(1, M, 3)``. ``per_time=True`` pairs ``(T, 3)`` points
+        with the samples instead (row ``i`` at sample ``i``, giving ``(T, 3)``). Bad shapes
+        and NaN are an :class:`~pinframes.errors.InvalidDataError` naming ``points``.
         """
-        return transform_data(self._rotation, self._translation, points, "points")
+        return transform_data(self._rotation, self._translation, points, "points", per_time)
 
-    def transform_vectors(self, vectors: ArrayLike) -> FloatArray:
+    def transform_vectors(self, vectors: ArrayLike, *, per_time: bool = False) -> FloatArray:
         """Directions given in frame A, returned in frame B (``R @ v``: rotation only).
 
-        Shapes as :meth:`transform_points`; the field named in errors is ``vectors``.
+        Shapes and ``per_time`` as :meth:`transform_points`; the field named in errors is
+        ``vectors``.
         """
-        return transform_data(self._rotation, None, vectors, "vectors")
+        return transform_data(self._rotation, None, vectors, "vectors", per_time)
 
     def at(self, times: Any, time_ref: Any = None) -> Pose:
         """This pose interpolated at ``times``: one pose per requested time.
@@ -404,6 +416,8 @@ class Pose:
         if reference is not None and self._reference is not None:
             shift = timestamp_ns(reference) - timestamp_ns(self._reference)
         rotation, translation = self.keyframes.sample(shift_ns(times, shift))
+        require_finite_result(translation, "the interpolated translation", InvalidPoseError,
+                              field="translation")
         return Pose._trusted(rotation, translation, times, reference)
 
     def _sources(self) -> list[TimedSource]:
@@ -422,21 +436,24 @@ class Pose:
         return self._keyframes
 
     def __repr__(self) -> str:
+        """The numbers of a static pose; the time span and the first and last samples'
+        numbers of a time-dependent one (quaternions with ``w >= 0``)."""
         if not self.is_time_dependent:
-            x, y, z = self._translation
-            qx, qy, qz, qw = self.quaternion
-            return (f"Pose(translation=({x:.6g}, {y:.6g}, {z:.6g}), "
-                    f"quaternion=({qx:.6g}, {qy:.6g}, {qz:.6g}, {qw:.6g}))")
+            quaternion = quaternion_from_matrix(self._rotation)
+            return f"Pose({_numbers_text(self._translation, quaternion)})"
         offsets = self.keyframes.times
         first, last = offsets[[0, -1]] / 1e9
         text = (f"Pose(1 sample at {first:.9g} s" if len(self) == 1 else
                 f"Pose({len(self)} samples from {first:.9g} s to {last:.9g} s")
-        if self._reference is None:
-            return text + ")"
-        stamps = [format_timestamp_iso(stamp) for stamp in
-                  self._reference + offsets[[0, -1]].astype("timedelta64[ns]")]
-        return (f"{text} after {format_timestamp_iso(self._reference)}, "
-                f"{' to '.join(stamps[:len(self)])})")
+        if self._reference is not None:
+            stamps = [format_timestamp_iso(stamp) for stamp in
+                      self._reference + offsets[[0, -1]].astype("timedelta64[ns]")]
+            text += (f" after {format_timestamp_iso(self._reference)}, "
+                     f"{' to '.join(stamps[:len(self)])}")
+        ends = [0] if len(self) == 1 else [0, -1]
+        numbers = _numbers_text(self._translation[ends],
+                                quaternion_from_matrix(self._rotation[ends]))
+        return f"{text}: {numbers})"
 
 
 def trusted_pose(
@@ -446,6 +463,16 @@ def trusted_pose(
     """A :class:`Pose` of arrays known to be valid (the evaluator's results): no checks or
     copies. ``times`` are int64 ns after ``reference``."""
     return Pose._trusted(rotation, translation, times, reference)
+
+
+def _numbers_text(translation: FloatArray, quaternion: FloatArray) -> str:
+    """``translation=(x, y, z), quaternion=(x, y, z, w)``, or for two samples each as
+    ``(first) to (last)``."""
+    def vector(values: FloatArray) -> str:
+        rows = np.atleast_2d(values)
+        return " to ".join("(" + ", ".join(f"{value:.6g}" for value in row) + ")"
+                           for row in rows)
+    return f"translation={vector(translation)}, quaternion={vector(quaternion)}"
 
 
 def _same_timeline(a: Pose, b: Pose) -> bool:
@@ -464,13 +491,7 @@ def _union_timeline(a: Pose, b: Pose) -> QueryTimeline:
 
 
 def _as_float_array(values: ArrayLike, field: str) -> FloatArray:
-    try:
-        array = np.array(values, dtype=float)
-    except (TypeError, ValueError, OverflowError) as exc:
-        raise InvalidPoseError(f"expected numbers: {exc}", field=field) from None
-    if not np.all(np.isfinite(array)):
-        raise InvalidPoseError("values must be finite (no NaN or infinity)", field=field)
-    return array
+    return float_array(values, field, InvalidPoseError, copy=True)
 
 
 def _rotation_matrices(rotation: ArrayLike | None) -> FloatArray:

@@ -17,8 +17,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InvalidDataError
 from ._readonly import readonly, readonly_copy
-from .lengths import metres
+from .numbers import float_array
 from .pose import Pose, _time_axis
+from .quantities import metres
 
 __all__ = ["SpatialData", "apply_pose"]
 
@@ -49,7 +50,7 @@ class SpatialData:
     def __init__(self, points: ArrayLike, triangles: ArrayLike | None = None,
                  attributes: Mapping[str, ArrayLike] | None = None, times: Any = None,
                  reference_time: Any = None) -> None:
-        array = _float_points(metres(points, "points"))
+        array = _float_points(metres(points, "points", InvalidDataError))
         axis = _time_axis(times, reference_time)
         timed = array.ndim == 3
         if timed != (axis is not None):
@@ -122,21 +123,14 @@ def apply_pose(pose: Pose, points: FloatArray) -> FloatArray:
     A static pose maps ``(..., 3)`` points; a pose of T samples maps ``(M, 3)`` points to
     ``(T, M, 3)`` and ``(T, M, 3)`` points sample by sample.
     """
-    # (1, M, 3): the same points at every sample, also when M equals the sample count
-    every_time = points[None] if points.ndim == 2 and pose.is_time_dependent else points
-    return pose.transform_points(every_time)
+    return pose.transform_points(points)
 
 
 def _float_points(points: Any) -> FloatArray:
-    try:
-        array = np.array(points, dtype=float)
-    except (TypeError, ValueError, OverflowError) as exc:
-        raise InvalidDataError(f"expected numbers: {exc}", field="points") from None
+    array = float_array(points, "points", InvalidDataError, copy=True)
     if array.ndim not in (2, 3) or array.shape[-1] != 3:
         raise InvalidDataError(f"expected shape (M, 3) or (T, M, 3), got {array.shape}",
                                field="points")
-    if not np.all(np.isfinite(array)):
-        raise InvalidDataError("values must be finite (no NaN or infinity)", field="points")
     return array
 
 

@@ -10,7 +10,9 @@ Relative times (offsets) are ``timedelta64[ns]``; absolute times are ``datetime6
   ``"P0DT0H0M4.4S"`` and ``"PT2S"``, and timestamps ``"2024-03-01T08:00:00"`` (``Z`` or
   ``+01:00`` accepted);
 - pandas ``Timedelta``, ``TimedeltaIndex``, ``Timestamp``, ``DatetimeIndex`` and ``Series``
-  (pandas is optional and never imported here).
+  (pandas is optional and never imported here);
+- pint quantities of time (``Q_([0, 500], "ms")``), in any time unit;
+- a :class:`TimeAxis`, such as ``FrameTree.time_union()`` returns.
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InvalidTimeError
+from .quantities import seconds as quantity_seconds
 
 __all__ = [
     "TimeAxis",
@@ -89,8 +92,11 @@ def parse_time_axis(values: Any, *, field: str = "times") -> TimeAxis:
     """Read one or many times into a :class:`TimeAxis`.
 
     Absolute input gets its first value as reference; relative input has no reference.
-    Mixing absolute and relative values is an error.
+    Mixing absolute and relative values is an error. A :class:`TimeAxis` (what
+    ``FrameTree.time_union`` returns) is taken as it is.
     """
+    if isinstance(values, TimeAxis):
+        return TimeAxis(np.array(values.offsets, dtype=np.int64).reshape(-1), values.reference)
     if isinstance(values, (float, int)) and not isinstance(values, bool) and abs(values) < 9e9:
         return TimeAxis(np.array([round(values * 1e9)], dtype=np.int64), None)
     array = _as_time_array(values, field)
@@ -170,7 +176,7 @@ def format_timestamp_iso(stamp: np.datetime64) -> str:
 
 def _as_time_array(values: Any, field: str) -> np.ndarray:
     """``datetime64[ns]`` or ``timedelta64[ns]`` (float seconds become the latter)."""
-    values = _from_pandas(values)
+    values = quantity_seconds(_from_pandas(values), field)
     if isinstance(values, (str, bytes, _dt.datetime, _dt.date, _dt.timedelta, np.generic)):
         values = [values]
     try:

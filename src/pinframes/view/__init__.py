@@ -2,7 +2,7 @@
 
 from ..kinematics.mesh_files import PACKAGE_PATH_VARIABLE
 from ._geometry import GeometryWarning, LinkGeometry, load_geometry
-from ._page import MAX_PAGE_SAMPLES, view_html, write_view
+from ._page import MAX_PAGE_POSES, MAX_PAGE_SAMPLES, view_html, write_view
 
-__all__ = ["MAX_PAGE_SAMPLES", "PACKAGE_PATH_VARIABLE", "GeometryWarning", "LinkGeometry",
-           "load_geometry", "view_html", "write_view"]
+__all__ = ["MAX_PAGE_POSES", "MAX_PAGE_SAMPLES", "PACKAGE_PATH_VARIABLE", "GeometryWarning",
+           "LinkGeometry", "load_geometry", "view_html", "write_view"]

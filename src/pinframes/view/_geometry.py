@@ -8,18 +8,25 @@ link. Nothing here is used by :meth:`FrameTree.pose`: geometry is loaded only wh
 
 from __future__ import annotations
 
+import logging
 import os
-import warnings
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from ..errors import UnsupportedFeatureError
+from ..errors import UnsupportedFeatureError, warn_at_caller
+from ..formats.limits import Limits, current_limits, reader_with_limits
 from ..formats.urdf import URDF_METADATA_KEY
-from ..kinematics.mesh_files import HOW_TO_SEARCH, MeshFiles, package_search_dirs
+from ..kinematics.mesh_files import (
+    HOW_TO_SEARCH,
+    MeshFiles,
+    mesh_file_problem,
+    package_search_dirs,
+)
 from ..tree import FrameTree
 
 __all__ = ["GeometryWarning", "LinkGeometry", "load_geometry"]
@@ -28,7 +35,9 @@ _DEFAULT_RGBA = (0.7, 0.7, 0.72, 1.0)
 
 
 class GeometryWarning(UserWarning):
-    """A link drawn without one of its geometries: a mesh missing, unreadable or empty."""
+    """Something left out of a drawing: a link's mesh that is missing, unreadable, empty,
+    compressed or too large, a point cloud; on the 3-D page also geometry or a frame that is
+    not finite or too far away to draw."""
 
 
 @dataclass(frozen=True)
@@ -63,9 +72,10 @@ class LinkGeometry:
     source: str
 
 
+@reader_with_limits
 def load_geometry(
     tree: FrameTree, *, collision: bool = False,
-    package_dirs: Iterable[str | os.PathLike[str]] = (),
+    package_dirs: Iterable[str | os.PathLike[str]] = (), limits: Limits | None = None,
 ) -> list[LinkGeometry]:
     """The visual (or, with ``collision=True``, collision) geometry of every robot link.
 
@@ -73,7 +83,10 @@ def load_geometry(
     in ``package_dirs``, then in the folders of ``ROS_PACKAGE_PATH``, then beside the URDF
     and in its ancestors. A mesh that is missing, unreadable or empty is a
     :class:`GeometryWarning` naming the link, the file and how to give a search folder; the
-    link keeps its other geometry. Needs yourdfpy (a pinframes dependency) and, for DAE
+    link keeps its other geometry. Mesh files are read uncompressed only, and up to
+    ``limits.max_decompressed_bytes`` each (None: the limits in effect, see
+    :class:`pinframes.Limits`); others are skipped with a :class:`GeometryWarning` too, and
+    so is a mesh of points without triangles. Needs yourdfpy (a pinframes dependency) and, for DAE
     meshes, pycollada (``pip install "pinframes[view]"``).
     """
     search_dirs = package_search_dirs(package_dirs)
@@ -87,12 +100,30 @@ def load_geometry(
     for root_frame, links in frames_of_links.items():
         source = robots.get(root_frame, {}).get("source")
         if source is None or source == "<urdf string>":
-            warnings.warn(f"robot at {root_frame!r} was attached from an XML string, not a "
-                          "file: its geometry is not loaded", GeometryWarning, stacklevel=2)
+            warn_at_caller(f"robot at {root_frame!r} was attached from an XML string, not a "
+                           "file: its geometry is not loaded", GeometryWarning)
             continue
-        geometry += _robot_geometry(Path(source), links, collision,
-                                    MeshFiles(Path(source), search_dirs))
+        with _without_yourdfpy_mesh_notes():
+            geometry += _robot_geometry(Path(source), links, collision,
+                                        MeshFiles(Path(source), search_dirs))
     return geometry
+
+
+class _MeshNotes(logging.Filter):
+    def filter(self, record: logging.LogRecord) -> bool:
+        return not record.getMessage().startswith("Can't find ")
+
+
+@contextmanager
+def _without_yourdfpy_mesh_notes() -> Iterator[None]:
+    """Drop yourdfpy's bare "Can't find FILE" log lines (on standard error, through logging's
+    last-resort handler) for meshes pinframes skips: a GeometryWarning already names them."""
+    logger, notes = logging.getLogger("yourdfpy.urdf"), _MeshNotes()
+    logger.addFilter(notes)
+    try:
+        yield
+    finally:
+        logger.removeFilter(notes)
 
 
 def _robot_geometry(urdf_path: Path, frames: dict[str, str], collision: bool,
@@ -110,11 +141,16 @@ def _robot_geometry(urdf_path: Path, frames: dict[str, str], collision: bool,
                 files_of_links.setdefault(link.name, set()).add(mesh.filename)
             if mesh is not None and mesh.filename not in meshes:
                 meshes[mesh.filename] = link.name
-                if mesh_files.find(mesh.filename) is None:
+                found = mesh_files.find(mesh.filename)
+                if found is None:
                     mesh_files.skip(mesh.filename)
                     _warn(urdf_path, link.name, mesh.filename, "not found (looked in "
                           + ", ".join(map(str, mesh_files.candidates(mesh.filename)[:4]))
                           + f"); {HOW_TO_SEARCH}")
+                elif (problem := mesh_file_problem(
+                        found, current_limits().max_decompressed_bytes)) is not None:
+                    mesh_files.skip(mesh.filename)
+                    _warn(urdf_path, link.name, mesh.filename, f"({found}) {problem}")
     try:
         scene = _scene(yourdfpy, parsed, collision, mesh_files)
     except Exception:
@@ -142,7 +178,16 @@ def _robot_geometry(urdf_path: Path, frames: dict[str, str], collision: bool,
         files = files_of_links.get(link, set())
         source = (next(iter(files)) if len(files) == 1 and type(mesh).__name__ == "Trimesh"
                   else mesh.metadata.get("file_name", type(mesh).__name__.lower()))
-        if link in frames and len(mesh.faces) > 0:
+        if link not in frames:
+            continue
+        if not hasattr(mesh, "faces"):  # a point cloud or a path: from a file, no faces
+            named = next(iter(files)) if len(files) == 1 else str(source)
+            _warn(urdf_path, link, named, f"has no triangles (a "
+                  f"{type(mesh).__name__}, points or lines only)")
+        elif len(mesh.faces) == 0:  # empty mesh files were skipped above: a primitive
+            _warn(urdf_path, link, str(source), "has no triangles (a size that is zero or "
+                  "not finite)", what="geometry")
+        else:
             result.append(LinkGeometry(
                 frames[link], link, np.asarray(pose_in_link, dtype=float),
                 np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64),
@@ -152,10 +197,11 @@ def _robot_geometry(urdf_path: Path, frames: dict[str, str], collision: bool,
 
 def _scene(yourdfpy: Any, parsed: Any, collision: bool, mesh_files: MeshFiles) -> Any:
     """yourdfpy's scene graph of the links with their geometry loaded (meshes included)."""
-    model = yourdfpy.URDF(robot=parsed.robot, build_scene_graph=not collision,
-                          build_collision_scene_graph=collision, load_meshes=not collision,
-                          load_collision_meshes=collision, filename_handler=mesh_files,
-                          force_collision_mesh=False)
+    with np.errstate(over="ignore", invalid="ignore"):  # sizes of 1e308 or NaN: left out
+        model = yourdfpy.URDF(robot=parsed.robot, build_scene_graph=not collision,
+                              build_collision_scene_graph=collision,
+                              load_meshes=not collision, load_collision_meshes=collision,
+                              filename_handler=mesh_files, force_collision_mesh=False)
     return model.collision_scene if collision else model.scene
 
 
@@ -190,9 +236,9 @@ def _colours(mesh: Any) -> np.ndarray:
     return colours
 
 
-def _warn(urdf_path: Path, link: str, fname: str, problem: str) -> None:
-    warnings.warn(GeometryWarning(f"{urdf_path}: link {link!r}: mesh {fname!r} {problem}; the "
-                                  "link is drawn without it"), stacklevel=4)
+def _warn(urdf_path: Path, link: str, fname: str, problem: str, what: str = "mesh") -> None:
+    warn_at_caller(f"{urdf_path}: link {link!r}: {what} {fname!r} {problem}; the link is "
+                   "drawn without it", GeometryWarning)
 
 
 def _yourdfpy() -> Any:

@@ -22,17 +22,23 @@ import numpy as np
 
 from ..errors import InvalidTimeError, ReferenceTimeError, UnsupportedFeatureError
 from ..formats.atomic import atomic_write
+from ..formats.limits import Limits
 from ..formats.urdf import URDF_METADATA_KEY
 from ..tree import FrameTree
 from ..values.pose import Pose
 from ..values.timeconv import TimeAxis, format_timestamp_iso, timestamp_ns
+from ._drawable import drawable_frames, drawable_geometry
 from ._geometry import LinkGeometry, load_geometry
 from ._scene import SceneCommands, msgpack, node_path
 
-__all__ = ["MAX_PAGE_SAMPLES", "view_html", "write_view"]
+__all__ = ["MAX_PAGE_POSES", "MAX_PAGE_SAMPLES", "view_html", "write_view"]
 
 MAX_PAGE_SAMPLES = 20_000
 """The most times one page animates (about 1 kB per moving frame and 30 samples)."""
+
+MAX_PAGE_POSES = 1_000_000
+"""The most poses one page holds: times x drawn frames (28 bytes each as float32, before
+base64: about 37 MB of page)."""
 
 
 def write_view(tree: FrameTree, path: str | os.PathLike[str], **options: Any) -> int:
@@ -55,6 +61,7 @@ def view_html(
     package_dirs: Iterable[str | os.PathLike[str]] = (),
     geometry: Sequence[LinkGeometry] | None = None,
     title: str | None = None,
+    limits: Limits | None = None,
     clearance: tuple[Any, Any] | None = None,
     clearance_exclude: Iterable[tuple[str, str]] = (),
 ) -> str:
@@ -83,25 +90,39 @@ def view_html(
         Geometry already loaded (default: :func:`load_geometry` of the tree).
     title : str, optional
         The page's title (default: the tree's name).
+    limits : Limits, optional
+        Bounds on the mesh files read (see :func:`load_geometry`).
     clearance : (a, b), optional
         Mark the closest pair of :meth:`FrameTree.clearance` ``(a, b)`` (collision geometry,
         at the page's times): a dot on each closest point, the segment between them, and
         the distance and the two frames beside the time shown.
     clearance_exclude : iterable of (str, str)
         Pairs the clearance leaves out (``exclude=`` of :meth:`FrameTree.clearance`).
+
+    Frames and geometry that are not finite or lie farther than
+    :data:`~pinframes.view._drawable.MAX_DRAWN_DISTANCE_M` from ``relative_to`` are left out
+    with a :class:`GeometryWarning`; more than :data:`MAX_PAGE_SAMPLES` times, or more than
+    :data:`MAX_PAGE_POSES` poses (times x drawn frames), are an ``InvalidTimeError`` before
+    any pose is computed. Any frame name gives a working page.
     """
     relative_to = tree.root if relative_to is None else relative_to
     frames = list(tree.frames if frames is None else frames)
     for frame in frames:
         tree.path(frame, relative_to)  # raises for unknown frames
     if geometry is None:
-        geometry = load_geometry(tree, collision=collision, package_dirs=package_dirs)
-    drawn = set(frames) | {piece.frame for piece in geometry}
+        geometry = load_geometry(tree, collision=collision, package_dirs=package_dirs,
+                                 limits=limits)
+    drawn = {relative_to, *frames} | {piece.frame for piece in geometry}  # paths hang in
+    # relative_to's group by default
     order = [frame for frame in tree.frames if frame in drawn]
     values, time_ref = _page_times(tree, order, relative_to, times, time_ref)
+    _check_page_size(values, len(order))  # before any pose is computed
     poses = {frame: _pose(tree, frame, relative_to, values, time_ref) for frame in order}
     seconds, start = _animation_seconds(poses.values())
-    matrices = {frame: _matrices(pose, len(seconds)) for frame, pose in poses.items()}
+    matrices = drawable_frames({frame: _matrices(pose, len(seconds))
+                                for frame, pose in poses.items()})
+    geometry = drawable_geometry(geometry, matrices)
+    order = [frame for frame in order if frame in matrices]
     extent = _extent(matrices, geometry)
     scene = SceneCommands()
     axis_length = 0.06 * extent[2]
@@ -112,14 +133,15 @@ def view_html(
         scene.add_geometry(index, piece)
     if paths is None:
         paths = {frame: relative_to for frame in frames
-                 if not tree.children(frame) and len(seconds) > 1
+                 if frame in matrices and not tree.children(frame) and len(seconds) > 1
                  and np.ptp(matrices[frame][:, :3, 3], axis=0).max() > 1e-9}
     for frame, drawn_in in paths.items():
-        if drawn_in not in matrices:
+        if drawn_in not in poses:
             raise UnsupportedFeatureError(f"a path drawn in {drawn_in!r} needs that frame "
                                           "drawn too", frame=frame, field="paths")
-        scene.add_path(frame, drawn_in, _pose(tree, frame, drawn_in, values, time_ref)
-                       .translation.reshape(-1, 3))
+        if frame in matrices and drawn_in in matrices:  # else the frames' warning says why
+            scene.add_path(frame, drawn_in, _pose(tree, frame, drawn_in, values, time_ref)
+                           .translation.reshape(-1, 3))
     marked = None
     if clearance is not None:
         marked = _closest_pair(tree, clearance, clearance_exclude, package_dirs, relative_to,
@@ -129,7 +151,7 @@ def view_html(
     if (animation := scene.animation_command()) is not None:
         commands.append(animation)
     labels = [{"text": frame, "path": node_path(frame), "link": _is_link(tree, frame)}
-              for frame in frames]
+              for frame in frames if frame in matrices]
     return _html(title or tree.name or "pinframes", commands, {
         "labels": labels, "start": start, "duration": float(seconds[-1]),
         "centre": extent[0].tolist(), "radius": float(extent[2]),
@@ -148,13 +170,28 @@ def _closest_pair(tree: FrameTree, sides: tuple[Any, Any],
                             package_dirs=package_dirs)
     root_in_drawing = _pose(tree, tree.root, relative_to, values, time_ref)
     # (T, 3): one point per time through a moving pose, or each point through a static one
-    points = [root_in_drawing.transform_points(points)
+    points = [root_in_drawing.transform_points(points, per_time=True)
               for points in (result.point_a, result.point_b)]
     names, pairs = np.unique(result.closest, return_inverse=True)
     return points[0], points[1], {
         "seconds": seconds.tolist(), "names": names.tolist(),
         "pairs": pairs.reshape(-1, 2).tolist(),
         "distanceMm": np.round(1000 * result.distance, 3).tolist()}
+
+
+def _check_page_size(values: Any, frames: int) -> None:
+    """Refuse more times than :data:`MAX_PAGE_SAMPLES`, or more poses (times x drawn frames)
+    than :data:`MAX_PAGE_POSES`, before any is computed."""
+    count = 1 if values is None else int(np.asarray(values, dtype=object).size)
+    if count > MAX_PAGE_SAMPLES:
+        raise InvalidTimeError(f"{count:,} times are more than a page animates "
+                               f"({MAX_PAGE_SAMPLES:,}); choose fewer (a larger step)",
+                               field="times")
+    if count * frames > MAX_PAGE_POSES:
+        raise InvalidTimeError(
+            f"{count:,} times x {frames:,} frames are {count * frames:,} poses, more than a "
+            f"page holds ({MAX_PAGE_POSES:,}); choose fewer times (a larger step) or fewer "
+            "frames (frames=..., --frames)", field="times")
 
 
 def _page_times(tree: FrameTree, frames: list[str], relative_to: str, times: Any,
@@ -189,10 +226,6 @@ def _animation_seconds(poses: Iterable[Pose]) -> tuple[np.ndarray, str]:
     for pose in poses:
         times = pose.times
         if times is not None:
-            if len(times) > MAX_PAGE_SAMPLES:
-                raise InvalidTimeError(f"{len(times)} times are more than a page animates "
-                                       f"({MAX_PAGE_SAMPLES}); choose fewer (a larger step)",
-                                       field="times")
             nanoseconds = times.astype(np.int64)
             seconds = (nanoseconds - nanoseconds[0]) / 1e9
             if pose.reference_time is not None:
@@ -229,7 +262,7 @@ def _html(title: str, commands: list[dict[str, Any]], settings: dict[str, Any]) 
     """The page: meshcat's viewer, the commands, our controls."""
     encoded = [base64.b64encode(msgpack().packb(command)).decode("ascii")
                for command in commands]
-    data = json.dumps({"commands": encoded, **settings}).replace("</", "<\\/")
+    data = _script_json({"commands": encoded, **settings})
     page = resources.files(__package__)
     script = (page / "page.js").read_text(encoding="utf-8")
     style = (page / "page.css").read_text(encoding="utf-8")
@@ -239,6 +272,14 @@ def _html(title: str, commands: list[dict[str, Any]], settings: dict[str, Any]) 
             f"<script>{_viewer_bundle()}</script>"
             f"<script type=\"application/json\" id=\"pinframes-data\">{data}</script>"
             f"<script>{script}</script></body></html>\n")
+
+
+def _script_json(value: Any) -> str:
+    """``value`` as strict JSON (no NaN or Infinity, which ``JSON.parse`` refuses) that is
+    safe inside a ``<script>`` element: ``<``, ``>`` and ``&`` as ``\\u`` escapes, so no
+    frame name can end the element or open an HTML comment in it (``<!--<script>``)."""
+    text = json.dumps(value, allow_nan=False)
+    return text.replace("<", "\\u003c").replace(">", "\\u003e").replace("&", "\\u0026")
 
 
 def _viewer_bundle() -> str:

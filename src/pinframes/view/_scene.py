@@ -29,8 +29,19 @@ _FLOAT32 = 0x17  # msgpack extension code that meshcat's viewer reads as a Float
 
 
 def node_path(frame: str) -> str:
-    """The meshcat path of ``frame``'s group (``/`` inside names would nest groups)."""
-    return "/" + "/".join((*_ROOT, frame.replace("/", "\u2215")))
+    """The meshcat path of ``frame``'s group: ``/pinframes/frames/frame:<name>``.
+
+    Any frame name gives its own path: ``%`` and ``/`` (which would nest groups) are
+    percent-encoded, so ``a/b`` and ``a\u2215b`` stay apart, and the prefix keeps names such
+    as ``constructor`` or ``__proto__`` from meeting the properties of the viewer's
+    JavaScript objects, which are keyed by path segments.
+    """
+    return "/" + "/".join((*_ROOT, _segment("frame", frame)))
+
+
+def _segment(kind: str, name: str) -> str:
+    """One path segment for ``name``, never empty and never a JavaScript property name."""
+    return f"{kind}:" + name.replace("%", "%25").replace("/", "%2F")
 
 
 @dataclass
@@ -77,7 +88,7 @@ class SceneCommands:
 
     def add_path(self, frame: str, drawn_in: str, points: np.ndarray) -> None:
         """The path of ``frame`` (``points``, shape (n, 3), metres in ``drawn_in``)."""
-        path = f"{node_path(drawn_in)}/paths/{frame.replace('/', chr(0x2215))}"
+        path = f"{node_path(drawn_in)}/paths/{_segment('path', frame)}"
         geometry = {"type": "BufferGeometry",
                     "data": {"attributes": {"position": _attribute(points.astype(np.float32))}}}
         material = {"type": "LineBasicMaterial", "color": 0xCC00CC, "linewidth": 2}

@@ -26,7 +26,6 @@ from ...values.spatial_data import SpatialData
 from ._decode import (
     DECODING_ERRORS,
     as_list,
-    check_array_bytes,
     first_line,
     float_array,
     raw_tag,
@@ -136,7 +135,6 @@ def _scale(unit: Any, field: str) -> float:
 
 
 def _array(value: Any, field: str) -> np.ndarray:
-    check_array_bytes(value, field)
     try:
         return np.array(value)
     except DECODING_ERRORS as exc:

@@ -8,7 +8,6 @@ Times come out as int64 nanoseconds (SPEC section 7).
 from __future__ import annotations
 
 import contextlib
-import math
 import os
 import re
 import warnings
@@ -153,35 +152,13 @@ def as_list(value: Any, field: str) -> list[Any]:
 
 
 def float_array(value: Any, field: str) -> NDArray[np.float64]:
-    """An ndarray (inline, in a binary block, or a plain number/list) as a float array."""
-    check_array_bytes(value, field)
+    """An ndarray (inline, in a binary block, or a plain number/list) as a float array
+    (its size and source checked before, by ``_arrays.check_arrays``)."""
     try:
         return np.array(value, dtype=float)
     except DECODING_ERRORS as exc:
         raise FileFormatError(f"cannot read the numbers: {first_line(exc)}",
                               field=field) from None
-
-
-def check_array_bytes(value: Any, field: str) -> None:
-    """Refuse an array stored in a binary block whose declared shape and dtype exceed
-    ``max_decompressed_bytes``, before asdf reads (and decompresses) the block.
-
-    Inline arrays are bounded already by the YAML node limit; what asdf cannot tell without
-    loading (streamed blocks) is left to asdf.
-    """
-    shape, dtype = getattr(value, "_shape", None), getattr(value, "_dtype", None)
-    if not isinstance(shape, (list, tuple)) or not all(
-            isinstance(n, int) and not isinstance(n, bool) for n in shape):
-        return
-    try:
-        itemsize = np.dtype(dtype).itemsize
-    except TypeError:
-        return
-    size = math.prod(shape) * itemsize
-    if size > current_limits().max_decompressed_bytes:
-        raise exceeded("max_decompressed_bytes",
-                       f"the array of shape {tuple(shape)} ({dtype}) takes {size:,} bytes",
-                       field=field)
 
 
 def timestamp(value: Any, field: str) -> np.datetime64:
@@ -201,7 +178,6 @@ def time_index_ns(node: Any, field: str) -> NDArray[np.int64]:
     ``start + k * freq`` up to ``end``, as pandas' ``timedelta_range`` makes it.
     """
     if isinstance(node, dict) and "values" in node:
-        check_array_bytes(node["values"], f"{field}.values")
         try:
             values = np.array(node["values"])
         except DECODING_ERRORS as exc:

@@ -26,6 +26,7 @@ __all__ = [
     "EXTENSION_URI",
     "SCHEMA_URI_PREFIX",
     "bound_schemas",
+    "frame_on_path",
     "validate_hierarchy",
 ]
 
@@ -70,11 +71,11 @@ def validate_hierarchy(hierarchy: Any) -> None:
         except asdf.ValidationError as exc:
             path = list(exc.absolute_path)
             raise FileFormatError(f"breaks its weldx schema: {exc.message}",
-                                  frame=_frame_on_path(hierarchy, path),
+                                  frame=frame_on_path(hierarchy, path),
                                   field="/".join(map(str, path)) or None) from None
 
 
-def _frame_on_path(node: Any, path: list[Any]) -> str | None:
+def frame_on_path(node: Any, path: list[Any]) -> str | None:
     """The last frame met going down ``path``: that of a transformation, node or edge."""
     frame = None
     for step in path:

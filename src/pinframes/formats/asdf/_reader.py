@@ -10,6 +10,7 @@ from ...errors import FileFormatError, PinframesError
 from ...tree import FrameTree
 from .._paths import path_argument
 from ..limits import Limits, reader_with_limits
+from ._arrays import check_arrays
 from ._decode import open_raw_tree, weldx_tag
 from ._depth import MAX_GRAPH_DEPTH, deepest_frame, recursion_room, too_deep
 from ._digraph import read_digraph_hierarchy
@@ -58,7 +59,9 @@ def read_asdf(path: str | os.PathLike[str], key: str | None = None, *,
     FileFormatError
         Not an ASDF file, no hierarchy (or several, and no ``key``), an unknown ``key``, or
         a hierarchy that breaks the format or pinframes' weldx schemas (checked after
-        pinframes' own, more specific checks); the message names the frame and field.
+        pinframes' own, more specific checks), an array stored outside the file
+        (``source:`` a file or an address: nothing is opened), or arrays that decode to more
+        than ``max_decompressed_bytes`` in all; the message names the frame and field.
     UnsupportedFeatureError
         Coordinates given as a math expression (``core/time_series``), or a graph (weldx
         0.1.0 format) with a frame more than 400 frames below its root; the legacy format
@@ -75,6 +78,7 @@ def read_asdf(path: str | os.PathLike[str], key: str | None = None, *,
     try:
         with open_raw_tree(path) as tree:
             node = _find_hierarchy(tree, key)
+            check_arrays(node)  # before asdf or pinframes decodes any of them
             hierarchy = _read_hierarchy(node)
             depth = 0
             tag = weldx_tag(node)  # found by its hierarchy tag

@@ -20,7 +20,7 @@ from ...tree import FrameTree
 from ...values.pose import Pose
 from ...values.subsystem import Subsystem
 from .._joint_steps import check_joint_steps
-from .._writable import check_writable_tree
+from .._writable import check_writable_tree, refuse_attached_data
 from ..atomic import atomic_write
 from ._asdf_config import temporary_asdf_config
 from ._data import encode_data
@@ -35,7 +35,7 @@ DEFAULT_HIERARCHY_NAME = "pinframes"
 _ARRAY_INLINE_THRESHOLD = 64
 
 
-def write_asdf(tree: FrameTree, path: str | os.PathLike[str], schema: str = "1.0.0", *,
+def write_asdf(tree: FrameTree, path: str | os.PathLike[str], schema: str = "0.1.0", *,
                key: str = HIERARCHY_KEY) -> None:
     """Write ``tree`` as a weldx coordinate system hierarchy (atomically).
 
@@ -45,10 +45,12 @@ def write_asdf(tree: FrameTree, path: str | os.PathLike[str], schema: str = "1.0
         The tree to write; a tree holding only its root is fine.
     path : path-like
         The ``.asdf`` file to write.
-    schema : {"1.0.0", "0.1.0"}
-        ``"1.0.0"``: the legacy format (weldx up to 0.4; tags ``tag:weldx.bam.de:...``,
-        coordinates in millimetres without unit). ``"0.1.0"``: the format weldx 0.6 to 0.8.2
-        reads (``di_graph``, ``local_coordinate_system-0.1.1``, coordinates in millimeter).
+    schema : {"0.1.0", "1.0.0"}
+        ``"0.1.0"`` (the default): the format weldx 0.6 to 0.8.2 writes and reads
+        (``di_graph``, ``local_coordinate_system-0.1.1``, coordinates in millimeter, data
+        attached to frames). ``"1.0.0"``: the legacy format (weldx up to 0.4; tags
+        ``tag:weldx.bam.de:...``, coordinates in millimetres without unit, no data), which
+        current weldx opens only as a raw dictionary.
     key : str
         Where the hierarchy goes in the file's tree.
 
@@ -79,10 +81,7 @@ def write_asdf(tree: FrameTree, path: str | os.PathLike[str], schema: str = "1.0
             file=str(path), field="schema")
     depth = 0
     if generation is LEGACY:
-        if tree.data_names:
-            raise UnsupportedFeatureError(
-                f"data is attached to frames ({', '.join(tree.data_names)}): pinframes writes "
-                "data in schema '0.1.0' only", file=str(path), field="schema")
+        refuse_attached_data(tree, path, "schema '1.0.0'", field="schema")
         hierarchy = _legacy_hierarchy(tree)
     else:
         deepest, depth = deepest_frame((name, tree.parent(name) or "") for name in tree.frames[1:])

@@ -11,14 +11,11 @@ from __future__ import annotations
 
 import math
 import os
-import sys
-import warnings
 from dataclasses import dataclass
 from pathlib import Path
-from types import FrameType
 from typing import Any
 
-from ...errors import FileFormatError, FramesYamlWarning
+from ...errors import FileFormatError, FramesYamlWarning, warn_at_caller
 from .._yaml_loader import KeyPath, load_yaml
 
 __all__ = [
@@ -232,16 +229,7 @@ def tile_maps_beside(file: str | os.PathLike[str]) -> Path:
 def warn_layer(file: str, frame: str | None, message: str) -> None:
     """Warn with a :class:`FramesYamlWarning` that names the file and frame."""
     where = f"{file}: frame {frame!r}" if frame is not None else file
-    warnings.warn(f"{where}: {message}", FramesYamlWarning, stacklevel=_caller_level())
-
-
-def _caller_level() -> int:
-    """The ``stacklevel`` that points a warning at the first caller outside pinframes."""
-    frame: FrameType | None = sys._getframe(2)
-    level = 2
-    while frame is not None and frame.f_globals.get("__name__", "").startswith("pinframes."):
-        frame, level = frame.f_back, level + 1
-    return level
+    warn_at_caller(f"{where}: {message}", FramesYamlWarning)
 
 
 def _kind(value: Any) -> str:

@@ -20,7 +20,7 @@ from ...errors import PinframesError, UnsupportedFeatureError
 from ...tree import FrameTree
 from ...values.pose import Pose
 from .._snapshot import one_instant
-from .._writable import check_writable_tree
+from .._writable import check_writable_tree, refuse_attached_data
 from ..atomic import atomic_write
 from ..limits import current_limits
 from ._reader import METADATA_KEY
@@ -63,11 +63,13 @@ def write_frames_yaml(tree: FrameTree, path: str | os.PathLike[str], time: Any =
     ------
     UnsupportedFeatureError
         A frame moves in time and ``time`` is None; a frame name holds ``/`` where its key
-        would put it under another frame; two frames would get one key.
+        would put it under another frame; two frames would get one key; data is attached
+        to frames (frames.yaml cannot hold it).
     WriteError
         The file cannot be written.
     """
     check_writable_tree(tree, path)
+    refuse_attached_data(tree, path, "frames.yaml")
     document = _document(tree, Path(path), time, slash_replacement)
     text = yaml.dump(document, Dumper=_Dumper, sort_keys=False, default_flow_style=False,
                      allow_unicode=True)

@@ -10,13 +10,12 @@ that link. The result must have one root and no cycle.
 
 from __future__ import annotations
 
-import warnings
 from collections import deque
 from pathlib import Path
 
 import numpy as np
 
-from ...errors import BagWarning, TreeStructureError
+from ...errors import BagWarning, TreeStructureError, warn_at_caller
 from ...tree import FrameTree
 from ...values.pose import Pose
 from ..urdf import DRIVEN_JOINT_TYPES, RobotDescription, mount_robot
@@ -44,11 +43,11 @@ def assemble_tree(name: str, tracks: dict[str, FrameTrack], robot: RobotDescript
     republished = [child for child in tracks if child in links and child != root_link]
     if republished:
         shown = ", ".join(repr(link) for link in republished[:5])
-        warnings.warn(BagWarning(
+        warn_at_caller(
             f"{file}: ignored the tf transforms of {len(republished)} links the robot "
             f"description has (robot_state_publisher republishes them; the URDF and the "
-            f"joint states place them): {shown}" + (" ..." if len(republished) > 5 else "")),
-            stacklevel=4)
+            f"joint states place them): {shown}" + (" ..." if len(republished) > 5 else ""),
+            BagWarning)
     parent_of = {child: track.parent for child, track in tracks.items()
                  if child not in links or child == root_link}
     if robot is not None:
@@ -129,7 +128,6 @@ def _warn_unused(joints: dict[str, JointSamples], driven: set[str], file: Path) 
     unused = [name for name in joints if name not in driven]
     if unused:
         shown = ", ".join(repr(name) for name in unused[:5])
-        warnings.warn(BagWarning(f"{file}: joint states of {len(unused)} joints the robot "
-                                 f"description does not drive (fixed, mimic or not in it) are "
-                                 f"not used: {shown}" + (" ..." if len(unused) > 5 else "")),
-                      stacklevel=5)
+        warn_at_caller(f"{file}: joint states of {len(unused)} joints the robot description "
+                       f"does not drive (fixed, mimic or not in it) are not used: {shown}"
+                       + (" ..." if len(unused) > 5 else ""), BagWarning)

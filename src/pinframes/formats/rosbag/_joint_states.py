@@ -11,7 +11,6 @@ received wins. A message whose ``position`` is empty or not as long as ``name`` 
 from __future__ import annotations
 
 import math
-import warnings
 from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
@@ -19,7 +18,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from ...errors import BagWarning
+from ...errors import BagWarning, warn_at_caller
 from ..limits import current_limits, exceeded
 
 __all__ = ["JointSamples", "joint_samples"]
@@ -56,13 +55,11 @@ def joint_samples(messages: Iterable[object], file: Path) -> dict[str, JointSamp
             stamps.setdefault(name, []).append(stamp_ns)
             positions.setdefault(name, []).append(value)
     if skipped:
-        warnings.warn(BagWarning(f"{file}: skipped {skipped:,} joint states whose position "
-                                 "list is empty or not as long as their name list"),
-                      stacklevel=4)
+        warn_at_caller(f"{file}: skipped {skipped:,} joint states whose position "
+                       "list is empty or not as long as their name list", BagWarning)
     if not_finite:
-        warnings.warn(BagWarning(f"{file}: skipped {len(not_finite):,} joint positions that "
-                                 f"are NaN or infinite (first: joint {not_finite[0]!r})"),
-                      stacklevel=4)
+        warn_at_caller(f"{file}: skipped {len(not_finite):,} joint positions that are NaN or "
+                       f"infinite (first: joint {not_finite[0]!r})", BagWarning)
     samples = {}
     repeated = []
     for name in stamps:
@@ -78,7 +75,7 @@ def joint_samples(messages: Iterable[object], file: Path) -> dict[str, JointSamp
                            field="joint").located(file=file, frame=name)
         samples[name] = JointSamples(times[last], values[last])
     if repeated:
-        warnings.warn(BagWarning(f"{file}: {len(repeated)} joints with two samples at one "
-                                 f"stamp (the later received is kept): "
-                                 + ", ".join(map(repr, repeated[:5]))), stacklevel=4)
+        warn_at_caller(f"{file}: {len(repeated)} joints with two samples at one "
+                       f"stamp (the later received is kept): "
+                       + ", ".join(map(repr, repeated[:5])), BagWarning)
     return samples

@@ -10,15 +10,14 @@ import numpy as np
 
 from ...errors import ArgumentTypeError, FileFormatError, PinframesError
 from ...tree import FrameTree
-from ...values.timeconv import format_timestamp_iso
 from ..limits import Limits, current_limits, exceeded, using_limits
 from ..urdf import RobotDescription, parse_urdf
 from ._assembly import assemble_tree, reference_stamp
-from ._joint_states import joint_samples
+from ._joint_states import JointSamples, joint_samples
 from ._messages import DESCRIPTION_TYPES, JOINT_STATE_TYPES, TF_TYPES, check_type, deserialise
 from ._storage import OpenBag
-from ._tf_messages import CorruptMessage, decode_tf_messages
-from ._tf_tracks import frame_tracks
+from ._tf_messages import CorruptMessage, TransformColumns, decode_tf_messages
+from ._tf_tracks import FrameTrack, frame_tracks, stamp_iso
 
 __all__ = ["ROSBAG_METADATA_KEY", "read_rosbag"]
 
@@ -129,12 +128,12 @@ def _raw_messages(bag: OpenBag, topics: list[str]) -> list[tuple[str, int, bytes
     return messages
 
 
-def _decoded(bag: OpenBag, tf_raw: list[tuple[str, int, bytes]]) -> Any:
+def _decoded(bag: OpenBag, tf_raw: list[tuple[str, int, bytes]]) -> TransformColumns:
     try:
         return decode_tf_messages([data for _, _, data in tf_raw], bag.ros_version)
     except CorruptMessage as exc:
         topic, received, _ = tf_raw[exc.index]
-        raise FileFormatError(f"a corrupt tf message received at {_iso(received)}: "
+        raise FileFormatError(f"a corrupt tf message received at {stamp_iso(received)}: "
                               f"{exc.reason}", file=bag.path, field=topic) from None
 
 
@@ -143,7 +142,7 @@ def _deserialised(bag: OpenBag, topic: str, received: int, data: bytes) -> Any:
     try:
         return deserialise(bag.ros_version, data, bag.topics[topic].message_type)
     except Exception as exc:  # rosbags' SerdeError and what its generated code raises
-        raise FileFormatError(f"a corrupt message received at {_iso(received)}: {exc}",
+        raise FileFormatError(f"a corrupt message received at {stamp_iso(received)}: {exc}",
                               file=bag.path, field=topic) from None
 
 
@@ -163,8 +162,9 @@ def _robot(bag: OpenBag, given: str | os.PathLike[str] | None,
                               file=bag.path, field=topic) from None
 
 
-def _summary(bag: OpenBag, uses: dict[str, str], tracks: dict, joints: dict,
-             tree: FrameTree, with_robot: bool) -> dict[str, Any]:
+def _summary(bag: OpenBag, uses: dict[str, str], tracks: dict[str, FrameTrack],
+             joints: dict[str, JointSamples], tree: FrameTree, with_robot: bool
+             ) -> dict[str, Any]:
     """What ``pinframes info`` shows of a bag besides the tree."""
     first = reference_stamp(tracks, joints if with_robot else {})
     stamps = [int(t.stamps_ns[-1]) for t in tracks.values() if not t.static]
@@ -173,12 +173,10 @@ def _summary(bag: OpenBag, uses: dict[str, str], tracks: dict, joints: dict,
         "file": os.fspath(bag.path), "kind": bag.kind,
         "topics": [{"name": topic.name, "type": topic.message_type, "messages": topic.count,
                     "use": uses.get(topic.name)} for topic in bag.topics.values()],
-        "time_span": None if first is None else [_iso(first), _iso(max(stamps))],
+        "time_span": None if first is None else [stamp_iso(first), stamp_iso(max(stamps))],
         "joint_states_not_used": [name for name in joints
                                   if name not in tree.joints or not with_robot
                                   or tree.joint_trajectory(name) is None],
     }
 
 
-def _iso(stamp_ns: int) -> str:
-    return format_timestamp_iso(np.datetime64(int(stamp_ns), "ns"))

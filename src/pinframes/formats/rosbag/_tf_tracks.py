@@ -14,19 +14,18 @@
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
 
-from ...errors import BagWarning, TreeStructureError
+from ...errors import BagWarning, TreeStructureError, warn_at_caller
 from ...values.timeconv import format_timestamp_iso
 from ..limits import current_limits, exceeded
 from ._tf_messages import TransformColumns
 
-__all__ = ["FrameTrack", "frame_tracks"]
+__all__ = ["FrameTrack", "frame_tracks", "stamp_iso"]
 
 QUATERNION_TOLERANCE = 0.01
 """tf2 refuses a quaternion whose squared norm differs from 1 by more than this."""
@@ -144,8 +143,8 @@ def _accepted_by_tf2(names: list[str], parents: NDArray[np.int64],
                           f"{names[int(children[np.argmax(mask)])]!r})")
         refused |= mask
     if counts:
-        warnings.warn(BagWarning(f"{file}: skipped transforms that tf2 refuses: "
-                                 + "; ".join(counts)), stacklevel=5)
+        warn_at_caller(f"{file}: skipped transforms that tf2 refuses: "
+                       + "; ".join(counts), BagWarning)
     return ~refused
 
 
@@ -164,7 +163,7 @@ def _check_one_parent(names: list[str], parents: NDArray[np.int64],
         described = []
         for parent in (pairs[pair_children == child] % count).tolist():
             mask = (children == child) & (parents == parent)
-            described.append(f"{names[parent]!r} (first at {_iso(stamps[mask].min())})")
+            described.append(f"{names[parent]!r} (first at {stamp_iso(stamps[mask].min())})")
         raise TreeStructureError(
             "published under several parents: " + " and ".join(described)
             + "; tf2 re-parents a frame in time, a tree cannot (read the bag in parts, or "
@@ -173,15 +172,16 @@ def _check_one_parent(names: list[str], parents: NDArray[np.int64],
     both = np.flatnonzero(kinds[1:] // 2 == kinds[:-1] // 2)
     if both.size:
         raise TreeStructureError("published on both a static and a dynamic tf topic",
-                                 file=file, frame=names[int(kinds[both[0]] // 2)])
+                       file=file, frame=names[int(kinds[both[0]] // 2)])
 
 
-def _iso(stamp_ns: int) -> str:
+def stamp_iso(stamp_ns: int) -> str:
+    """A stamp (ns since the epoch) as an ISO timestamp, for messages."""
     return format_timestamp_iso(np.datetime64(int(stamp_ns), "ns"))
 
 
 def _warn_once(frames: list[str], what: str, file: Path) -> None:
     if frames:
         shown = ", ".join(repr(frame) for frame in frames[:5])
-        warnings.warn(BagWarning(f"{file}: {len(frames)} {what}: {shown}"
-                                 + (" ..." if len(frames) > 5 else "")), stacklevel=5)
+        warn_at_caller(f"{file}: {len(frames)} {what}: {shown}"
+                       + (" ..." if len(frames) > 5 else ""), BagWarning)

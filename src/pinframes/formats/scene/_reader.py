@@ -30,7 +30,7 @@ from ...values.curve_frames import length_along_polyline
 from ...values.pose import Pose
 from ...values.rotations import matrix_from_axis_angle
 from ...values.timeconv import parse_timestamp
-from .._paths import is_regular_file, path_argument
+from .._paths import path_argument, regular_file_problem
 from .._registry import detect_format, read
 from .._yaml_loader import load_yaml
 from ..limits import Limits, reader_with_limits
@@ -249,7 +249,7 @@ class _Scene:
                 known = ", ".join(sorted(joints)) or "none"
                 raise self._referenced(FileFormatError(
                     f"no joint {prefix + name!r} in the tree (joints: {known})", file=path,
-                    frame=name, field="header"), field)
+                    joint=name, field="header"), field)
         try:
             tree.set_joint_trajectory(times, positions, [prefix + name for name in names])
         except PinframesError as exc:
@@ -431,8 +431,8 @@ class _Scene:
             raise FileFormatError("missing", file=self.path, frame=frame, field=f"{field}.{key}")
         value = self._name(item[key], frame, f"{field}.{key}")
         path = self.path.parent / value
-        if not is_regular_file(path):
-            raise FileFormatError(f"no such file: {path}", file=self.path, frame=frame,
+        if (problem := regular_file_problem(path)) is not None:
+            raise FileFormatError(f"{problem}: {path}", file=self.path, frame=frame,
                                   field=f"{field}.{key}")
         return path
 
@@ -488,9 +488,13 @@ class _Scene:
                                   field=field) from None
 
     def _referenced(self, exc: PinframesError, field: str) -> PinframesError:
-        """``exc`` from a file this scene references, with a note saying which entry."""
-        return type(exc)(f"{exc.message} (referenced by {self.path}: {field})",
-                         file=exc.file, frame=exc.frame, field=exc.field)
+        """``exc`` from a file this scene references, with a note saying which entry (once:
+        an error this scene already noted keeps its note)."""
+        note = f" (referenced by {self.path}: "
+        if note in exc.message:
+            return exc
+        return type(exc)(f"{exc.message}{note}{field})", file=exc.file, frame=exc.frame,
+                         field=exc.field, joint=exc.joint)
 
 
 def _is_flat(value: Any) -> bool:

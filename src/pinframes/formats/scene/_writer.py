@@ -21,7 +21,7 @@ from ...values.pose import Pose
 from ...values.timeconv import format_timedelta_iso
 from .._joint_steps import check_joint_steps
 from .._snapshot import one_instant
-from .._writable import check_writable_tree
+from .._writable import check_writable_tree, refuse_attached_data
 from ..atomic import atomic_write
 from ._reader import SCENE_FORMAT_KEY, SCENE_FORMAT_VERSION
 
@@ -45,11 +45,13 @@ def write_scene(tree: FrameTree, path: str | os.PathLike[str], time: Any = None)
     ------
     UnsupportedFeatureError
         A revolute or continuous joint turns by half a turn or more between two samples,
-        which keyframes cannot say unambiguously (resample the trajectory more densely).
+        which keyframes cannot say unambiguously (resample the trajectory more densely);
+        data is attached to frames (a scene file cannot hold it).
     WriteError
         The file cannot be written; an existing file is left untouched.
     """
     check_writable_tree(tree, path)
+    refuse_attached_data(tree, path, "a scene file")
     document: dict[str, Any] = {SCENE_FORMAT_KEY: SCENE_FORMAT_VERSION}
     if tree.name is not None:
         document["name"] = tree.name

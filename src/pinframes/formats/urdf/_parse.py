@@ -3,14 +3,13 @@
 from __future__ import annotations
 
 import os
-import warnings
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
 
-from ...errors import BrokenMimicWarning, FileFormatError
+from ...errors import BrokenMimicWarning, FileFormatError, warn_at_caller
 from ...values.geometry import FrameGeometry
 from ...values.pose import Pose
 from ..limits import Limits, current_limits, exceeded, reader_with_limits
@@ -85,7 +84,7 @@ def parse_urdf(urdf: str | os.PathLike[str], *, strict: bool = False,
     name = root.get("name")
     if not name:
         name = Path(source).stem if source != "<urdf string>" else "robot"
-        warnings.warn(f"{source}: <robot> has no name; using {name!r}", stacklevel=3)
+        warn_at_caller(f"{source}: <robot> has no name; using {name!r}")
     try:
         links, joints, extra = _elements(root, source)
     except RecursionError:
@@ -113,7 +112,7 @@ def _elements(root: ET.Element, source: str
     extra: list[str] = []
     for element in root:
         if element.tag == "link":
-            link_name = _required(element, "name", source, "link")
+            link_name = _required(element, "name", source, None)
             if link_name in links:
                 raise FileFormatError("duplicate link name", file=source, frame=link_name,
                                       field="name")
@@ -132,11 +131,11 @@ def _read_source(urdf: str | os.PathLike[str]) -> tuple[str, str]:
 
 
 def _parse_joint(element: ET.Element, source: str) -> JointDescription:
-    name = _required(element, "name", source, "joint")
+    name = _required(element, "name", source, None)
     joint_type = element.get("type")
     if joint_type not in URDF_JOINT_TYPES:
         raise FileFormatError(f"unknown joint type {joint_type!r}; expected one of "
-                              f"{', '.join(URDF_JOINT_TYPES)}", file=source, frame=name,
+                              f"{', '.join(URDF_JOINT_TYPES)}", file=source, joint=name,
                               field="type")
     parent = _child_attribute(element, "parent", "link", source, name)
     child = _child_attribute(element, "child", "link", source, name)
@@ -145,7 +144,7 @@ def _parse_joint(element: ET.Element, source: str) -> JointDescription:
     rpy = _vector(origin, "rpy", source, name, "origin.rpy", (0.0, 0.0, 0.0))
     axis = _vector(element.find("axis"), "xyz", source, name, "axis.xyz", (1.0, 0.0, 0.0))
     if joint_type in ("revolute", "continuous", "prismatic", "planar") and not np.any(axis):
-        raise FileFormatError("the axis must not be zero", file=source, frame=name,
+        raise FileFormatError("the axis must not be zero", file=source, joint=name,
                               field="axis.xyz")
     limit = element.find("limit")
     bounds = {key: _number(limit, key, source, name) for key in
@@ -153,7 +152,7 @@ def _parse_joint(element: ET.Element, source: str) -> JointDescription:
     mimic_element = element.find("mimic")
     mimic = None
     if mimic_element is not None:
-        target = _required(mimic_element, "joint", source, f"joint {name!r} mimic")
+        target = _required(mimic_element, "joint", source, name)
         multiplier = _number(mimic_element, "multiplier", source, name)
         offset = _number(mimic_element, "offset", source, name)
         mimic = (target, 1.0 if multiplier is None else multiplier,
@@ -173,17 +172,17 @@ def _check_tree(
     names = set()
     for joint in joints:
         if joint.name in names:
-            raise FileFormatError("duplicate joint name", file=source, frame=joint.name,
+            raise FileFormatError("duplicate joint name", file=source, joint=joint.name,
                                   field="name")
         names.add(joint.name)
         for role in ("parent", "child"):
             if getattr(joint, role) not in links:
                 raise FileFormatError(f"{role} link {getattr(joint, role)!r} is not defined",
-                                      file=source, frame=joint.name, field=f"{role}.link")
+                                      file=source, joint=joint.name, field=f"{role}.link")
         if joint.child in by_child:
             raise FileFormatError(
                 f"link {joint.child!r} has two parents (joints {by_child[joint.child].name!r} "
-                f"and {joint.name!r})", file=source, frame=joint.name, field="child.link")
+                f"and {joint.name!r})", file=source, joint=joint.name, field="child.link")
         by_child[joint.child] = joint
     roots = [link for link in links if link not in by_child]
     if len(roots) != 1:
@@ -219,11 +218,11 @@ def _without_broken_mimics(joints: list[JointDescription], source: str, strict: 
         if joint.mimic is not None and joint.type in _DRIVEN_TYPES and joint.mimic[0] not in names:
             if strict:
                 raise FileFormatError(f"mimics unknown joint {joint.mimic[0]!r}", file=source,
-                                      frame=joint.name, field="mimic.joint")
-            warnings.warn(
+                                      joint=joint.name, field="mimic.joint")
+            warn_at_caller(
                 f"{source}: joint {joint.name!r} mimics joint {joint.mimic[0]!r}, which the "
                 "file does not have; it is loaded as an independent joint (strict=True "
-                "refuses the file)", BrokenMimicWarning, stacklevel=4)
+                "refuses the file)", BrokenMimicWarning)
             joint = replace(joint, mimic=None)
         kept.append(joint)
     return kept
@@ -244,12 +243,12 @@ def _check_mimics(joints: list[JointDescription], source: str) -> None:
         target = by_name.get(joint.mimic[0])
         if target is None:
             raise FileFormatError(f"mimics unknown joint {joint.mimic[0]!r}", file=source,
-                                  frame=joint.name, field="mimic.joint")
+                                  joint=joint.name, field="mimic.joint")
         if target.type not in _DRIVEN_TYPES:
             raise FileFormatError(
                 f"mimics {target.name!r}, a {target.type} joint; only "
                 f"{', '.join(_DRIVEN_TYPES)} joints have a value to follow", file=source,
-                frame=joint.name, field="mimic.joint")
+                joint=joint.name, field="mimic.joint")
     length: dict[str, int] = {}  # joints in the chain from a joint to one that mimics none
     for joint in joints:
         chain: dict[str, None] = {}  # in order, with constant-time membership
@@ -260,7 +259,7 @@ def _check_mimics(joints: list[JointDescription], source: str) -> None:
                 names = list(chain)
                 cycle = [*names[names.index(current.name):], current.name]
                 raise FileFormatError(f"mimic cycle: {' -> '.join(cycle)}", file=source,
-                                      frame=current.name, field="mimic.joint")
+                                      joint=current.name, field="mimic.joint")
             chain[current.name] = None
             current = by_name[current.mimic[0]]  # checked above
         rest = length.get(current.name, 1)
@@ -268,16 +267,15 @@ def _check_mimics(joints: list[JointDescription], source: str) -> None:
             length[name] = rest + step
         if length.get(joint.name, 1) > current_limits().max_depth:
             raise exceeded("max_depth", f"a chain of {length[joint.name]:,} joints, each "
-                           "mimicking the next", frame=joint.name,
-                           field="mimic.joint").located(file=source)
+                           "mimicking the next", field="mimic.joint").located(
+                               file=source, joint=joint.name)
 
 
-def _required(element: ET.Element, attribute: str, source: str, what: str) -> str:
+def _required(element: ET.Element, attribute: str, source: str, joint: str | None) -> str:
     value = element.get(attribute)
     if not value:
         raise FileFormatError(f"<{element.tag}> without {attribute!r}", file=source,
-                              frame=what if what.startswith("joint ") else None,
-                              field=f"{element.tag}.{attribute}")
+                              joint=joint, field=f"{element.tag}.{attribute}")
     return value
 
 
@@ -286,14 +284,17 @@ def _child_attribute(element: ET.Element, tag: str, attribute: str, source: str,
     child = element.find(tag)
     value = None if child is None else child.get(attribute)
     if not value:
-        raise FileFormatError(f"missing <{tag} {attribute}=...>", file=source, frame=joint,
+        raise FileFormatError(f"missing <{tag} {attribute}=...>", file=source, joint=joint,
                               field=f"{tag}.{attribute}")
     return value
 
 
 def _vector(element: ET.Element | None, attribute: str, source: str, joint: str, field: str,
             default: tuple[float, float, float]) -> tuple[float, float, float]:
-    x, y, z = numbers(element, attribute, 3, source, joint, field, default)
+    try:
+        x, y, z = numbers(element, attribute, 3, source, None, field, default)
+    except FileFormatError as exc:
+        raise exc.located(joint=joint) from None
     return x, y, z
 
 
@@ -310,7 +311,7 @@ def _number(element: ET.Element | None, attribute: str, source: str, joint: str
         value = float("nan")
     if not np.isfinite(value):
         raise FileFormatError(f"expected a finite number, got {text!r}", file=source,
-                              frame=joint, field=f"{element.tag}.{attribute}")
+                              joint=joint, field=f"{element.tag}.{attribute}")
     return value
 
 

@@ -15,18 +15,20 @@ from ...values.joint import Joint, mimic_chain
 from ...values.rotations import rpy_from_matrix
 from ...values.timeconv import format_timestamp_iso
 from .._snapshot import moving_parts, one_instant
-from .._writable import check_writable_tree
+from .._writable import check_writable_tree, refuse_attached_data
 from ..atomic import atomic_write
 from ..limits import Limits
 from ._mount import URDF_METADATA_KEY, mount_robot
 from ._parse import parse_urdf
 
-__all__ = ["joint_state_path", "read_urdf", "write_urdf"]
+__all__ = ["joint_state_path", "read_robot", "write_urdf"]
 
 
-def read_urdf(path: str | os.PathLike[str], *, strict: bool = False,
-              limits: Limits | None = None) -> FrameTree:
-    """A robot alone: the tree's root is the robot's root link, named after the robot.
+def read_robot(path: str | os.PathLike[str], *, strict: bool = False,
+               limits: Limits | None = None) -> FrameTree:
+    """A robot file alone: the tree's root is the robot's root link, named after the robot,
+    every joint at its rest value (:func:`pinframes.read_urdf` adds the joint values written
+    beside the file).
 
     ``strict`` refuses a mimic of a joint the file does not have (by default such a joint
     stays independent, with a :class:`~pinframes.urdf.BrokenMimicWarning`). ``limits``
@@ -53,9 +55,11 @@ def write_urdf(tree: FrameTree, path: str | os.PathLike[str], time: Any = None, 
     ``read_joint_trajectory`` reads it back), whenever a joint is driven. With
     ``freeze_joints`` every robot joint becomes a fixed joint at its value then instead,
     and no joint-state file is written. Link contents (visuals, inertials, ``package://``
-    URIs) and unread joint elements are written back as they were read.
+    URIs) and unread joint elements are written back as they were read. Data attached to
+    frames cannot go into a URDF: such a tree is an ``UnsupportedFeatureError`` naming it.
     """
     check_writable_tree(tree, path)
+    refuse_attached_data(tree, path, "a URDF")
     instant = one_instant(tree, time, path, "URDF")
     robot = ET.Element("robot", name=tree.name or tree.root)
     written: set[str] = set()

@@ -1,0 +1,62 @@
+"""Numbers given by users as float arrays: real, and finite unless told otherwise.
+
+numpy turns complex numbers into floats by dropping their imaginary parts (with only a
+``ComplexWarning``); pinframes refuses them instead, as it refuses text, NaN and infinity.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..errors import PinframesError
+
+__all__ = ["float_array", "require_finite_result"]
+
+
+def float_array(values: ArrayLike, field: str, error: type[PinframesError], *,
+                finite: bool = True, copy: bool = False) -> NDArray[np.float64]:
+    """``values`` as a float64 array (a new one with ``copy``, else possibly ``values``).
+
+    Raises ``error`` at ``field`` for values that are not real numbers (text, complex
+    numbers, ragged nesting, integers beyond float range) and, with ``finite``, for NaN and
+    infinity (naming the first such index).
+    """
+    try:
+        array = np.asarray(values)
+        complex_numbers = array.dtype.kind == "c"
+        if not complex_numbers:
+            array = array.astype(float, copy=copy)
+    except (TypeError, ValueError, OverflowError) as exc:
+        raise error(f"expected numbers: {exc}", field=field) from None
+    if complex_numbers:
+        raise error("expected real numbers, got complex ones (pinframes never drops an "
+                    "imaginary part)", field=field)
+    if finite and not np.isfinite(array).all():
+        where = tuple(int(i) for i in np.argwhere(~np.isfinite(array))[0])
+        raise error(f"non-finite value (NaN or infinity) at index {where}", field=field)
+    return array
+
+
+def require_finite_result(array: NDArray[np.float64], what: str,
+                          error: type[PinframesError], *, frame: str | None = None,
+                          field: str | None = None) -> None:
+    """Raise ``error`` when ``array``, computed from finite inputs, overflowed to infinity
+    or NaN (two translations of 1e308 m add up to more than a float holds)."""
+    if not _all_finite(array):
+        raise error(f"{what} overflows double precision (beyond about 1.8e308): the values "
+                    "combined are finite but too large", frame=frame, field=field)
+
+
+_FEW = 64
+"""Up to this many values Python's own ``math.isfinite`` is the faster check: numpy's
+``isfinite(...).all()`` costs a few microseconds whatever the size, as much as a cached
+static query (benchmarks/bench_queries.py, case c)."""
+
+
+def _all_finite(array: NDArray[np.float64]) -> bool:
+    if array.size <= _FEW:
+        return all(map(math.isfinite, array.ravel().tolist()))
+    return bool(np.isfinite(array).all())
