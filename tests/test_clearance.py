@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from pinframes import FrameNotFoundError, FrameTree, GeometryError, Pose
+from pinframes.kinematics import clearance as clearance_module
 
 
 def link(name: str, *shapes: str) -> str:
@@ -100,9 +101,12 @@ def test_a_rotated_box_against_a_sphere_and_the_nearest_of_several_shapes():
     assert result.closest[:, 1].tolist() == ["diamond", "diamond"]
 
 
-def test_same_answers_with_and_without_the_sphere_bounds(rng):
+@pytest.mark.parametrize("chunk", [16, 1 << 14])
+def test_same_answers_with_and_without_the_sphere_bounds(rng, monkeypatch, chunk):
     """Many spheres moving at random: the smallest pair distance computed over all pairs
-    with numpy equals the query, which skips pairs by their bounding spheres."""
+    with numpy equals the query, which skips pairs by their bounding spheres (evaluated in
+    one chunk of samples, and in three)."""
+    monkeypatch.setattr(clearance_module, "CHUNK", chunk)
     tree = FrameTree()
     times = np.linspace(0.0, 1.0, 40)
     centres = {}

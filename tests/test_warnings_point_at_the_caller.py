@@ -87,7 +87,7 @@ def test_geometry_warnings_point_at_the_caller_and_the_library_stays_quiet(tmp_p
     capfd.readouterr()
     assert_at_this_file(warnings_of(lambda: view.load_geometry(tree)), view.GeometryWarning)
     assert "Can't find" not in capfd.readouterr().err  # yourdfpy's log line
-    from_text = FrameTree()
-    from_text.attach_urdf(ARM.replace("<mimic joint=\"j0\"/>", ""), "world")
+    from_text = FrameTree()  # an XML string has no folder: its relative mesh is not found
+    from_text.attach_urdf(urdf.read_text(), "world")
     assert_at_this_file(warnings_of(lambda: view.load_geometry(from_text)),
                         view.GeometryWarning)

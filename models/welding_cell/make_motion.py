@@ -37,15 +37,15 @@ The cell (all lengths in metres, angles in radians, times in seconds, quaternion
 The positioner turns the pipe (theta falls from -25 to -155 degrees) while the robot moves
 the torch from 25 degrees before the top of the pipe to 25 degrees past it, so that the torch
 keeps a fixed pose (10 degree push angle, 90 degree work angle) relative to the seam point
-under it. The joint samples come from damped-least-squares inverse kinematics on the
-Pinocchio model of ``models/welding_robot/welding_robot.urdf``.
+under it. The joint samples come from pinframes itself: ``FrameTree.solve_joints`` puts
+``torch_tcp`` on ``torch_target`` (the design torch pose over ``seam_point``) in
+``scene.yaml`` at every time of ``seam_point``, so ``pinframes solve scene.yaml --frame
+torch_tcp --target torch_target`` gives the same motion.
 """
 
 from __future__ import annotations
 
 import argparse
-import csv
-import io
 import math
 from pathlib import Path
 
@@ -53,7 +53,10 @@ import numpy as np
 import pinocchio as pin
 import yaml
 
+import pinframes
+from pinframes import JointSolution
 from pinframes.formats.atomic import atomic_write
+from pinframes.formats.trajectory_files import joint_trajectory_csv
 
 HERE = Path(__file__).resolve().parent
 URDF_PATH = HERE.parent / "welding_robot" / "welding_robot.urdf"
@@ -75,8 +78,8 @@ SEAM_POINT_COUNT = 2001  # seam_point: one point per robot sample; chords 0.17 m
 ROBOT_PREFIX = "robot/"
 JOINT_NAMES = [f"joint_{i}" for i in range(1, 7)]
 IK_SEED = np.array([-0.4, 0.3, 0.2, 0.0, 1.0, 1.5])  # rad, elbow up, wrist bent down
-IK_TOLERANCE = 1e-12  # norm of the SE(3) log error (m and rad)
-IK_DAMPING = 1e-6  # squared damping of the least-squares step
+IK_TOLERANCE = 1e-9  # m and rad: keeps the travel speed between samples within 1e-5
+MOTION_DIGITS = 9  # significant digits of robot_motion.csv
 SIGNIFICANT_DIGITS = 12  # of the numbers in cell_design.yaml
 
 
@@ -213,108 +216,15 @@ def build_cell() -> dict:
     }
 
 
-def _se3(entry: dict) -> pin.SE3:
-    """Pose of a static frame entry in its parent."""
-    x, y, z, w = entry["quat_xyzw"]
-    return pin.SE3(pin.Quaternion(w, x, y, z).matrix(), np.array(entry["xyz"]))
-
-
-def _frames_by_name(cell: dict) -> dict:
-    return {entry["name"]: entry for entry in cell["frames"]}
-
-
-def seam_targets_in_robot_base(cell: dict, times_s: np.ndarray) -> list[pin.SE3]:
-    """Wanted ``torch_tcp`` poses in ``robot_base`` at ``times_s``, from the cell description.
-
-    The positioner pose between keyframes is the SLERP of its keyframe quaternions; for its
-    single axis that is the keyframe angle interpolated linearly.
-    """
-    frames = _frames_by_name(cell)
-    keyframes = frames["positioner"]["keyframes"]
-    key_quats = np.array(keyframes["quat_xyzw"])
-    key_angles = np.unwrap(2 * np.arctan2(key_quats[:, 2], key_quats[:, 3]))
-    theta = np.interp(times_s, keyframes["times_s"], key_angles)
-    seam = cell["seam"]
-    fraction = (times_s - seam["start_time_s"]) / (seam["end_time_s"] - seam["start_time_s"])
-    seam_angle = seam["start_angle"] + fraction * (seam["end_angle"] - seam["start_angle"])
-    x, y, z, w = cell["torch"]["tcp_quat_xyzw_in_seam_point"]
-    tcp_in_seam_point = pin.SE3(pin.Quaternion(w, x, y, z).matrix(), np.zeros(3))
-    world_in_robot_base = _se3(frames["robot_base"]).inverse()
-    positioner_base_in_world = _se3(frames["positioner_base"])
-    seam_in_positioner = _se3(frames["workpiece"]) * _se3(frames["weld_seam"])
-    centre = np.array(seam["centre_xyz"])
-    radial = np.array([0.0, 0.0, seam["radius"]])
-    targets = []
-    for angle_positioner, angle_seam in zip(theta, seam_angle, strict=True):
-        positioner_in_base = pin.SE3(pin.utils.rotate("z", angle_positioner), np.zeros(3))
-        turn = pin.utils.rotate("y", angle_seam)
-        seam_point_in_seam = pin.SE3(turn, centre + turn @ radial)
-        targets.append(
-            world_in_robot_base
-            * positioner_base_in_world
-            * positioner_in_base
-            * seam_in_positioner
-            * seam_point_in_seam
-            * tcp_in_seam_point
-        )
-    return targets
-
-
-def robot_model_with_tcp(cell: dict) -> tuple[pin.Model, int]:
-    """Pinocchio model of the robot (base_link = robot_base) with ``torch_tcp`` added."""
-    model = pin.buildModelFromUrdf(str(URDF_PATH))
-    tcp = _frames_by_name(cell)["torch_tcp"]
-    flange_id = model.getFrameId("flange")
-    flange = model.frames[flange_id]
-    model.addFrame(
-        pin.Frame(
-            "torch_tcp",
-            flange.parentJoint,
-            flange_id,
-            flange.placement * _se3(tcp),
-            pin.FrameType.OP_FRAME,
-        )
-    )
-    return model, model.getFrameId("torch_tcp")
-
-
-def solve_ik(
-    model: pin.Model, data: pin.Data, frame_id: int, target: pin.SE3, q: np.ndarray
-) -> tuple[np.ndarray, float]:
-    """Damped-least-squares IK: joint values (rad) putting ``frame_id`` at ``target``.
-
-    Starts at ``q``; the error is the SE(3) log of the frame pose in the target, a 6-vector
-    (m, rad) in the frame. Returns the joint values and the final error norm.
-    """
-    q = q.copy()
-    for _ in range(200):
-        pin.framesForwardKinematics(model, data, q)
-        frame_in_target = target.actInv(data.oMf[frame_id])
-        error = pin.log6(frame_in_target).vector
-        residual = float(np.linalg.norm(error))
-        if residual < IK_TOLERANCE:
-            break
-        jacobian = pin.Jlog6(frame_in_target) @ pin.computeFrameJacobian(
-            model, data, q, frame_id, pin.ReferenceFrame.LOCAL
-        )
-        normal = jacobian @ jacobian.T + IK_DAMPING * np.eye(6)
-        step = -jacobian.T @ np.linalg.solve(normal, error)
-        scale = min(1.0, 0.2 / max(np.abs(step).max(), 1e-300))  # at most 0.2 rad a step
-        q = pin.integrate(model, q, scale * step)
-    return q, residual
-
-
-def compute_motion(cell: dict, times_s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Joint samples (T, 6) in rad following the seam, and the IK residual of each sample."""
-    model, tcp_id = robot_model_with_tcp(cell)
-    data = model.createData()
-    q = IK_SEED
-    samples, residuals = [], []
-    for target in seam_targets_in_robot_base(cell, times_s):
-        q, residual = solve_ik(model, data, tcp_id, target, q)
-        samples.append(q)
-        residuals.append(residual)
-    return np.array(samples), np.array(residuals)
+def compute_motion() -> JointSolution:
+    """The robot's joint values at every time of ``seam_point`` (100 Hz): pinframes'
+    ``solve_joints`` putting ``torch_tcp`` on ``torch_target`` in ``scene.yaml``, from
+    ``IK_SEED``, within ``IK_TOLERANCE`` (else it stops)."""
+    tree = pinframes.read(HERE / "scene.yaml")
+    seed = {ROBOT_PREFIX + name: value for name, value in zip(JOINT_NAMES, IK_SEED, strict=True)}
+    return tree.solve_joints("torch_tcp", "torch_target", seed=seed,
+                             position_tolerance=IK_TOLERANCE, orientation_tolerance=IK_TOLERANCE,
+                             strict=True)
 
 
 def _cell_yaml(cell: dict) -> str:
@@ -328,32 +238,21 @@ def _cell_yaml(cell: dict) -> str:
     return header + yaml.safe_dump(cell, sort_keys=False, default_flow_style=None, width=100)
 
 
-def _motion_csv(times_s: np.ndarray, samples: np.ndarray) -> str:
-    buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(["time_s", *JOINT_NAMES])
-    for time, row in zip(times_s, samples, strict=True):
-        writer.writerow([f"{time:.9g}", *(f"{value:.9g}" for value in row)])
-    return buffer.getvalue()
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=HERE, help="folder to write into")
     out = parser.parse_args().out
     cell = build_cell()
-    count = round(DURATION_S * SAMPLE_RATE_HZ) + 1
-    times_s = np.arange(count) / SAMPLE_RATE_HZ
-    samples, residuals = compute_motion(cell, times_s)
-    model = pin.buildModelFromUrdf(str(URDF_PATH))
-    if np.any(samples < model.lowerPositionLimit) or np.any(samples > model.upperPositionLimit):
-        raise SystemExit("the motion leaves the joint limits")
+    solution = compute_motion()
+    samples = solution.positions
     with atomic_write(out / CELL_FILE, "w") as handle:
         handle.write(_cell_yaml(cell))
     with atomic_write(out / MOTION_FILE, "w") as handle:
-        handle.write(_motion_csv(times_s, samples))
+        handle.write(joint_trajectory_csv(solution.seconds, samples, JOINT_NAMES,
+                                          significant_digits=MOTION_DIGITS))
     speeds = np.abs(np.diff(samples, axis=0)) * SAMPLE_RATE_HZ
-    print(f"{count} samples over {DURATION_S} s; max IK residual {residuals.max():.3g}")
+    print(f"{len(solution)} samples over {DURATION_S} s, all reached; largest errors "
+          f"{solution.position_error.max():.2g} m, {solution.orientation_error.max():.2g} rad")
     print("joint range (rad):", np.round(samples.min(0), 3), np.round(samples.max(0), 3))
     print("max joint speed (rad/s):", np.round(speeds.max(0), 4))
 

@@ -135,3 +135,22 @@ def test_solve_errors_name_what_is_wrong(cell, run_cli, arguments, words):
     result = run_cli("solve", scene, *arguments)
     assert result.returncode == 1
     assert result.stderr.startswith("pinframes: error:") and words in result.stderr
+
+
+BUNDLED = Path(__file__).resolve().parents[2] / "models" / "welding_cell"
+
+
+def test_solve_reproduces_the_bundled_robot_motion(run_cli, tmp_path):
+    """make_motion.py writes robot_motion.csv with solve_joints (from its seed, to 1e-9);
+    the command with its defaults starts from the file's first sample and stays within
+    the default tolerances of it."""
+    out = tmp_path / "robot_motion.csv"
+    result = run_cli("solve", BUNDLED / "scene.yaml", "--frame", "torch_tcp", "--target",
+                     "torch_target", "-o", out)
+    assert result.returncode == 0, result.stderr
+    assert "2001 samples, 2001 reached" in result.stderr
+    times, positions, names = read_joint_trajectory(out)
+    recorded_times, recorded, recorded_names = read_joint_trajectory(BUNDLED / "robot_motion.csv")
+    assert names == recorded_names
+    np.testing.assert_allclose(times, recorded_times, atol=1e-12)
+    np.testing.assert_allclose(positions, recorded, atol=2e-6)

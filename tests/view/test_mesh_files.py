@@ -124,9 +124,15 @@ def test_empty_stl_is_a_warning(tmp_path):
     assert [p.source for p in pieces] == ["box", "meshes/arm.stl"]
 
 
-def test_robot_from_an_xml_string_has_no_geometry_and_says_so(tmp_path):
+def test_robot_from_an_xml_string_draws_its_shapes_and_finds_meshes_in_search_folders(
+        tmp_path):
+    """An XML string has no folder: a relative mesh is not found (a warning says where it was
+    looked for), a package:// mesh is found in a search folder, primitives need nothing."""
+    make_package(tmp_path / "workspace")
     tree = FrameTree(root="world")
     tree.attach_urdf(make_robot(tmp_path).read_text(), "world", prefix="r/")
-    with pytest.warns(GeometryWarning, match="XML string"):
-        assert load_geometry(tree) == []
+    with pytest.warns(GeometryWarning, match=r"<urdf string>: link 'arm': mesh "
+                                             r"'meshes/arm\.stl' not found"):
+        pieces = load_geometry(tree, package_dirs=[tmp_path / "workspace"])
+    assert [(p.frame, p.source) for p in pieces] == [("r/base", PACKAGE_MESH), ("r/base", "box")]
     assert tree.pose("r/arm", relative_to="world").translation.tolist() == [0.0, 0.0, 0.0]

@@ -37,8 +37,10 @@ __all__ = ["Clearance", "clearance_times", "evaluate_clearance"]
 FloatArray = NDArray[np.float64]
 
 CHUNK = 1 << 14
-"""Samples whose frame poses and sphere bounds are computed at once (about 2 kB per sample
-and frame, shape and pair together)."""
+"""The most samples whose frame poses and sphere bounds are computed at once."""
+_CHUNK_ELEMENTS = 1 << 21
+"""Fewer samples at once for many pairs or shapes: a chunk's bounds (samples x pairs) and
+placed shapes (samples x shapes x 12) stay within about 16 MB each."""
 
 
 @dataclass(frozen=True)
@@ -128,23 +130,25 @@ def evaluate_clearance(
     if not len(pairs):
         raise GeometryError("a and b leave no pair of two different frames to check (a frame "
                             "is never checked against itself; see also exclude)", field="b")
-    poses, timeline_times, reference = _frame_poses(tree, frames, times, time_ref,
-                                                    extrapolation)
-    count = poses.translation.shape[1]
+    offsets, reference = _timeline(tree, frames, times, time_ref)
+    count = 1 if offsets is None else offsets.shape[0]
     frame_index = {frame: position for position, frame in enumerate(frames)}
     owners = np.array([frame_index[shape.frame] for shape in shapes], dtype=np.intp)
     distance = np.empty(count)
     closest = np.empty((count, 2), dtype=np.intp)
     point_a, point_b = np.empty((count, 3)), np.empty((count, 3))
-    for start in range(0, count, CHUNK):
-        part = slice(start, min(count, start + CHUNK))
-        rotation, translation = _placed_shapes(poses.rotation[:, part],
-                                               poses.translation[:, part], shapes, owners)
+    chunk = max(16, min(CHUNK, _CHUNK_ELEMENTS // max(len(pairs), 12 * len(shapes))))
+    for start in range(0, count, chunk):
+        part = slice(start, min(count, start + chunk))
+        rotation, translation = _frame_poses(tree, frames, None if offsets is None
+                                             else offsets[part], reference, extrapolation)
+        rotation, translation = _placed_shapes(rotation, translation, shapes, owners)
         _closest_pairs(shapes, pairs, rotation, translation, distance[part], closest[part],
                        point_a[part], point_b[part])
     names = np.array([shape.frame for shape in shapes], dtype=np.str_)
-    return Clearance(distance, names[closest], point_a, point_b, timeline_times, reference,
-                     tuple(dict.fromkeys(frames_a)), tuple(dict.fromkeys(frames_b)),
+    return Clearance(distance, names[closest], point_a, point_b,
+                     None if offsets is None else offsets.astype("timedelta64[ns]"),
+                     reference, tuple(dict.fromkeys(frames_a)), tuple(dict.fromkeys(frames_b)),
                      tuple(tuple(pair) for pair in excluded),  # type: ignore[misc]
                      kind)
 
@@ -198,27 +202,19 @@ def _timeline(tree: TreeDescription, frames: list[str], times: Any, time_ref: An
     return timeline.result_offsets, timeline.reference
 
 
-def _frame_poses(tree: TreeDescription, frames: list[str], times: Any, time_ref: Any,
-                 extrapolation: str) -> tuple[Any, NDArray[np.timedelta64] | None,
-                                              np.datetime64 | None]:
-    """Every frame's pose in the root, ``(F, T, 3, 3)`` and ``(F, T, 3)``, on the one
-    timeline of all the moving things on their paths; with that timeline's times and
-    reference time."""
-    offsets, reference = _timeline(tree, frames, times, time_ref)
+def _frame_poses(tree: TreeDescription, frames: list[str], offsets: NDArray[np.int64] | None,
+                 reference: np.datetime64 | None, extrapolation: str
+                 ) -> tuple[FloatArray, FloatArray]:
+    """Every frame's pose in the root at ``offsets`` (ns after ``reference``, a part of the
+    clearance's timeline; None: static), ``(F, n, 3, 3)`` and ``(F, n, 3)``."""
+    roots = [tree.root] * len(frames)
     if offsets is None:
-        poses = evaluate_poses(tree, frames, [tree.root] * len(frames), None, None,
-                               extrapolation)
-        return _with_sample_axis(poses), None, None
+        poses = evaluate_poses(tree, frames, roots, None, None, extrapolation)
+        return poses.rotation[:, None], poses.translation[:, None]
     # every frame's path on this one timeline: the same times and reference time
-    sample_times = offsets.astype("timedelta64[ns]")
-    poses = evaluate_poses(tree, frames, [tree.root] * len(frames), sample_times, reference,
+    poses = evaluate_poses(tree, frames, roots, offsets.astype("timedelta64[ns]"), reference,
                            extrapolation)
-    return poses, sample_times, reference
-
-
-def _with_sample_axis(poses: Any) -> Any:
-    """A static :class:`PoseStack` (``(F, 3, 3)``) as one sample (``(F, 1, 3, 3)``)."""
-    return type(poses)(poses.rotation[:, None], poses.translation[:, None])
+    return poses.rotation, poses.translation
 
 
 def _placed_shapes(rotation: FloatArray, translation: FloatArray, shapes: list[CollisionShape],

@@ -9,9 +9,8 @@ against, in this order,
 3. the URDF's own folder and its ancestors.
 
 A search folder may be a package itself (its name is ``PKG``) or hold packages as its
-sub-folders (``folder/PKG``), as ``ROS_PACKAGE_PATH`` entries do. The clearance query finds
-its meshes here, and so does the 3-D page (for which it also serves yourdfpy as its
-``filename_handler``: names that cannot be found map to ``""``, which yourdfpy skips).
+sub-folders (``folder/PKG``), as ``ROS_PACKAGE_PATH`` entries do. The clearance query and
+the 3-D page find their meshes here.
 
 :func:`mesh_file_problem` tells why a found mesh file must not be opened: mesh readers inflate
 compressed files and archives without bound (trimesh opens ``.zip``, ``.tar.gz``, ``.bz2`` by
@@ -83,7 +82,7 @@ def package_search_dirs(package_dirs: Iterable[str | os.PathLike[str]] = ()) -> 
 
 
 class MeshFiles:
-    """Resolves the mesh names of one URDF file; remembers what it could not find.
+    """Resolves the mesh names of one URDF file.
 
     Parameters
     ----------
@@ -97,18 +96,6 @@ class MeshFiles:
         ancestors = [] if urdf_path is None else list(urdf_path.resolve().parents)
         self._search_dirs = list(search_dirs)
         self._urdf_dirs = ancestors
-        self._skipped: set[str] = set()
-
-    def __call__(self, fname: str) -> str:
-        """yourdfpy's ``filename_handler``: the file for ``fname``, or ``""`` to skip it."""
-        if fname in self._skipped:
-            return ""
-        found = self.find(fname)
-        return "" if found is None else str(found)
-
-    def skip(self, fname: str) -> None:
-        """Treat ``fname`` as missing from now on (it could not be read)."""
-        self._skipped.add(fname)
 
     def find(self, fname: str) -> Path | None:
         """The existing file that ``fname`` names, or None."""

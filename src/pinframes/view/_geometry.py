@@ -1,17 +1,19 @@
-"""Visual and collision geometry of the URDF robots in a frame tree, loaded with yourdfpy.
+"""Visual and collision geometry of the URDF links in a frame tree, as triangles.
 
-:func:`load_geometry` finds the robots that :meth:`FrameTree.attach_urdf` (or ``read_urdf``, or
-a scene's ``robots``) put into a tree, reads each URDF with yourdfpy and returns every
-geometry (box, cylinder, sphere, STL/DAE/OBJ mesh) as triangles placed in the frame of its
-link. Nothing here is used by :meth:`FrameTree.pose`: geometry is loaded only when asked for.
+:func:`load_geometry` reads the shapes recorded when each robot was attached
+(:class:`~pinframes.FrameGeometry`, the same record the clearance query measures; the URDF is
+not parsed again) and makes their triangles with trimesh: boxes, cylinders and spheres as
+trimesh's primitives, meshes (STL, DAE, OBJ) read from the file
+:class:`~pinframes.kinematics.mesh_files.MeshFiles` finds, scaled, every node of a DAE scene
+in its place, a visual's URDF colour on meshes without colours of their own (as yourdfpy
+draws them). Nothing here is used by :meth:`FrameTree.pose`: geometry is loaded only when
+asked for.
 """
 
 from __future__ import annotations
 
-import logging
 import os
-from collections.abc import Iterable, Iterator
-from contextlib import contextmanager
+from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -20,7 +22,6 @@ import numpy as np
 
 from ..errors import GeometryWarning, UnsupportedFeatureError, warn_at_caller
 from ..formats.limits import Limits, current_limits, reader_with_limits
-from ..formats.urdf import URDF_METADATA_KEY
 from ..kinematics.mesh_files import (
     HOW_TO_SEARCH,
     MeshFiles,
@@ -28,6 +29,7 @@ from ..kinematics.mesh_files import (
     package_search_dirs,
 )
 from ..tree import FrameTree
+from ..values.geometry import GEOMETRY_METADATA_KEY, FrameGeometry, Shape
 
 __all__ = ["LinkGeometry", "load_geometry"]
 
@@ -75,151 +77,105 @@ def load_geometry(
 
     Mesh names (``package://``, ``file://``, absolute or relative to the URDF) are looked up
     in ``package_dirs``, then in the folders of ``ROS_PACKAGE_PATH``, then beside the URDF
-    and in its ancestors. A mesh that is missing, unreadable or empty is a
-    :class:`GeometryWarning` naming the link, the file and how to give a search folder; the
-    link keeps its other geometry. Mesh files are read uncompressed only, and up to
-    ``limits.max_decompressed_bytes`` each (None: the limits in effect, see
+    and in its ancestors (a robot attached from an XML string has no folder: only the first
+    two). A mesh that is missing, unreadable or empty, and a shape the URDF does not
+    describe well, is a :class:`GeometryWarning` naming the link, the file and how to give a
+    search folder; the link keeps its other geometry. Mesh files are read uncompressed only,
+    and up to ``limits.max_decompressed_bytes`` each (None: the limits in effect, see
     :class:`pinframes.Limits`); others are skipped with a :class:`GeometryWarning` too, and
-    so is a mesh of points without triangles. Needs yourdfpy (a pinframes dependency) and, for DAE
-    meshes, pycollada (``pip install "pinframes[view]"``).
+    so is a mesh of points without triangles. Needs trimesh and, for DAE meshes, pycollada
+    (``pip install "pinframes[view]"``).
     """
+    kind = "collision" if collision else "visual"
     search_dirs = package_search_dirs(package_dirs)
-    geometry: list[LinkGeometry] = []
-    frames_of_links: dict[str, dict[str, str]] = {}
+    scenes: dict[str, Any] = {}  # mesh file -> its trimesh scene, None when unreadable
+    pieces: list[LinkGeometry] = []
     for frame in tree.frames:
-        kept = tree.frame_metadata(frame).get(URDF_METADATA_KEY)
-        if kept and "link" in kept:
-            frames_of_links.setdefault(kept["robot"], {})[kept["link"]] = frame
-    robots = tree.metadata.get(URDF_METADATA_KEY, {})
-    for root_frame, links in frames_of_links.items():
-        source = robots.get(root_frame, {}).get("source")
-        if source is None or source == "<urdf string>":
-            warn_at_caller(f"robot at {root_frame!r} was attached from an XML string, not a "
-                           "file: its geometry is not loaded", GeometryWarning)
+        recorded = tree.frame_metadata(frame).get(GEOMETRY_METADATA_KEY)
+        if not isinstance(recorded, FrameGeometry):
             continue
-        with _without_yourdfpy_mesh_notes():
-            geometry += _robot_geometry(Path(source), links, collision,
-                                        MeshFiles(Path(source), search_dirs))
-    return geometry
+        for field, problem in recorded.unreadable_shapes(kind):
+            _warn(recorded, f"{field}: {problem}", "geometry")
+        mesh_files = MeshFiles(None if recorded.urdf is None else Path(recorded.urdf),
+                               search_dirs)
+        for shape in recorded.shapes(kind):
+            with np.errstate(over="ignore", invalid="ignore"):  # 1e308 m: left out on the page
+                parts = _triangles(shape, recorded, mesh_files, scenes)
+            for pose_in_shape, mesh in parts:
+                if len(mesh.faces) == 0:  # a primitive of a size that is zero or not finite
+                    _warn(recorded, f"{shape.describe()} has no triangles", "geometry")
+                    continue
+                pieces.append(LinkGeometry(
+                    frame, recorded.link, shape.origin.matrix @ pose_in_shape,
+                    np.asarray(mesh.vertices, dtype=float),
+                    np.asarray(mesh.faces, dtype=np.int64), _colours(mesh, shape),
+                    shape.kind if shape.mesh is None else shape.mesh))
+    return pieces
 
 
-class _MeshNotes(logging.Filter):
-    def filter(self, record: logging.LogRecord) -> bool:
-        return not record.getMessage().startswith("Can't find ")
-
-
-@contextmanager
-def _without_yourdfpy_mesh_notes() -> Iterator[None]:
-    """Drop yourdfpy's bare "Can't find FILE" log lines (on standard error, through logging's
-    last-resort handler) for meshes pinframes skips: a GeometryWarning already names them."""
-    logger, notes = logging.getLogger("yourdfpy.urdf"), _MeshNotes()
-    logger.addFilter(notes)
-    try:
-        yield
-    finally:
-        logger.removeFilter(notes)
-
-
-def _robot_geometry(urdf_path: Path, frames: dict[str, str], collision: bool,
-                    mesh_files: MeshFiles) -> list[LinkGeometry]:
-    """The geometry of one URDF file's links that are frames of the tree."""
-    yourdfpy = _yourdfpy()
-    parsed = yourdfpy.URDF.load(str(urdf_path), build_scene_graph=False, load_meshes=False,
-                                filename_handler=mesh_files)
-    meshes: dict[str, str] = {}  # file name as written -> link, for the messages
-    files_of_links: dict[str, set[str]] = {}
-    for link in parsed.robot.links:
-        for element in (link.collisions if collision else link.visuals):
-            mesh = element.geometry.mesh if element.geometry is not None else None
-            if mesh is not None:
-                files_of_links.setdefault(link.name, set()).add(mesh.filename)
-            if mesh is not None and mesh.filename not in meshes:
-                meshes[mesh.filename] = link.name
-                found = mesh_files.find(mesh.filename)
-                if found is None:
-                    mesh_files.skip(mesh.filename)
-                    _warn(urdf_path, link.name, mesh.filename, "not found (looked in "
-                          + ", ".join(map(str, mesh_files.candidates(mesh.filename)[:4]))
-                          + f"); {HOW_TO_SEARCH}")
-                elif (problem := mesh_file_problem(
-                        found, current_limits().max_decompressed_bytes)) is not None:
-                    mesh_files.skip(mesh.filename)
-                    _warn(urdf_path, link.name, mesh.filename, f"({found}) {problem}")
-    try:
-        scene = _scene(yourdfpy, parsed, collision, mesh_files)
-    except Exception:
-        for fname, link_name in meshes.items():
-            _check_readable(urdf_path, link_name, fname, mesh_files)
-        scene = _scene(yourdfpy, parsed, collision, mesh_files)
-    nodes_of_links: dict[str, int] = {}
-    for node in scene.graph.nodes_geometry:
-        link = scene.graph.transforms.parents[node]
-        nodes_of_links[link] = nodes_of_links.get(link, 0) + 1
-    for link in parsed.robot.links:  # an empty mesh file gives no node at all
-        elements = link.collisions if collision else link.visuals
-        loadable = [e for e in elements if e.geometry is not None and (
-            e.geometry.mesh is None or mesh_files(e.geometry.mesh.filename))]
-        if nodes_of_links.get(link.name, 0) < len(loadable):
-            for element in loadable:
-                if element.geometry.mesh is not None:
-                    _check_readable(urdf_path, link.name, element.geometry.mesh.filename,
-                                    mesh_files)
-    result = []
-    for node in scene.graph.nodes_geometry:
-        link = scene.graph.transforms.parents[node]
-        pose_in_link, geometry_name = scene.graph.get(frame_to=node, frame_from=link)
-        mesh = scene.geometry[geometry_name]
-        files = files_of_links.get(link, set())
-        source = (next(iter(files)) if len(files) == 1 and type(mesh).__name__ == "Trimesh"
-                  else mesh.metadata.get("file_name", type(mesh).__name__.lower()))
-        if link not in frames:
-            continue
-        if not hasattr(mesh, "faces"):  # a point cloud or a path: from a file, no faces
-            named = next(iter(files)) if len(files) == 1 else str(source)
-            _warn(urdf_path, link, named, f"has no triangles (a "
-                  f"{type(mesh).__name__}, points or lines only)")
-        elif len(mesh.faces) == 0:  # empty mesh files were skipped above: a primitive
-            _warn(urdf_path, link, str(source), "has no triangles (a size that is zero or "
-                  "not finite)", what="geometry")
+def _triangles(shape: Shape, recorded: FrameGeometry, mesh_files: MeshFiles,
+               scenes: dict[str, Any]) -> list[tuple[np.ndarray, Any]]:
+    """``(placement in the shape's coordinates, trimesh.Trimesh)`` of each part of ``shape``."""
+    trimesh = _trimesh()
+    if shape.kind == "box":
+        return [(np.eye(4), trimesh.primitives.Box(extents=shape.dimensions).to_mesh())]
+    if shape.kind == "cylinder":
+        radius, length = shape.dimensions
+        return [(np.eye(4), trimesh.primitives.Cylinder(radius=radius, height=length)
+                 .to_mesh())]
+    if shape.kind == "sphere":
+        return [(np.eye(4), trimesh.primitives.Sphere(radius=shape.dimensions[0]).to_mesh())]
+    assert shape.mesh is not None  # a mesh always names its file
+    path = mesh_files.find(shape.mesh)
+    if path is None:
+        looked = ", ".join(map(str, mesh_files.candidates(shape.mesh)[:4]))
+        _warn(recorded, f"mesh {shape.mesh!r} not found (looked in {looked}); {HOW_TO_SEARCH}")
+        return []
+    key = str(path)
+    if key not in scenes:
+        problem = mesh_file_problem(path, current_limits().max_decompressed_bytes)
+        if problem is not None:
+            _warn(recorded, f"mesh {shape.mesh!r} ({path}) {problem}")
+            scenes[key] = None
         else:
-            result.append(LinkGeometry(
-                frames[link], link, np.asarray(pose_in_link, dtype=float),
-                np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64),
-                _colours(mesh), str(source)))
-    return result
+            scenes[key] = _read_scene(trimesh, path, recorded, shape.mesh)
+    scene = scenes[key]
+    if scene is None:
+        return []
+    if shape.scale != (1.0, 1.0, 1.0):
+        scene = scene.scaled(np.array(shape.scale))
+    parts = []
+    for node in scene.graph.nodes_geometry:
+        placement, name = scene.graph.get(node)
+        if len(getattr(scene.geometry[name], "faces", ())) > 0:  # not points or lines
+            parts.append((np.asarray(placement, dtype=float), scene.geometry[name]))
+    return parts
 
 
-def _scene(yourdfpy: Any, parsed: Any, collision: bool, mesh_files: MeshFiles) -> Any:
-    """yourdfpy's scene graph of the links with their geometry loaded (meshes included)."""
-    with np.errstate(over="ignore", invalid="ignore"):  # sizes of 1e308 or NaN: left out
-        model = yourdfpy.URDF(robot=parsed.robot, build_scene_graph=not collision,
-                              build_collision_scene_graph=collision,
-                              load_meshes=not collision, load_collision_meshes=collision,
-                              filename_handler=mesh_files, force_collision_mesh=False)
-    return model.collision_scene if collision else model.scene
-
-
-def _check_readable(urdf_path: Path, link: str, fname: str, mesh_files: MeshFiles) -> None:
-    """Load one mesh alone; skip it with a warning when it cannot be read."""
-    import trimesh  # type: ignore[import-untyped]
-
-    path = mesh_files(fname)
-    if not path:
-        return
+def _read_scene(trimesh: Any, path: Path, recorded: FrameGeometry, name: str) -> Any:
+    """The mesh file as a trimesh scene of triangle meshes, or None (with a warning)."""
     try:
-        mesh = trimesh.load(path, force="mesh")
+        scene = trimesh.load(str(path), force="scene")
     except Exception as exc:
-        mesh_files.skip(fname)
-        _warn(urdf_path, link, fname, f"cannot be read ({type(exc).__name__}: {exc})")
-        return
-    if len(getattr(mesh, "faces", ())) == 0:
-        mesh_files.skip(fname)
-        _warn(urdf_path, link, fname, "has no triangles (unreadable or empty)")
+        _warn(recorded, f"mesh {name!r} cannot be read ({type(exc).__name__}: {exc})")
+        return None
+    kept = [geometry for geometry in scene.geometry.values()
+            if len(getattr(geometry, "faces", ())) > 0]
+    if not kept:
+        kinds = {type(geometry).__name__ for geometry in scene.geometry.values()}
+        what = f"a {', '.join(sorted(kinds))}, points or lines only" if kinds else "empty"
+        _warn(recorded, f"mesh {name!r} has no triangles ({what})")
+        return None
+    return scene
 
 
-def _colours(mesh: Any) -> np.ndarray:
-    """One RGBA colour for the mesh when it is uniform, else one per vertex (0..1)."""
+def _colours(mesh: Any, shape: Shape) -> np.ndarray:
+    """One RGBA colour for the mesh when it is uniform, else one per vertex (0..1): the
+    visual's URDF colour on a mesh coloured by face or vertex or not at all (as yourdfpy
+    paints it), else the mesh's own (a texture's, a material's), else grey."""
     visual = mesh.visual
+    if shape.rgba is not None and visual.kind in ("face", "vertex", None):
+        return np.array(shape.rgba)
     if visual.kind == "texture":
         visual = visual.to_color()
     if visual.kind not in ("face", "vertex"):
@@ -230,15 +186,15 @@ def _colours(mesh: Any) -> np.ndarray:
     return colours
 
 
-def _warn(urdf_path: Path, link: str, fname: str, problem: str, what: str = "mesh") -> None:
-    warn_at_caller(f"{urdf_path}: link {link!r}: {what} {fname!r} {problem}; the link is "
-                   "drawn without it", GeometryWarning)
+def _warn(recorded: FrameGeometry, problem: str, what: str = "mesh") -> None:
+    warn_at_caller(f"{recorded.urdf or '<urdf string>'}: link {recorded.link!r}: {problem}; "
+                   f"the link is drawn without that {what}", GeometryWarning)
 
 
-def _yourdfpy() -> Any:
+def _trimesh() -> Any:
     try:
-        import yourdfpy  # type: ignore[import-untyped]
+        import trimesh  # type: ignore[import-untyped]
     except ImportError:
-        raise UnsupportedFeatureError("loading robot geometry needs yourdfpy: pip install "
-                                      "yourdfpy") from None
-    return yourdfpy
+        raise UnsupportedFeatureError('drawing robot geometry needs trimesh: pip install '
+                                      '"pinframes[view]"') from None
+    return trimesh
