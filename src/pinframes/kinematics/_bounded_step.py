@@ -57,7 +57,8 @@ class JointLimits:
         self._lower, self._upper = lower.tolist(), upper.tolist()
         bounded = np.isfinite(lower) & np.isfinite(upper)
         self._drift_rate = DRIFT_RATE * bounded
-        self._drift_to = self._drift_rate * np.where(bounded, (lower + upper) / 2, 0.0)
+        middle = (np.where(bounded, lower, 0.0) + np.where(bounded, upper, 0.0)) / 2
+        self._drift_to = self._drift_rate * middle
 
     def contain(self, values: list[float]) -> bool:
         """Whether every value lies within its joint's limits (NaN does not); Python floats,
