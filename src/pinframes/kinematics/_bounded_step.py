@@ -87,37 +87,40 @@ class LeastSquares:
     """
 
     def __init__(self) -> None:
-        self._decompositions: dict[tuple[str, int], Any] = {}
+        self._lu: dict[int, Any] = {}  # Eigen's partial-pivoting LU, by size
+        self._llt: dict[int, Any] = {}  # Eigen's Cholesky, by size
 
     def correction(self, rows: FloatArray, error: FloatArray, damping: float) -> FloatArray:
         """``c`` (n,) for ``rows`` (m, n) and ``error`` (m,)."""
         count, joints = rows.shape
         if damping == 0.0 and count == joints:
-            correction = self._decomposition("lu", count).compute(rows).solve(error)
+            correction = _of_size(self._lu, eigenpy.PartialPivLU, count).compute(rows).solve(
+                error)
         elif joints > count:  # c = A^T (A A^T + damping I)^-1 e
             normal = rows.dot(rows.T)  # .dot: a third of matmul's cost on these sizes
             if damping:
                 normal.flat[::count + 1] += damping
-            correction = rows.T.dot(self._decomposition("llt", count).compute(normal).solve(
-                error))
+            # (y^T A)^T, not A^T y: the same numbers, a quarter less numpy overhead
+            correction = _of_size(self._llt, eigenpy.LLT, count).compute(normal).solve(
+                error).dot(rows)
         else:  # c = (A^T A + damping I)^-1 A^T e
-            normal = rows.T.dot(rows)
+            transposed = rows.T
+            normal = transposed.dot(rows)
             if damping:
                 normal.flat[::joints + 1] += damping
-            correction = self._decomposition("llt", joints).compute(normal).solve(
-                rows.T.dot(error))
+            correction = _of_size(self._llt, eigenpy.LLT, joints).compute(normal).solve(
+                transposed.dot(error))
         # eigenpy returns a one-element solution as a (1, 1) matrix
         return correction if joints > 1 else correction.reshape(1)
 
-    def _decomposition(self, kind: str, size: int) -> Any:
-        """Eigen's partial-pivoting LU or its Cholesky (LLT) of a ``size`` x ``size``
-        matrix."""
-        key = (kind, size)
-        decomposition = self._decompositions.get(key)
-        if decomposition is None:
-            decomposition = self._decompositions[key] = (
-                eigenpy.PartialPivLU(size) if kind == "lu" else eigenpy.LLT(size))
-        return decomposition
+
+def _of_size(decompositions: dict[int, Any], kind: Any, size: int) -> Any:
+    """The decomposition of ``kind`` (an eigenpy class) for ``size`` x ``size`` matrices in
+    ``decompositions``, made on first use."""
+    decomposition = decompositions.get(size)
+    if decomposition is None:
+        decomposition = decompositions[size] = kind(size)
+    return decomposition
 
 
 def bounded_step(solver: LeastSquares, rows: FloatArray, error: FloatArray, theta: FloatArray,
@@ -133,7 +136,8 @@ def bounded_step(solver: LeastSquares, rows: FloatArray, error: FloatArray, thet
     count, joints = rows.shape
     if joints > count:
         drift = limits.drift(theta)
-        correction = solver.correction(rows, error + rows.dot(drift), damping) - drift
+        correction = solver.correction(rows, error + rows.dot(drift), damping)
+        correction -= drift
     else:
         correction = solver.correction(rows, error, damping)
     values = correction.tolist()

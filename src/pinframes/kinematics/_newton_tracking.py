@@ -44,6 +44,10 @@ __all__ = ["LONGEST_STEP", "MAX_DAMPING", "MAX_ITERATIONS", "Tracked", "Tracking
 
 FloatArray = NDArray[np.float64]
 
+Solved = tuple[FloatArray, float, float, bool]
+"""A sample's solution (n,), its position and orientation errors (m, rad; NaN when not
+measured) and whether it reached its target."""
+
 MAX_ITERATIONS = 100
 """Newton iterations at most per sample (a tracked sample takes one or two)."""
 
@@ -61,6 +65,10 @@ MAX_DAMPING = 1e8
 CURVATURE = 100.0
 """Bound on how fast the tool's error departs from its linearisation, per metre or radian:
 a full Newton step from an error ``e`` leaves about ``CURVATURE * e**2``."""
+
+
+_LOCAL = pin.ReferenceFrame.LOCAL
+"""Pinocchio's frame of a Jacobian in the tool's own axes."""
 
 
 def quadratic_region(tolerance: float) -> float:
@@ -82,7 +90,8 @@ class TrackingProblem:
         Pinocchio frame id of the frame the target is given in; None when that is the
         model's root (its placements are already in it).
     configurations : ndarray, shape (N, nq)
-        Per sample, the model's configuration with everything that is not solved for.
+        Per sample, the model's configuration with everything that is not solved for; the
+        solver writes the solved joints into it (no copy per iteration).
     targets : ndarray, shape (N, 7), or None
         Per sample, the target in the reference frame as ``x y z qx qy qz qw`` (metres, unit
         quaternion); None: the reference frame itself.
@@ -136,47 +145,48 @@ class Tracked:
 
 
 class TrackingHistory:
-    """What the next sample starts from: the seed, the last two solutions and whether they
-    reached their targets, and the last one that did.
+    """What the next sample starts from: the seed, the last two solutions when both reached
+    their targets, and the last solution that did.
 
     Parameters
     ----------
     seed : ndarray, shape (n,)
         Where the first sample starts.
+
+    Attributes
+    ----------
+    last : ndarray, shape (n,)
+        The latest solution (the seed before the first).
+    last_on_target : ndarray, shape (n,)
+        The latest solution that reached its target (the seed before the first).
+    after_a_miss : bool
+        Whether the latest sample did not reach its target.
     """
 
     def __init__(self, seed: FloatArray) -> None:
         self.seed = seed
-        self.last_on_target = seed
-        self._recent: list[tuple[FloatArray, bool]] = []  # up to two, the latest last
-
-    @property
-    def last(self) -> FloatArray:
-        """The latest solution (the seed before the first)."""
-        return self._recent[-1][0] if self._recent else self.seed
-
-    @property
-    def after_a_miss(self) -> bool:
-        """Whether the latest sample did not reach its target."""
-        return bool(self._recent) and not self._recent[-1][1]
+        self.last = self.last_on_target = seed
+        self.after_a_miss = False
+        self._last_reached = False  # the seed is no solution
+        self._previous: FloatArray | None = None  # before ``last``, when both reached
 
     def start(self, ratio: float) -> FloatArray:
         """The last solution carried on by the last step times ``ratio`` (the ratio of the
         time steps), when both reached their targets; else the last solution (either may
         lie a little outside the limits: the solver starts from the nearest values
         within)."""
-        if len(self._recent) < 2 or not (self._recent[0][1] and self._recent[1][1]):
+        if self._previous is None:
             return self.last
-        last = self._recent[1][0]
-        step = last - self._recent[0][0]
+        step = self.last - self._previous
         if ratio != 1.0:
             step *= ratio
-        step += last
+        step += self.last
         return step
 
     def add(self, theta: FloatArray, reached: bool) -> None:
         """Record the solution of the sample just solved."""
-        self._recent = [*self._recent[-1:], (theta, reached)]
+        self._previous = self.last if reached and self._last_reached else None
+        self.last, self._last_reached, self.after_a_miss = theta, reached, not reached
         if reached:
             self.last_on_target = theta
 
@@ -190,15 +200,15 @@ def track_targets(problem: TrackingProblem, history: TrackingHistory,
     configuration before it; the better of the two counts. With ``stop_when_unreached`` the
     loop ends after the first sample that is not reached (the results stop there).
     """
-    ratios = problem.step_ratios.tolist()
-    solutions: list[tuple[FloatArray, float, float, bool]] = []
-    for index, ratio in enumerate(ratios):
+    solve = _SampleSolver(problem).solve
+    solutions: list[Solved] = []
+    for index, ratio in enumerate(problem.step_ratios.tolist()):
         if not history.after_a_miss:
-            solved = _solve_sample(problem, index, history.start(ratio), trust_newton=True)
+            solved = solve(index, history.start(ratio), True)
         else:
-            solved = _solve_sample(problem, index, history.last_on_target, trust_newton=True)
+            solved = solve(index, history.last_on_target, True)
             if not solved[3]:
-                closer = _solve_sample(problem, index, history.last, trust_newton=True)
+                closer = solve(index, history.last, True)
                 if closer[3] or _cost(problem, closer) < _cost(problem, solved):
                     solved = closer
         solutions.append(solved)
@@ -211,79 +221,95 @@ def track_targets(problem: TrackingProblem, history: TrackingHistory,
                    np.array(reached, dtype=bool), ~np.isnan(errors))
 
 
-def _cost(problem: TrackingProblem, solved: tuple[FloatArray, float, float, bool]) -> float:
+def _cost(problem: TrackingProblem, solved: Solved) -> float:
     """The errors of a measured solution, scaled by the tolerances, squared and summed."""
     return ((solved[1] / problem.position_tolerance) ** 2
             + (solved[2] / problem.orientation_tolerance) ** 2)
 
 
-def solve_again(problem: TrackingProblem, index: int, theta: FloatArray
-                ) -> tuple[FloatArray, float, float, bool]:
+def solve_again(problem: TrackingProblem, index: int, theta: FloatArray) -> Solved:
     """Sample ``index`` solved from ``theta`` and measured: the solution, its position and
     orientation errors (m, rad) and whether it is reached."""
-    return _solve_sample(problem, index, theta, trust_newton=False)
+    return _SampleSolver(problem).solve(index, theta, trust_newton=False)
 
 
-def _solve_sample(problem: TrackingProblem, index: int, theta: FloatArray, trust_newton: bool
-                  ) -> tuple[FloatArray, float, float, bool]:
-    """Damped Newton from ``theta`` for sample ``index``: the solution (the best
-    configuration when the target is not reached), its position and orientation errors, and
-    whether it is reached. With ``trust_newton``, a full step from within the quadratic
-    region ends the sample unmeasured: errors NaN, reached True."""
-    model, data, joints, error = problem.model, problem.data, problem.joints, problem.error
-    frame_id, reference_id = problem.frame_id, problem.reference_id
-    base = problem.configurations[index]
-    target = None if problem.targets is None else pin.XYZQUATToSE3(problem.targets[index])
-    position_tolerance = problem.position_tolerance
-    orientation_tolerance = problem.orientation_tolerance
-    position_region = problem.position_region if trust_newton else -1.0
-    orientation_region = problem.orientation_region
-    limits = joints.limits
-    if not limits.contain(theta.tolist()):  # a prediction past a limit
-        theta = limits.clipped(theta)
-    best = theta
-    best_cost = best_position = best_orientation = math.inf
-    rows = residual = theta  # set on the first iteration
-    damping = 0.0
-    for _ in range(MAX_ITERATIONS):
-        q = joints.configuration(base, theta)
-        pin.forwardKinematics(model, data, q)
-        tool_in_reference = pin.updateFramePlacement(model, data, frame_id)
-        if reference_id is not None:
-            tool_in_reference = pin.updateFramePlacement(model, data, reference_id).actInv(
-                tool_in_reference)
-        tool_in_target = (tool_in_reference if target is None
-                          else target.actInv(tool_in_reference))
-        position, orientation, vector = error.measure(tool_in_target)
-        if position <= position_tolerance and orientation <= orientation_tolerance:
-            return theta, position, orientation, True
-        cost = (position / position_tolerance) ** 2 + (orientation / orientation_tolerance) ** 2
-        if cost < best_cost:
-            best, best_cost, best_position, best_orientation = theta, cost, position, orientation
-            damping = 0.0 if damping <= FIRST_DAMPING else damping / 10.0
-            rows = error.rows(joints.jacobian(_tool_jacobian(problem, q, tool_in_reference)))
-            residual = vector
-        else:  # take the step back, and damp it more
-            damping = max(10.0 * damping, FIRST_DAMPING)
-            if damping > MAX_DAMPING:
-                break
-        theta, full = bounded_step(problem.solver, rows, residual, best, limits, damping,
-                                   LONGEST_STEP)
-        if (full and damping == 0.0 and best_position <= position_region
-                and best_orientation <= orientation_region):
-            return theta, math.nan, math.nan, True
-    return best, best_position, best_orientation, False
+class _SampleSolver:
+    """Damped Newton on the samples of one problem, one at a time.
 
+    What every sample reads from the problem is looked up once here: the loop runs once per
+    sample, and each attribute lookup in it costs per sample (benchmarks/README.md,
+    "bench_ik.py").
+    """
 
-def _tool_jacobian(problem: TrackingProblem, q: FloatArray, tool_in_reference: pin.SE3
-                   ) -> FloatArray:
-    """The tool's ``LOCAL`` Jacobian (6, nv) relative to the reference frame: when solved
-    joints move the reference too, its motion (seen in the tool's axes) counts against."""
-    model, data = problem.model, problem.data
-    local = pin.ReferenceFrame.LOCAL
-    if not problem.joints.moves_reference:
-        return pin.computeFrameJacobian(model, data, q, problem.frame_id, local)
-    pin.computeJointJacobians(model, data, q)
-    tool = pin.getFrameJacobian(model, data, problem.frame_id, local)
-    reference = pin.getFrameJacobian(model, data, problem.reference_id, local)
-    return tool - tool_in_reference.inverse().action.dot(reference)
+    def __init__(self, problem: TrackingProblem) -> None:
+        self.model, self.data = problem.model, problem.data
+        self.frame_id, self.reference_id = problem.frame_id, problem.reference_id
+        self.configurations, self.targets = problem.configurations, problem.targets
+        self.joints, self.limits, self.error = problem.joints, problem.joints.limits, problem.error
+        self.position_tolerance = problem.position_tolerance
+        self.orientation_tolerance = problem.orientation_tolerance
+        self.position_region = problem.position_region
+        self.orientation_region = problem.orientation_region
+        self.least_squares = problem.solver
+
+    def solve(self, index: int, theta: FloatArray, trust_newton: bool) -> Solved:
+        """Damped Newton from ``theta`` for sample ``index``: the solution (the best
+        configuration when the target is not reached), its position and orientation errors,
+        and whether it is reached. With ``trust_newton``, a full step from within the
+        quadratic region ends the sample unmeasured: errors NaN, reached True."""
+        model, data, frame_id, reference_id = (self.model, self.data, self.frame_id,
+                                               self.reference_id)
+        joints, limits, error = self.joints, self.limits, self.error
+        q = self.configurations[index]  # the solved joints are written into it
+        target = None if self.targets is None else pin.XYZQUATToSE3(self.targets[index])
+        position_tolerance = self.position_tolerance
+        orientation_tolerance = self.orientation_tolerance
+        position_region = self.position_region if trust_newton else -1.0
+        orientation_region = self.orientation_region
+        if not limits.contain(theta.tolist()):  # a prediction past a limit
+            theta = limits.clipped(theta)
+        best = theta
+        best_cost = best_position = best_orientation = math.inf
+        rows = residual = theta  # set on the first iteration
+        damping = 0.0
+        for _ in range(MAX_ITERATIONS):
+            joints.set_configuration(q, theta)
+            pin.forwardKinematics(model, data, q)
+            tool_in_reference = pin.updateFramePlacement(model, data, frame_id)
+            if reference_id is not None:
+                tool_in_reference = pin.updateFramePlacement(model, data, reference_id).actInv(
+                    tool_in_reference)
+            tool_in_target = (tool_in_reference if target is None
+                              else target.actInv(tool_in_reference))
+            position, orientation, vector = error.measure(tool_in_target)
+            if position <= position_tolerance and orientation <= orientation_tolerance:
+                return theta, position, orientation, True
+            cost = ((position / position_tolerance) ** 2
+                    + (orientation / orientation_tolerance) ** 2)
+            if cost < best_cost:
+                best, best_cost, best_position, best_orientation = (theta, cost, position,
+                                                                    orientation)
+                damping = 0.0 if damping <= FIRST_DAMPING else damping / 10.0
+                rows = error.rows(joints.jacobian(self._tool_jacobian(q, tool_in_reference)))
+                residual = vector
+            else:  # take the step back, and damp it more
+                damping = max(10.0 * damping, FIRST_DAMPING)
+                if damping > MAX_DAMPING:
+                    break
+            theta, full = bounded_step(self.least_squares, rows, residual, best, limits,
+                                       damping, LONGEST_STEP)
+            if (full and damping == 0.0 and best_position <= position_region
+                    and best_orientation <= orientation_region):
+                return theta, math.nan, math.nan, True
+        return best, best_position, best_orientation, False
+
+    def _tool_jacobian(self, q: FloatArray, tool_in_reference: pin.SE3) -> FloatArray:
+        """The tool's ``LOCAL`` Jacobian (6, nv) relative to the reference frame: when solved
+        joints move the reference too, its motion (seen in the tool's axes) counts against."""
+        model, data = self.model, self.data
+        if not self.joints.moves_reference:
+            return pin.computeFrameJacobian(model, data, q, self.frame_id, _LOCAL)
+        pin.computeJointJacobians(model, data, q)
+        tool = pin.getFrameJacobian(model, data, self.frame_id, _LOCAL)
+        reference = pin.getFrameJacobian(model, data, self.reference_id, _LOCAL)
+        return tool - tool_in_reference.inverse().action.dot(reference)

@@ -69,14 +69,14 @@ class SolvedJoints:
         self._turning = _columns(turning)
         self._slice = _plain_slice(linear, turning, len(self.names))
         self._velocity_slice = _selected_slice(self.tangent)
+        self._every_velocity = self._velocity_slice == slice(0, pinocchio_model.nv)
         self.limits = JointLimits(*_bounds(self.names, joints))
 
-    def configuration(self, base: FloatArray, theta: FloatArray) -> FloatArray:
-        """A copy of the configuration ``base`` (nq,) with the solved joints at ``theta``."""
-        q = base.copy()
+    def set_configuration(self, q: FloatArray, theta: FloatArray) -> None:
+        """Put the solved joints of the configuration ``q`` (nq,) at ``theta``, in place."""
         if self._slice is not None:
             q[self._slice] = theta
-            return q
+            return
         slots, columns, multipliers, offsets = self._linear
         q[slots] = multipliers * theta[columns] + offsets
         slots, columns, multipliers, offsets = self._turning
@@ -84,10 +84,11 @@ class SolvedJoints:
             angles = multipliers * theta[columns] + offsets
             q[slots] = np.cos(angles)
             q[slots + 1] = np.sin(angles)
-        return q
 
     def jacobian(self, model_jacobian: FloatArray) -> FloatArray:
         """The Jacobian (6, n) in ``theta`` from one in the model's velocity (6, nv)."""
+        if self._every_velocity:  # theta is the model's velocity as it is
+            return model_jacobian
         if self._velocity_slice is not None:
             return model_jacobian[:, self._velocity_slice]
         return model_jacobian.dot(self.tangent)

@@ -40,8 +40,9 @@ class PoseError:
     def measure(self, tool_in_target: pin.SE3) -> tuple[float, float, FloatArray]:
         """Position error (m), orientation error (rad) and the error vector (6,)."""
         error = pin.log6(tool_in_target).vector
-        _, _, _, *turn = error.tolist()
-        return math.hypot(*tool_in_target.translation.tolist()), math.hypot(*turn), error
+        _, _, _, turn_x, turn_y, turn_z = error.tolist()
+        return (math.hypot(*tool_in_target.translation.tolist()),
+                math.hypot(turn_x, turn_y, turn_z), error)
 
     def rows(self, jacobian: FloatArray) -> FloatArray:
         """The rows of the Newton system from the tool's ``LOCAL`` Jacobian (6, n)."""
