@@ -66,6 +66,13 @@ class JointLimits:
         return all(map(operator.le, self._lower, values)) and all(
             map(operator.le, values, self._upper))
 
+    def margin(self, values: list[float]) -> float:
+        """How far the values (finite) lie inside their joints' limits: the distance
+        (radians or metres) from the nearest value to its limit; below zero when one lies
+        outside, infinite when no joint is bounded."""
+        return min(min(map(operator.sub, values, self._lower)),
+                   min(map(operator.sub, self._upper, values)))
+
     def drift(self, theta: FloatArray) -> FloatArray:
         """A small move of ``theta`` towards the middle of each bounded joint's range:
         :data:`DRIFT_RATE` of the way (continuous joints keep still)."""
@@ -124,7 +131,7 @@ def _of_size(decompositions: dict[int, Any], kind: Any, size: int) -> Any:
 
 
 def bounded_step(solver: LeastSquares, rows: FloatArray, error: FloatArray, theta: FloatArray,
-                 limits: JointLimits, damping: float, longest_step: float
+                 limits: JointLimits, damping: float, longest_step: float, margin: float = 0.0
                  ) -> tuple[FloatArray, bool]:
     """The joint values after a least-squares Newton step from ``theta``: at most
     ``longest_step`` (radians or metres) per joint, within the ``limits`` (joints that would
@@ -132,7 +139,11 @@ def bounded_step(solver: LeastSquares, rows: FloatArray, error: FloatArray, thet
     limited, its system not singular).
 
     With more joints than rows, the step is the one closest to ``limits.drift(theta)``
-    (a small move towards the middle of the ranges) instead of the shortest."""
+    (a small move towards the middle of the ranges) instead of the shortest.
+
+    ``margin``: ``limits.margin`` of ``theta`` when the caller knows it (0: not known). A
+    step whose joint changes sum to less than half of it stays inside the limits, which
+    saves checking them joint by joint (the usual tracked sample)."""
     count, joints = rows.shape
     if joints > count:
         drift = limits.drift(theta)
@@ -141,8 +152,11 @@ def bounded_step(solver: LeastSquares, rows: FloatArray, error: FloatArray, thet
     else:
         correction = solver.correction(rows, error, damping)
     values = correction.tolist()
+    total = sum(map(abs, values))  # NaN when one is
+    if total <= longest_step and total < margin / 2:  # (half: a margin for rounding)
+        return theta - correction, True
     longest = max(max(values), -min(values)) if values else 0.0
-    if longest <= longest_step:  # False for NaN too
+    if longest <= longest_step:
         stepped = theta - correction
         if limits.contain(stepped.tolist()):
             return stepped, True

@@ -266,9 +266,10 @@ class _SampleSolver:
         orientation_tolerance = self.orientation_tolerance
         position_region = self.position_region if trust_newton else -1.0
         orientation_region = self.orientation_region
-        if not limits.contain(theta.tolist()):  # a prediction past a limit
-            theta = limits.clipped(theta)
-        best = theta
+        margin = limits.margin(theta.tolist())
+        if not margin >= 0.0:  # a prediction past a limit
+            theta, margin = limits.clipped(theta), 0.0
+        best, best_margin = theta, margin
         best_cost = best_position = best_orientation = math.inf
         rows = residual = theta  # set on the first iteration
         damping = 0.0
@@ -287,8 +288,8 @@ class _SampleSolver:
             cost = ((position / position_tolerance) ** 2
                     + (orientation / orientation_tolerance) ** 2)
             if cost < best_cost:
-                best, best_cost, best_position, best_orientation = (theta, cost, position,
-                                                                    orientation)
+                best, best_margin, best_cost, best_position, best_orientation = (
+                    theta, margin, cost, position, orientation)
                 damping = 0.0 if damping <= FIRST_DAMPING else damping / 10.0
                 rows = error.rows(joints.jacobian(self._tool_jacobian(q, tool_in_reference)))
                 residual = vector
@@ -297,7 +298,8 @@ class _SampleSolver:
                 if damping > MAX_DAMPING:
                     break
             theta, full = bounded_step(self.least_squares, rows, residual, best, limits,
-                                       damping, LONGEST_STEP)
+                                       damping, LONGEST_STEP, best_margin)
+            margin = 0.0  # not known for the new theta
             if (full and damping == 0.0 and best_position <= position_region
                     and best_orientation <= orientation_region):
                 return theta, math.nan, math.nan, True
