@@ -143,6 +143,27 @@ def test_a_seven_axis_arm_stays_within_its_limits_and_continuous():
     assert position.max() <= TOLERANCE and orientation.max() <= TOLERANCE
 
 
+def test_a_motion_tracked_into_a_limit_stops_on_it():
+    """Joint 3 ramps past its upper limit (1.1345 rad) while the others swing: the samples
+    before are tracked (the limits checked by the margin carried from sample to sample),
+    the joint then stays on its limit and those samples are not reached."""
+    model = welding_robot()
+    upper = model.upperPositionLimit[2]
+    trajectory = swinging(HOME, SWING * 0.3, 300)
+    trajectory[:, 2] = np.linspace(0.5, 1.5, 300)
+    targets = frame_poses(model, "flange", trajectory)
+    solution = robot_tree().solve_joints("robot/flange", as_pose(targets, np.arange(300) / RATE_HZ),
+                                         seed=trajectory[0])
+    assert np.all(solution.positions >= model.lowerPositionLimit)
+    assert np.all(solution.positions <= model.upperPositionLimit)
+    inside = trajectory[:, 2] <= upper - 0.05
+    assert solution.reached[inside].all()
+    np.testing.assert_allclose(solution.positions[inside], trajectory[inside], atol=1e-5)
+    beyond = trajectory[:, 2] >= upper + 0.05
+    assert not solution.reached[beyond].any()
+    np.testing.assert_allclose(solution.positions[beyond, 2], upper, atol=1e-9)
+
+
 def test_samples_taken_as_solved_unmeasured_are_measured_and_mended(monkeypatch):
     """With the curvature bound set far too low, the loop takes large full Newton steps as
     landing within the tolerances; the batched measurement finds those that did not, and

@@ -131,19 +131,19 @@ def _of_size(decompositions: dict[int, Any], kind: Any, size: int) -> Any:
 
 
 def bounded_step(solver: LeastSquares, rows: FloatArray, error: FloatArray, theta: FloatArray,
-                 limits: JointLimits, damping: float, longest_step: float, margin: float = 0.0
-                 ) -> tuple[FloatArray, bool]:
+                 limits: JointLimits, damping: float, longest_step: float, margin: float
+                 ) -> tuple[FloatArray, bool, float]:
     """The joint values after a least-squares Newton step from ``theta``: at most
     ``longest_step`` (radians or metres) per joint, within the ``limits`` (joints that would
-    cross one are fixed on it); and whether that was the full step (not shortened, not
-    limited, its system not singular).
+    cross one are fixed on it); whether that was the full step (not shortened, not limited,
+    its system not singular); and a lower bound of their ``limits.margin`` (0: not known).
 
     With more joints than rows, the step is the one closest to ``limits.drift(theta)``
     (a small move towards the middle of the ranges) instead of the shortest.
 
-    ``margin``: ``limits.margin`` of ``theta`` when the caller knows it (0: not known). A
-    step whose joint changes sum to less than half of it stays inside the limits, which
-    saves checking them joint by joint (the usual tracked sample)."""
+    ``margin``: a lower bound of ``limits.margin`` of ``theta`` (0: not known). A step whose
+    joint changes sum to less than half of it stays inside the limits, by at least the
+    margin less that sum: no need to check them joint by joint (the usual tracked sample)."""
     count, joints = rows.shape
     if joints > count:
         drift = limits.drift(theta)
@@ -154,12 +154,12 @@ def bounded_step(solver: LeastSquares, rows: FloatArray, error: FloatArray, thet
     values = correction.tolist()
     total = sum(map(abs, values))  # NaN when one is
     if total <= longest_step and total < margin / 2:  # (half: a margin for rounding)
-        return theta - correction, True
+        return theta - correction, True, margin - total
     longest = max(max(values), -min(values)) if values else 0.0
     if longest <= longest_step:
         stepped = theta - correction
         if limits.contain(stepped.tolist()):
-            return stepped, True
+            return stepped, True, 0.0
     if not longest < _LARGEST_STEP:  # a singular system
         correction = solver.correction(rows, error, max(damping, _SINGULAR_DAMPING))
     step = _within_limits(solver, rows, error, theta, -correction, limits, damping)
@@ -167,7 +167,7 @@ def bounded_step(solver: LeastSquares, rows: FloatArray, error: FloatArray, thet
     longest = max(max(values), -min(values)) if values else 0.0
     if longest > longest_step:
         step *= longest_step / longest
-    return theta + step, False
+    return theta + step, False, 0.0
 
 
 def _within_limits(solver: LeastSquares, rows: FloatArray, error: FloatArray,

@@ -44,9 +44,13 @@ __all__ = ["LONGEST_STEP", "MAX_DAMPING", "MAX_ITERATIONS", "Tracked", "Tracking
 
 FloatArray = NDArray[np.float64]
 
-Solved = tuple[FloatArray, float, float, bool]
+Solution = tuple[FloatArray, float, float, bool]
 """A sample's solution (n,), its position and orientation errors (m, rad; NaN when not
 measured) and whether it reached its target."""
+
+Solved = tuple[FloatArray, float, float, bool, float]
+"""A :data:`Solution` and a lower bound of how far it lies inside the limits
+(:meth:`JointLimits.margin`; 0: not known)."""
 
 MAX_ITERATIONS = 100
 """Newton iterations at most per sample (a tracked sample takes one or two)."""
@@ -168,25 +172,30 @@ class TrackingHistory:
         self.last = self.last_on_target = seed
         self.after_a_miss = False
         self._last_reached = False  # the seed is no solution
+        self._last_margin = 0.0  # a lower bound of how far ``last`` lies inside the limits
         self._previous: FloatArray | None = None  # before ``last``, when both reached
 
-    def start(self, ratio: float) -> FloatArray:
+    def start(self, ratio: float) -> tuple[FloatArray, float]:
         """The last solution carried on by the last step times ``ratio`` (the ratio of the
-        time steps), when both reached their targets; else the last solution (either may
-        lie a little outside the limits: the solver starts from the nearest values
-        within)."""
+        time steps), when both reached their targets, else the last solution (either may
+        lie a little outside the limits: the solver starts from the nearest values within);
+        and a lower bound of how far it lies inside the limits (0: not known): the last
+        solution's less the sum of the changes of the joints, each at least its own."""
         if self._previous is None:
-            return self.last
+            return self.last, self._last_margin
         step = self.last - self._previous
+        changes = sum(map(abs, step.tolist()))  # NaN when one is
         if ratio != 1.0:
             step *= ratio
         step += self.last
-        return step
+        return step, self._last_margin - ratio * changes
 
-    def add(self, theta: FloatArray, reached: bool) -> None:
-        """Record the solution of the sample just solved."""
+    def add(self, theta: FloatArray, reached: bool, margin: float) -> None:
+        """Record the solution of the sample just solved, with a lower bound of how far it
+        lies inside the limits (0: not known)."""
         self._previous = self.last if reached and self._last_reached else None
         self.last, self._last_reached, self.after_a_miss = theta, reached, not reached
+        self._last_margin = margin
         if reached:
             self.last_on_target = theta
 
@@ -204,18 +213,18 @@ def track_targets(problem: TrackingProblem, history: TrackingHistory,
     solutions: list[Solved] = []
     for index, ratio in enumerate(problem.step_ratios.tolist()):
         if not history.after_a_miss:
-            solved = solve(index, history.start(ratio), True)
+            solved = solve(index, *history.start(ratio), True)
         else:
-            solved = solve(index, history.last_on_target, True)
+            solved = solve(index, history.last_on_target, 0.0, True)
             if not solved[3]:
-                closer = solve(index, history.last, True)
+                closer = solve(index, history.last, 0.0, True)
                 if closer[3] or _cost(problem, closer) < _cost(problem, solved):
                     solved = closer
         solutions.append(solved)
-        history.add(solved[0], solved[3])
+        history.add(solved[0], solved[3], solved[4])
         if stop_when_unreached and not solved[3]:
             break
-    thetas, position_error, orientation_error, reached = zip(*solutions, strict=True)
+    thetas, position_error, orientation_error, reached, _ = zip(*solutions, strict=True)
     errors = np.array(position_error)
     return Tracked(np.array(thetas), errors, np.array(orientation_error),
                    np.array(reached, dtype=bool), ~np.isnan(errors))
@@ -227,10 +236,12 @@ def _cost(problem: TrackingProblem, solved: Solved) -> float:
             + (solved[2] / problem.orientation_tolerance) ** 2)
 
 
-def solve_again(problem: TrackingProblem, index: int, theta: FloatArray) -> Solved:
+def solve_again(problem: TrackingProblem, index: int, theta: FloatArray) -> Solution:
     """Sample ``index`` solved from ``theta`` and measured: the solution, its position and
     orientation errors (m, rad) and whether it is reached."""
-    return _SampleSolver(problem).solve(index, theta, trust_newton=False)
+    solution, position, orientation, reached, _ = _SampleSolver(problem).solve(
+        index, theta, 0.0, trust_newton=False)
+    return solution, position, orientation, reached
 
 
 class _SampleSolver:
@@ -252,11 +263,14 @@ class _SampleSolver:
         self.orientation_region = problem.orientation_region
         self.least_squares = problem.solver
 
-    def solve(self, index: int, theta: FloatArray, trust_newton: bool) -> Solved:
+    def solve(self, index: int, theta: FloatArray, margin: float, trust_newton: bool
+              ) -> Solved:
         """Damped Newton from ``theta`` for sample ``index``: the solution (the best
         configuration when the target is not reached), its position and orientation errors,
-        and whether it is reached. With ``trust_newton``, a full step from within the
-        quadratic region ends the sample unmeasured: errors NaN, reached True."""
+        whether it is reached and a lower bound of its margin inside the limits. ``margin``
+        is one of ``theta`` (0: not known, then ``theta`` is checked joint by joint). With
+        ``trust_newton``, a full step from within the quadratic region ends the sample
+        unmeasured: errors NaN, reached True."""
         model, data, frame_id, reference_id = (self.model, self.data, self.frame_id,
                                                self.reference_id)
         joints, limits, error = self.joints, self.limits, self.error
@@ -266,9 +280,10 @@ class _SampleSolver:
         orientation_tolerance = self.orientation_tolerance
         position_region = self.position_region if trust_newton else -1.0
         orientation_region = self.orientation_region
-        margin = limits.margin(theta.tolist())
-        if not margin >= 0.0:  # a prediction past a limit
-            theta, margin = limits.clipped(theta), 0.0
+        if not margin > 0.0:
+            margin = limits.margin(theta.tolist())
+            if not margin >= 0.0:  # a prediction past a limit
+                theta, margin = limits.clipped(theta), 0.0
         best, best_margin = theta, margin
         best_cost = best_position = best_orientation = math.inf
         rows = residual = theta  # set on the first iteration
@@ -284,7 +299,7 @@ class _SampleSolver:
                               else target.actInv(tool_in_reference))
             position, orientation, vector = error.measure(tool_in_target)
             if position <= position_tolerance and orientation <= orientation_tolerance:
-                return theta, position, orientation, True
+                return theta, position, orientation, True, margin
             cost = ((position / position_tolerance) ** 2
                     + (orientation / orientation_tolerance) ** 2)
             if cost < best_cost:
@@ -297,13 +312,12 @@ class _SampleSolver:
                 damping = max(10.0 * damping, FIRST_DAMPING)
                 if damping > MAX_DAMPING:
                     break
-            theta, full = bounded_step(self.least_squares, rows, residual, best, limits,
-                                       damping, LONGEST_STEP, best_margin)
-            margin = 0.0  # not known for the new theta
+            theta, full, margin = bounded_step(self.least_squares, rows, residual, best,
+                                               limits, damping, LONGEST_STEP, best_margin)
             if (full and damping == 0.0 and best_position <= position_region
                     and best_orientation <= orientation_region):
-                return theta, math.nan, math.nan, True
-        return best, best_position, best_orientation, False
+                return theta, math.nan, math.nan, True, margin
+        return best, best_position, best_orientation, False, best_margin
 
     def _tool_jacobian(self, q: FloatArray, tool_in_reference: pin.SE3) -> FloatArray:
         """The tool's ``LOCAL`` Jacobian (6, nv) relative to the reference frame: when solved
