@@ -213,7 +213,8 @@ def track_targets(problem: TrackingProblem, history: TrackingHistory,
     solutions: list[Solved] = []
     for index, ratio in enumerate(problem.step_ratios.tolist()):
         if not history.after_a_miss:
-            solved = solve(index, *history.start(ratio), True)
+            theta, margin = history.start(ratio)
+            solved = solve(index, theta, margin, True)
         else:
             solved = solve(index, history.last_on_target, 0.0, True)
             if not solved[3]:
