@@ -3,7 +3,9 @@
 Each sample starts from a prediction: the previous solution carried on by the step between
 the last two (scaled by the ratio of the time steps), when both reached their targets; the
 first sample starts from the seed (:class:`TrackingHistory`). So the solution follows one
-branch (no elbow or wrist flips) and usually takes one Newton step per sample.
+branch (no elbow or wrist flips) and usually takes one Newton step per sample. The
+prediction comes with a lower bound of how far it lies inside the joint limits, carried from
+sample to sample: the limits are checked joint by joint only when that bound runs out.
 
 An iteration sets the configuration, runs Pinocchio's ``forwardKinematics``, and measures the
 tool in the target (:mod:`._tool_error`); when both errors are within their tolerances the
