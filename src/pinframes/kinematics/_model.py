@@ -142,27 +142,31 @@ class CompiledModel:
         return self.frame_placements_in_root(kept, frames)
 
     def configuration(
-        self, motions: Sequence[Transform | None], values: Sequence[NDArray[np.float64] | None]
+        self, motions: Sequence[Transform | None],
+        values: Sequence[NDArray[np.float64] | float | None], count: int,
     ) -> NDArray[np.float64]:
-        """Pinocchio configurations ``(N, nq)`` for batched motions and joint values.
+        """Pinocchio configurations ``(count, nq)`` for motions and joint values, each static
+        or one per sample.
 
-        ``motions[i]`` is used for free-flyers (the moving frame's pose), ``values[i]``
-        (shape (N,)) for robot joints.
+        ``motions[i]`` is used for free-flyers (the moving frame's pose, samples first),
+        ``values[i]`` (one value or shape (N,)) for robot joints.
         """
-        columns = []
+        columns = []  # (N, k) entries, or (1, k) and (k,) for static ones
         for joint, motion, value in zip(self.joints, motions, values, strict=True):
             if joint.joint is None:
                 assert motion is not None
                 rotation, translation = motion
-                count = max(rotation.shape[0] if rotation.ndim == 3 else 1,
-                            translation.shape[0] if translation.ndim == 2 else 1)
-                columns.append(np.broadcast_to(translation, (count, 3)))
-                columns.append(np.broadcast_to(quaternion_from_matrix(rotation), (count, 4)))
+                columns.append(translation)
+                columns.append(quaternion_from_matrix(rotation))
             else:
                 assert value is not None
                 columns.append(joint.joint.configuration(np.atleast_1d(value)))
-        count = max(column.shape[0] for column in columns)
-        return np.concatenate([np.broadcast_to(c, (count, c.shape[1])) for c in columns], axis=1)
+        configurations = np.empty((count, sum(column.shape[-1] for column in columns)))
+        start = 0
+        for column in columns:  # a static entry broadcasts down its slots
+            configurations[:, start:start + column.shape[-1]] = column
+            start += column.shape[-1]
+        return configurations
 
 
 def compile_model(tree: TreeDescription, root: str, frames: list[str]) -> CompiledModel:

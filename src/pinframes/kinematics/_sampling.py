@@ -112,9 +112,9 @@ def sample_configurations(
     samples = sample_joints(tree, model, keyframes, times, shifts, held=held)
     motions = [samples_first(sample) if joint.joint is None else None
                for joint, sample in zip(model.joints, samples, strict=True)]
-    values = [None if joint.joint is None else np.broadcast_to(sample, times.shape)
+    values = [None if joint.joint is None else sample
               for joint, sample in zip(model.joints, samples, strict=True)]
-    return model.configuration(motions, values)
+    return model.configuration(motions, values, times.shape[0])
 
 
 def sample_joint_values(

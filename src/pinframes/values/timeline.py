@@ -107,7 +107,7 @@ def plan_query_timeline(
         if not sources:
             return QueryTimeline(None, False, None)
         absolute = lowest_source_reference is not None
-        union = np.unique(np.concatenate([s.on_basis(absolute) for s in sources]))
+        union = _union([s.on_basis(absolute) for s in sources])
         reference = tree_reference if tree_reference is not None else lowest_source_reference
         return _within_reach_of_sources(QueryTimeline(union, absolute, reference), sources)
 
@@ -137,6 +137,15 @@ def plan_query_timeline(
             + ", ".join(s.name for s in sources) + ") have no reference time",
             field="times")
     return _within_reach_of_sources(QueryTimeline(requested, True, reference), sources)
+
+
+def _union(times: list[NDArray[np.int64]]) -> NDArray[np.int64]:
+    """The distinct times of all ``times`` in increasing order (a new array). One strictly
+    increasing array is copied as it is: sorting it again took ``np.unique`` 1 ms per 10^4
+    times, a target pose's own times in ``FrameTree.solve_joints``."""
+    if len(times) == 1 and bool(np.all(times[0][1:] > times[0][:-1])):
+        return times[0].copy()
+    return np.unique(np.concatenate(times))
 
 
 def _within_reach_of_sources(timeline: QueryTimeline, sources: list[TimedSource]
