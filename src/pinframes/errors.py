@@ -47,6 +47,7 @@ __all__ = [
     "TreeStructureError",
     "UnsupportedFeatureError",
     "WriteError",
+    "joint_not_found",
     "near_misses",
     "warn_at_caller",
 ]
@@ -214,6 +215,14 @@ def near_misses(name: object, known: Iterable[str], kind: str = "frame") -> str:
     if not matches:
         return ""
     return f"; did you mean {kind} " + " or ".join(repr(match) for match in matches) + "?"
+
+
+def joint_not_found(name: object, known: Iterable[str], *, frame: str | None = None,
+                    field: str | None = None) -> JointNotFoundError:
+    """The :class:`JointNotFoundError` for ``name``, which is not among the ``known`` joint
+    names, with the close ones suggested (:func:`near_misses`)."""
+    return JointNotFoundError(f"no joint named {name!r} in the tree"
+                              + near_misses(name, known, "joint"), frame=frame, field=field)
 
 
 def warn_at_caller(message: str, category: type[Warning] = UserWarning) -> None:

@@ -15,7 +15,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ArgumentTypeError, JointError, JointNotFoundError, near_misses
+from ..errors import ArgumentTypeError, JointError, joint_not_found
 from ..values.joint import Joint, mimic_chain
 from ._bounded_step import JointLimits
 from ._model import CompiledModel
@@ -207,9 +207,7 @@ def solved_joints(model: CompiledModel, joints: Mapping[str, Joint], requested: 
         raise JointError("no joints to solve for", frame=frame, field="joints")
     for name in names:
         if not isinstance(name, str) or name not in joints:
-            raise JointNotFoundError(f"no joint named {name!r} in the tree"
-                                     + near_misses(name, joints, "joint"), frame=frame,
-                                     field="joints")
+            raise joint_not_found(name, joints, frame=frame, field="joints")
         mimic = joints[name].mimic
         if mimic is not None:
             raise JointError(f"joint {name!r} mimics {mimic.joint!r} and follows it; solve "

@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ArgumentTypeError, JointError, JointNotFoundError, near_misses
+from ..errors import ArgumentTypeError, JointError, joint_not_found
 from ..values.joint import mimic_primary
 from ..values.se3 import IDENTITY
 from ._description import TreeDescription
@@ -117,9 +117,7 @@ def _joint_names(tree: TreeDescription, joints: Sequence[str] | None, frame: str
     known = tree.joints_by_name
     for name in names:
         if name not in known:
-            raise JointNotFoundError(f"no joint named {name!r} in the tree"
-                                     + near_misses(name, known, "joint"), frame=frame,
-                                     field="joints")
+            raise joint_not_found(name, known, frame=frame, field="joints")
         mimic = known[name].mimic
         if mimic is not None:
             raise JointError(f"joint {name!r} mimics {mimic.joint!r}; its motion is in that "

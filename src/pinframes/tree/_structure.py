@@ -24,9 +24,9 @@ from ..errors import (
     FrameNotFoundError,
     InvalidPoseError,
     JointError,
-    JointNotFoundError,
     ReferenceTimeError,
     TreeStructureError,
+    joint_not_found,
     near_misses,
 )
 from ..kinematics import TreeDescription
@@ -148,7 +148,7 @@ class TreeStructure:
         """The trajectory of a robot joint, or None when it was never set (a
         :class:`~pinframes.errors.JointNotFoundError` for a joint the tree lacks)."""
         if not isinstance(joint_name, str) or joint_name not in self._joint_frames:
-            raise self._missing_joint(joint_name, "joint_name")
+            raise joint_not_found(joint_name, self._joint_frames, field="joint_name")
         return self._joint_trajectories.get(joint_name)
 
     def frame_metadata(self, name: str) -> dict[str, Any]:
@@ -209,7 +209,7 @@ class TreeStructure:
                                  ) -> None:
         """Set (or with None, clear) the trajectory of a robot joint."""
         if not isinstance(joint_name, str) or joint_name not in self._joint_frames:
-            raise self._missing_joint(joint_name, "joint_names")
+            raise joint_not_found(joint_name, self._joint_frames, field="joint_names")
         previous = self._joint_trajectories.pop(joint_name, None)
         if previous is not None:
             self._uncount_reference(previous.reference)
@@ -384,10 +384,6 @@ class TreeStructure:
         if name not in self._children:
             raise FrameNotFoundError("no frame of this name in the tree"
                                      + near_misses(name, self._children), frame=str(name))
-
-    def _missing_joint(self, name: object, field: str) -> JointNotFoundError:
-        return JointNotFoundError(f"no joint named {name!r} in the tree"
-                                  + near_misses(name, self._joint_frames, "joint"), field=field)
 
     def _check_new(self, name: str, parent: str) -> None:
         _check_name(name)

@@ -14,8 +14,7 @@ from ..errors import (
     InvalidTimeError,
     JointError,
     JointLimitWarning,
-    JointNotFoundError,
-    near_misses,
+    joint_not_found,
     warn_at_caller,
 )
 from ._readonly import readonly_copy
@@ -125,8 +124,7 @@ def joint_trajectories_from_samples(
     joint_names = list(joint_names)
     for name in joint_names:
         if name not in joints:
-            raise JointNotFoundError(f"no joint named {name!r} in the tree"
-                             + near_misses(name, joints, "joint"), field="joint_names")
+            raise joint_not_found(name, joints, field="joint_names")
         mimic = joints[name].mimic
         if mimic is not None:
             raise JointError(f"joint {name!r} is a mimic joint of {mimic.joint!r}; drive that "
