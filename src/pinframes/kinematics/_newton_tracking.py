@@ -170,7 +170,6 @@ class TrackingHistory:
     """
 
     def __init__(self, seed: FloatArray) -> None:
-        self.seed = seed
         self.last = self.last_on_target = seed
         self.after_a_miss = False
         self._last_reached = False  # the seed is no solution
