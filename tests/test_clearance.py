@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from pinframes import FrameNotFoundError, FrameTree, GeometryError, Pose
-from pinframes.kinematics import clearance as clearance_module
+from pinframes.kinematics.collision import clearance as clearance_module
 
 
 def link(name: str, *shapes: str) -> str:

@@ -168,7 +168,7 @@ def test_samples_taken_as_solved_unmeasured_are_measured_and_mended(monkeypatch)
     """With the curvature bound set far too low, the loop takes large full Newton steps as
     landing within the tolerances; the batched measurement finds those that did not, and
     they are solved again: every sample still ends within the tolerances."""
-    from pinframes.kinematics import _newton_tracking
+    from pinframes.kinematics.ik import _newton_tracking
 
     monkeypatch.setattr(_newton_tracking, "CURVATURE", 1e-9)
     model = welding_robot()

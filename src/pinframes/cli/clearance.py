@@ -12,7 +12,7 @@ import numpy as np
 
 from ..formats.clearance_files import CLEARANCE_FILE_FORMATS, clearance_text
 from ..kinematics import Clearance
-from ..kinematics.mesh_files import PACKAGE_PATH_VARIABLE
+from ..kinematics.collision.mesh_files import PACKAGE_PATH_VARIABLE
 from ..tree import FrameTree
 from ..values.geometry import GEOMETRY_KINDS
 from ..values.timeconv import TimeAxis

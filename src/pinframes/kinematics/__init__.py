@@ -2,28 +2,25 @@
 
 The queries, one public module each: :mod:`.pose` (``FrameTree.pose``, ``sample_times``),
 :mod:`.poses` (many pairs in one call), :mod:`.snapshot` (the whole tree at one instant),
-:mod:`.velocity`, :mod:`.jacobian`, :mod:`.weld_process` (the welding process along a seam),
-:mod:`.pinocchio_tree` (``to_pinocchio``) and :mod:`.solve_joints` (inverse kinematics along
-a path, returning :mod:`.joint_solution`). Their
-steps are the ``_`` modules: the frozen tree (``_description``), its compiled path
-(``_model``), path preparation (``_path``), the query's times (``_times``), joint sampling
-(``_sampling``), the one-time path (``_one_time``), for velocities and Jacobians the
-sampled path (``_sampled_path``) and joint twists (``_twists``) (the exact rates of what
-moves are its interpolation scheme's, :mod:`pinframes.values.interpolation`), and for
-``solve_joints`` the solved joints (``_solved_joints``), the tool's error (``_tool_error``),
-the step within limits (``_bounded_step``), the solver loop (``_newton_tracking``) and the
-batched check of its samples (``_batch_check``).
+:mod:`.velocity`, :mod:`.jacobian`, :mod:`.weld_process` (the welding process along a seam)
+and :mod:`.pinocchio_tree` (``to_pinocchio``). Two rooms of their own: :mod:`.ik` (inverse
+kinematics along a path: ``solve_joints`` and its solution) and :mod:`.collision` (the
+clearance between frames' shapes, with coal). The steps they all share are the ``_``
+modules here: the frozen tree (``_description``), its compiled path (``_model``), path
+preparation (``_path``), the query's times (``_times``), joint sampling (``_sampling``), the
+one-time path (``_one_time``), for velocities and Jacobians the sampled path
+(``_sampled_path``) and joint twists (``_twists``) (the exact rates of what moves are its
+interpolation scheme's, :mod:`pinframes.values.interpolation`).
 """
 
 from ._description import TreeDescription, paths_to_common_ancestor
-from .clearance import Clearance, clearance_times, evaluate_clearance
+from .collision import Clearance, clearance_times, evaluate_clearance
+from .ik import JointSolution, evaluate_solve_joints
 from .jacobian import FrameJacobian, evaluate_jacobian
-from .joint_solution import JointSolution
 from .pinocchio_tree import PinocchioTree
 from .pose import default_times, evaluate_pose
 from .poses import evaluate_poses
 from .snapshot import Snapshot, snapshot
-from .solve_joints import evaluate_solve_joints
 from .velocity import Velocity, evaluate_velocity
 from .weld_process import WeldProcess, evaluate_weld_process
 

@@ -11,12 +11,12 @@ import pinocchio as pin
 from numpy.typing import NDArray
 
 from ..values.geometry import FrameGeometry
-from ._collision_objects import ShapeLoader
 from ._description import TreeDescription
 from ._model import compile_model
 from ._path import model_sources
 from ._sampling import sample_configurations
 from ._times import basis_shifts, plan_timeline
+from .collision.coal_objects import ShapeLoader
 
 __all__ = ["PinocchioTree"]
 

@@ -1,7 +1,7 @@
 """Seeing a frame tree: robot geometry from URDFs and an animated 3-D page of a whole run."""
 
 from ..errors import GeometryWarning
-from ..kinematics.mesh_files import PACKAGE_PATH_VARIABLE
+from ..kinematics.collision.mesh_files import PACKAGE_PATH_VARIABLE
 from ._geometry import LinkGeometry, load_geometry
 from ._page import MAX_PAGE_POSES, MAX_PAGE_SAMPLES, view_html, write_view
 

@@ -4,8 +4,8 @@
 (:class:`~pinframes.FrameGeometry`, the same record the clearance query measures; the URDF is
 not parsed again) and makes their triangles with trimesh: boxes, cylinders and spheres as
 trimesh's primitives, meshes (STL, DAE, OBJ) read from the file
-:class:`~pinframes.kinematics.mesh_files.MeshFiles` finds, scaled, every node of a DAE scene
-in its place, a visual's URDF colour on meshes without colours of their own (as yourdfpy
+:class:`~pinframes.kinematics.collision.mesh_files.MeshFiles` finds, scaled, every node of a
+DAE scene in its place, a visual's URDF colour on meshes without colours of their own (as yourdfpy
 draws them). Nothing here is used by :meth:`FrameTree.pose`: geometry is loaded only when
 asked for.
 """
@@ -22,7 +22,7 @@ import numpy as np
 
 from ..errors import GeometryWarning, UnsupportedFeatureError, warn_at_caller
 from ..formats.limits import Limits, current_limits, reader_with_limits
-from ..kinematics.mesh_files import (
+from ..kinematics.collision.mesh_files import (
     HOW_TO_SEARCH,
     MeshFiles,
     mesh_file_problem,

@@ -3,7 +3,7 @@
 Every frame's pose in the root comes from the pose queries (:mod:`.poses`), on one timeline
 that follows the rules of ``pose()`` for all the moving things on the frames' paths. The
 distance of a pair of shapes is coal's ``distance`` on the objects of
-:mod:`._collision_objects` (what ``pinocchio.computeDistances`` computes on the same URDF).
+:mod:`.coal_objects` (what ``pinocchio.computeDistances`` computes on the same URDF).
 
 Most pairs are far apart most of the time, so each shape carries a sphere that holds it: at
 every sample the pairs are visited in the order of the distance between their spheres (a
@@ -23,14 +23,14 @@ import coal
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import GeometryError
-from ..values.geometry import FrameGeometry
-from ..values.timeconv import TimeAxis
-from ._collision_objects import CollisionShape, ShapeLoader
-from ._description import TreeDescription
-from ._path import prepare_path
-from ._times import plan_timeline
-from .poses import evaluate_poses
+from ...errors import GeometryError
+from ...values.geometry import FrameGeometry
+from ...values.timeconv import TimeAxis
+from .._description import TreeDescription
+from .._path import prepare_path
+from .._times import plan_timeline
+from ..poses import evaluate_poses
+from .coal_objects import CollisionShape, ShapeLoader
 
 __all__ = ["Clearance", "clearance_times", "evaluate_clearance"]
 

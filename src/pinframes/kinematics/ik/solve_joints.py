@@ -18,15 +18,18 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ArgumentTypeError, InvalidDataError, JointError, TargetNotReachedError
-from ..values.pose import Pose
-from ..values.rotations import quaternion_from_matrix
-from ..values.se3 import Transform
-from ..values.timeline import TimedSource
+from ...errors import ArgumentTypeError, InvalidDataError, JointError, TargetNotReachedError
+from ...values.pose import Pose
+from ...values.rotations import quaternion_from_matrix
+from ...values.se3 import Transform
+from ...values.timeline import TimedSource
+from .._description import TreeDescription
+from .._model import CompiledModel
+from .._path import PreparedPath, prepare_path
+from .._sampling import CHUNK, sample_configurations
+from .._times import basis_shifts, plan_timeline
 from ._batch_check import measure_solutions
 from ._bounded_step import LeastSquares
-from ._description import TreeDescription
-from ._model import CompiledModel
 from ._newton_tracking import (
     Tracked,
     TrackingHistory,
@@ -34,10 +37,7 @@ from ._newton_tracking import (
     solve_again,
     track_targets,
 )
-from ._path import PreparedPath, prepare_path
-from ._sampling import CHUNK, sample_configurations
 from ._solved_joints import SolvedJoints, solved_joints
-from ._times import basis_shifts, plan_timeline
 from ._tool_error import AXES, AxisError, PoseError
 from .joint_solution import JointSolution
 

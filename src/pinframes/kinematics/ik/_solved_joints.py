@@ -15,10 +15,10 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ArgumentTypeError, JointError, joint_not_found
-from ..values.joint import Joint, mimic_chain
+from ...errors import ArgumentTypeError, JointError, joint_not_found
+from ...values.joint import Joint, mimic_chain
+from .._model import CompiledModel
 from ._bounded_step import JointLimits
-from ._model import CompiledModel
 
 __all__ = ["SolvedJoints", "joints_moving_frame", "solved_joints"]
 

@@ -8,10 +8,10 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ..values.se3 import Transform, compose, inverse, samples_last, to_stacks
-from ._description import TreeDescription
-from ._path import PreparedPath
-from ._sampling import sample_joints
+from ...values.se3 import Transform, compose, inverse, samples_last, to_stacks
+from .._description import TreeDescription
+from .._path import PreparedPath
+from .._sampling import sample_joints
 from ._tool_error import AxisError, PoseError
 
 __all__ = ["measure_solutions"]

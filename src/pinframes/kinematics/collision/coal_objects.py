@@ -4,8 +4,8 @@ Boxes, cylinders and spheres become coal's primitives, as Pinocchio's URDF reade
 (``coal.Box`` of the full edge lengths, ``coal.Cylinder(radius, length)`` along z,
 ``coal.Sphere``); meshes are read by coal's own mesh loader (assimp) into the same BVH models
 (``BVHModelOBBRSS``, the scale applied) that ``pinocchio.buildGeomFromUrdf`` builds, from the
-file :class:`~pinframes.kinematics.mesh_files.MeshFiles` finds. So a distance computed here is
-the distance Pinocchio + coal compute on the same URDF. Every problem is a
+file :class:`~pinframes.kinematics.collision.mesh_files.MeshFiles` finds. So a distance
+computed here is the distance Pinocchio + coal compute on the same URDF. Every problem is a
 :class:`~pinframes.errors.GeometryError` naming the frame, the shape's field and the file.
 """
 
@@ -21,8 +21,8 @@ import coal
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import GeometryError
-from ..values.geometry import GEOMETRY_KINDS, FrameGeometry, Shape
+from ...errors import GeometryError
+from ...values.geometry import GEOMETRY_KINDS, FrameGeometry, Shape
 from .mesh_files import HOW_TO_SEARCH, MeshFiles, mesh_file_problem, package_search_dirs
 
 __all__ = ["CollisionShape", "ShapeLoader"]
@@ -71,7 +71,7 @@ class ShapeLoader:
         Which geometry of the URDF links.
     package_dirs : iterable of path
         Folders searched for ``package://`` and relative mesh names first (see
-        :class:`~pinframes.kinematics.mesh_files.MeshFiles`).
+        :class:`~pinframes.kinematics.collision.mesh_files.MeshFiles`).
     """
 
     def __init__(self, kind: str, package_dirs: Iterable[str | os.PathLike[str]] = ()) -> None:

@@ -1,0 +1,13 @@
+"""Inverse kinematics: joint values that put a tool frame on a target frame along a path.
+
+:mod:`.solve_joints` is the query (``FrameTree.solve_joints``) and :mod:`.joint_solution` its
+result. Its steps: the solved joints (``_solved_joints``), the tool's error (``_tool_error``),
+the step within limits (``_bounded_step``), the solver loop (``_newton_tracking``) and the
+batched check of its samples (``_batch_check``). The planning and sampling it shares with
+the other queries are the ``_`` modules of :mod:`pinframes.kinematics`.
+"""
+
+from .joint_solution import JointSolution
+from .solve_joints import evaluate_solve_joints
+
+__all__ = ["JointSolution", "evaluate_solve_joints"]
