@@ -6,7 +6,8 @@ The path from the tool to the frame the target is given in is prepared as for a 
 planned (:mod:`._times`) from every moving thing on it but the solved joints, whose samples
 are what is being solved for. Per chunk of samples, everything that is not solved for is
 sampled into Pinocchio configurations (:func:`._sampling.sample_configurations`), then
-:mod:`._newton_tracking` solves sample after sample, each from the one before.
+:mod:`._newton_tracking` solves sample after sample, each from the one before; without a
+seed, the first stretch from the start :mod:`._starts` takes.
 """
 
 from __future__ import annotations
@@ -37,8 +38,10 @@ from ._newton_tracking import (
     solve_again,
     track_targets,
 )
+from ._null_space import AwayFromLimits
 from ._solved_joints import SolvedJoints, solved_joints
-from ._tool_error import AXES, AxisError, PoseError
+from ._starts import track_from_the_best_start
+from ._tool_error import AXES, AxisMatch, PoseMatch, ToolMatch
 from .joint_solution import JointSolution
 
 __all__ = ["evaluate_solve_joints"]
@@ -56,7 +59,7 @@ def evaluate_solve_joints(
 ) -> JointSolution:
     """``tree.solve_joints(...)``; ``frame`` (and a target frame name) already checked."""
     reference, target_pose = _reference(tree, frame, target, relative_to)
-    error = _tool_error(free_axis, frame)
+    error = _tool_match(free_axis, frame)
     tolerances = (_tolerance(position_tolerance, "position_tolerance", frame),
                   _tolerance(orientation_tolerance, "orientation_tolerance", frame))
     path = prepare_path(tree, frame, reference)
@@ -85,6 +88,7 @@ def evaluate_solve_joints(
     history = TrackingHistory(start)
     reference_id = _reference_id(model, reference)
     solver = LeastSquares()
+    objective = AwayFromLimits(solved.limits)
     parts: list[Tracked] = []
     for begin in range(0, moments.shape[0], CHUNK):
         part = slice(begin, begin + CHUNK)
@@ -93,8 +97,11 @@ def evaluate_solve_joints(
             model.model, model.data, model.frame_ids[frame], reference_id,
             sample_configurations(tree, model, moments[part], shifts, held),
             None if targets is None else _xyz_quaternions(targets),
-            solved, error, tolerances[0], tolerances[1], ratios[part], solver)
-        tracked = track_targets(problem, history, stop_when_unreached=strict)
+            solved, error, tolerances[0], tolerances[1], ratios[part], solver, objective)
+        if begin == 0 and seed is None:
+            tracked, history = track_from_the_best_start(problem, start, strict)
+        else:
+            tracked = track_targets(problem, history, stop_when_unreached=strict)
         _measure_the_rest(tree, path, moments[part], shifts, targets, problem, tracked)
         parts.append(tracked)
         if strict and not tracked.reached.all():
@@ -137,13 +144,13 @@ def _reference(tree: TreeDescription, frame: str, target: str | Pose, relative_t
                             frame=frame, field="target")
 
 
-def _tool_error(free_axis: Any, frame: str) -> PoseError | AxisError:
+def _tool_match(free_axis: Any, frame: str) -> ToolMatch:
     if free_axis is None:
-        return PoseError()
+        return PoseMatch()
     if free_axis not in AXES:
         raise ArgumentTypeError(f"expected one of {', '.join(AXES)} or None, got {free_axis!r}",
                                 frame=frame, field="free_axis")
-    return AxisError(free_axis)
+    return AxisMatch(free_axis)
 
 
 def _tolerance(value: Any, field: str, frame: str) -> float:
