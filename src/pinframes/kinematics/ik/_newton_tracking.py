@@ -99,6 +99,9 @@ BRIDGE_TOLERANCE = 1e-4
 BRIDGE_ITERATIONS = 20
 """Newton iterations at most per intermediate target; one not reached ends the bridge."""
 
+MAX_BRIDGE_PARTS = 1000
+"""Intermediate targets at most (a target kilometres away, out of reach anyway)."""
+
 FIRST_DAMPING = 1e-6
 """Damping of the first retried step (error units squared, after the tolerances scale the
 errors to 1)."""
@@ -279,9 +282,9 @@ def track_targets(problem: TrackingProblem, history: TrackingHistory,
 
 
 def _cost(problem: TrackingProblem, solved: Solved) -> float:
-    """The errors of a measured solution, scaled by the tolerances, squared and summed."""
-    return ((solved[1] / problem.position_tolerance) ** 2
-            + (solved[2] / problem.orientation_tolerance) ** 2)
+    """The errors of a measured solution scaled by the tolerances, their Euclidean norm."""
+    return math.hypot(solved[1] / problem.position_tolerance,
+                      solved[2] / problem.orientation_tolerance)
 
 
 def solve_again(problem: TrackingProblem, index: int, theta: FloatArray) -> Solution:
@@ -357,8 +360,11 @@ class _SampleSolver:
         tool_in_target = self._tool_in_target(q, theta, target)
         aim = self.error.nearest_match(tool_in_target)
         twist = pin.log6(aim.actInv(tool_in_target))
-        count = math.ceil(max(np.linalg.norm(twist.linear) / BRIDGE_LENGTH,
-                              np.linalg.norm(twist.angular) / BRIDGE_ANGLE, 1.0))
+        parts = max(math.hypot(*twist.linear.tolist()) / BRIDGE_LENGTH,
+                    math.hypot(*twist.angular.tolist()) / BRIDGE_ANGLE)
+        if not parts > 1.0:  # close by (or not finite)
+            return theta
+        count = math.ceil(min(parts, MAX_BRIDGE_PARTS))
         goal_in_reference = aim if target is None else target.act(aim)
         for part in range(1, count):
             goal = goal_in_reference.act(pin.exp6(twist * (1.0 - part / count)))
@@ -417,6 +423,7 @@ class _SampleSolver:
         best, best_margin = theta, margin
         best_cost = best_position = best_orientation = math.inf
         rows = residual = theta  # set on the first iteration
+        first = True
         damping = 0.0
         for _ in range(iterations):
             joints.set_configuration(q, theta)
@@ -430,9 +437,11 @@ class _SampleSolver:
             position, orientation, vector = error.measure(tool_in_target)
             if position <= position_tolerance and orientation <= orientation_tolerance:
                 return theta, position, orientation, True, margin
-            cost = ((position / position_tolerance) ** 2
-                    + (orientation / orientation_tolerance) ** 2)
-            if cost < best_cost:
+            # (hypot: no overflow for a target 1e155 m away; inf compares as the largest)
+            cost = math.hypot(position / position_tolerance,
+                              orientation / orientation_tolerance)
+            if cost < best_cost or first:
+                first = False
                 best, best_margin, best_cost, best_position, best_orientation = (
                     theta, margin, cost, position, orientation)
                 damping = 0.0 if damping <= FIRST_DAMPING else damping / 10.0
@@ -452,11 +461,12 @@ class _SampleSolver:
 
     def _tool_jacobian(self, q: FloatArray, tool_in_reference: pin.SE3) -> FloatArray:
         """The tool's ``LOCAL`` Jacobian (6, nv) relative to the reference frame: when solved
-        joints move the reference too, its motion (seen in the tool's axes) counts against."""
+        joints move the reference too, its motion (seen in the tool's axes) counts against.
+        (eigenpy hands a one-column matrix back as a vector: reshaped.)"""
         model, data = self.model, self.data
         if not self.joints.moves_reference:
-            return pin.computeFrameJacobian(model, data, q, self.frame_id, _LOCAL)
+            return pin.computeFrameJacobian(model, data, q, self.frame_id, _LOCAL).reshape(6, -1)
         pin.computeJointJacobians(model, data, q)
-        tool = pin.getFrameJacobian(model, data, self.frame_id, _LOCAL)
-        reference = pin.getFrameJacobian(model, data, self.reference_id, _LOCAL)
+        tool = pin.getFrameJacobian(model, data, self.frame_id, _LOCAL).reshape(6, -1)
+        reference = pin.getFrameJacobian(model, data, self.reference_id, _LOCAL).reshape(6, -1)
         return tool - tool_in_reference.inverse().action.dot(reference)

@@ -44,9 +44,13 @@ from ._starts import track_from_the_best_start
 from ._tool_error import AXES, AxisMatch, PoseMatch, ToolMatch
 from .joint_solution import JointSolution
 
-__all__ = ["evaluate_solve_joints"]
+__all__ = ["SMALLEST_TOLERANCE", "evaluate_solve_joints"]
 
 FloatArray = NDArray[np.float64]
+
+SMALLEST_TOLERANCE = 1e-12
+"""The smallest position (m) and orientation (rad) tolerance: errors of poses a few metres
+from their origin are not resolved much below it in double precision."""
 
 _TARGET_SOURCE = "<target pose>"
 """Name of a time-dependent target pose among the timeline's sources."""
@@ -161,6 +165,10 @@ def _tolerance(value: Any, field: str, frame: str) -> float:
     if isinstance(value, (str, bytes, bool)) or not (0.0 < number < math.inf):
         raise InvalidDataError(f"expected a positive number, got {value!r}", frame=frame,
                                field=field)
+    if number < SMALLEST_TOLERANCE:
+        raise InvalidDataError(f"{number:g} is below what double precision resolves on a "
+                               f"robot (at least {SMALLEST_TOLERANCE:g})", frame=frame,
+                               field=field)
     return number
 
 
@@ -217,7 +225,10 @@ def _step_ratios(moments: NDArray[np.int64]) -> FloatArray:
     ratios = np.ones(moments.shape[0])
     if moments.shape[0] > 2:
         steps = np.diff(moments).astype(float)
-        ratios[2:] = steps[1:] / steps[:-1]
+        before = steps[:-1]
+        # a step after a repeated time (none before it) is not predicted: inf
+        ratios[2:] = np.divide(steps[1:], before, out=np.full(before.shape, np.inf),
+                               where=before > 0)
     return ratios
 
 
