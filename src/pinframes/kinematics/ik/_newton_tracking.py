@@ -9,8 +9,9 @@ away from singular configurations, with as many joints as rows), and every Newto
 smallest: with more joints than rows (a 7-axis arm, a free tool axis, a positioner solved
 with the robot) the solution is the smallest joint motion
 from the previous sample, with no self-motion carried on. So it follows one branch (no
-elbow or wrist flips), usually with one Newton step per sample, and a static target gives a
-static solution. The prediction comes with a lower bound of how far it lies inside the joint
+elbow or wrist flips), usually with one Newton step per sample. A sample whose target and
+everything else stand still starts from the last solution, already on it: a static target
+gives a static solution. The prediction comes with a lower bound of how far it lies inside the joint
 limits, carried from sample to sample: the limits are checked joint by joint only when that
 bound runs out.
 
@@ -157,6 +158,9 @@ class TrackingProblem:
         The linear algebra of the steps (kept from one stretch to the next).
     objective : NullSpaceObjective or None
         The secondary objective, served in the task's null space.
+    still : ndarray of bool, shape (N,), or None
+        Per sample, whether its target and everything not solved for are those of the
+        sample before (it starts from the last solution, not a prediction); None: none is.
     """
 
     model: pin.Model
@@ -172,6 +176,7 @@ class TrackingProblem:
     step_ratios: FloatArray
     solver: LeastSquares
     objective: NullSpaceObjective | None = None
+    still: NDArray[np.bool_] | None = None
 
     @cached_property
     def position_region(self) -> float:
@@ -257,10 +262,12 @@ def track_targets(problem: TrackingProblem, history: TrackingHistory,
     sample_solver = _SampleSolver(problem)
     solve, predicted = sample_solver.solve, sample_solver.predicted
     solutions: list[Solved] = []
-    for index, ratio in enumerate(problem.step_ratios.tolist()):
+    ratios = problem.step_ratios.tolist()
+    stills = [False] * len(ratios) if problem.still is None else problem.still.tolist()
+    for index, (ratio, still) in enumerate(zip(ratios, stills, strict=True)):
         if not history.after_a_miss:
             last, step, margin = history.start(ratio)
-            if step is None:
+            if step is None or still:
                 solved = solve(index, last, margin, True)
             else:
                 theta, margin = predicted(last, step, margin)

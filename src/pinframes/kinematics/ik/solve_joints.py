@@ -97,11 +97,12 @@ def evaluate_solve_joints(
     for begin in range(0, moments.shape[0], CHUNK):
         part = slice(begin, begin + CHUNK)
         targets = _targets(target_pose, moments[part], shifts.get(_TARGET_SOURCE, 0))
+        configurations = sample_configurations(tree, model, moments[part], shifts, held)
+        target_rows = None if targets is None else _xyz_quaternions(targets)
         problem = TrackingProblem(
-            model.model, model.data, model.frame_ids[frame], reference_id,
-            sample_configurations(tree, model, moments[part], shifts, held),
-            None if targets is None else _xyz_quaternions(targets),
-            solved, error, tolerances[0], tolerances[1], ratios[part], solver, objective)
+            model.model, model.data, model.frame_ids[frame], reference_id, configurations,
+            target_rows, solved, error, tolerances[0], tolerances[1], ratios[part], solver,
+            objective, _standing_still(configurations, target_rows))
         if begin == 0 and seed is None:
             tracked, history = track_from_the_best_start(problem, start, strict)
         else:
@@ -230,6 +231,17 @@ def _step_ratios(moments: NDArray[np.int64]) -> FloatArray:
         ratios[2:] = np.divide(steps[1:], before, out=np.full(before.shape, np.inf),
                                where=before > 0)
     return ratios
+
+
+def _standing_still(configurations: FloatArray, targets: FloatArray | None
+                    ) -> NDArray[np.bool_]:
+    """Per sample, whether its configuration (everything not solved for) and its target
+    rows equal the sample's before (False for the first)."""
+    still = np.zeros(configurations.shape[0], dtype=bool)
+    still[1:] = np.all(configurations[1:] == configurations[:-1], axis=1)
+    if targets is not None:
+        still[1:] &= np.all(targets[1:] == targets[:-1], axis=1)
+    return still
 
 
 def _reference_id(model: CompiledModel, reference: str) -> int | None:
