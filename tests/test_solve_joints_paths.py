@@ -328,3 +328,43 @@ def test_urdf_limits_with_lower_above_upper_are_an_error_naming_the_joint(tmp_pa
         FrameTree("floor").attach_urdf(urdf, "floor")
     assert raised.value.joint == "turn" and raised.value.field == "limit"
     assert str(urdf) in str(raised.value)
+
+
+# -- the secondary objective ------------------------------------------------------------------
+def test_the_null_space_motion_is_the_exact_projection(rng):
+    """Against numpy's pseudo-inverse: ``m - pinv(A) @ A @ m``, which the task's rows do not
+    feel; nothing without redundancy."""
+    from pinframes.kinematics.ik._bounded_step import LeastSquares
+    from pinframes.kinematics.ik._null_space import null_space_motion
+
+    rows = rng.normal(size=(6, 7))
+    motion = rng.normal(size=7)
+    projected = null_space_motion(LeastSquares(), rows, motion)
+    np.testing.assert_allclose(projected, motion - np.linalg.pinv(rows) @ rows @ motion,
+                               atol=1e-12)
+    np.testing.assert_allclose(rows @ projected, 0.0, atol=1e-12)
+    square = rng.normal(size=(6, 6))
+    np.testing.assert_array_equal(null_space_motion(LeastSquares(), square, motion[:6]), 0.0)
+
+
+def test_joints_near_a_limit_are_moved_away_without_losing_a_sample():
+    """The Panda's third joint swings about 0.15 rad below its upper limit (2.8973 rad),
+    inside the band the solver keeps joints out of (0.2 rad): every sample is still
+    reached, and the joint is moved away from its limit through the seventh axis's freedom
+    (the elbow, joint 4, could not be: the wrist's position fixes it)."""
+    robot = arm("Panda")
+    model = robot.model()
+    home = np.asarray(robot.home)
+    home[2], swing = 2.75, np.asarray(robot.swing)
+    swing[2] = 0.03
+    times = np.arange(300) / 100.0
+    trajectory = swinging(home, swing, times)
+    targets = frame_poses(model, robot.tool, trajectory)
+    solution = robot.tree().solve_joints(robot.tool, as_pose(targets, times),
+                                         seed=trajectory[0, :7])
+    assert on_target(model, robot.tool, configurations(model, home, solution.positions),
+                     targets).all()
+    margin = model.upperPositionLimit[2] - solution.positions[:, 2]
+    assert margin[-50:].min() > margin[0] + 0.02
+    assert within_limits(model, solution.positions)
+    assert largest_step(solution.positions) <= 2 * largest_step(trajectory[:, :7])
