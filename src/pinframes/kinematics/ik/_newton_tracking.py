@@ -267,15 +267,17 @@ def track_targets(problem: TrackingProblem, history: TrackingHistory,
     for index, (ratio, still) in enumerate(zip(ratios, stills, strict=True)):
         if not history.after_a_miss:
             last, step, margin = history.start(ratio)
-            if step is None or still:
-                solved = solve(index, last, margin, True)
+            if still:
+                solved = solve(index, last, margin, True, False)
+            elif step is None:
+                solved = solve(index, last, margin, True, True)
             else:
                 theta, margin = predicted(last, step, margin)
-                solved = solve(index, theta, margin, True)
+                solved = solve(index, theta, margin, True, False)
         else:
-            solved = solve(index, history.last_on_target, 0.0, True)
+            solved = solve(index, history.last_on_target, 0.0, True, True)
             if not solved[3]:
-                closer = solve(index, history.last, 0.0, True)
+                closer = solve(index, history.last, 0.0, True, True)
                 if closer[3] or _cost(problem, closer) < _cost(problem, solved):
                     solved = closer
         solutions.append(solved)
@@ -298,7 +300,7 @@ def solve_again(problem: TrackingProblem, index: int, theta: FloatArray) -> Solu
     """Sample ``index`` solved from ``theta`` and measured: the solution, its position and
     orientation errors (m, rad) and whether it is reached."""
     solution, position, orientation, reached, _ = _SampleSolver(problem).solve(
-        index, theta, 0.0, trust_newton=False)
+        index, theta, 0.0, trust_newton=False, bridge=True)
     return solution, position, orientation, reached
 
 
@@ -335,10 +337,10 @@ class _SampleSolver:
         changes = sum(map(abs, step.tolist()))
         return last + step, margin - changes
 
-    def solve(self, index: int, theta: FloatArray, margin: float, trust_newton: bool
-              ) -> Solved:
-        """Sample ``index`` from ``theta``, bridged when far from its target (see the module
-        docstring), then offered to the secondary objective: the solution (the best
+    def solve(self, index: int, theta: FloatArray, margin: float, trust_newton: bool,
+              bridge: bool) -> Solved:
+        """Sample ``index`` from ``theta``, with ``bridge`` bridged when far from its target
+        (see the module docstring; a prediction is not far), then offered to the secondary objective: the solution (the best
         configuration when the target is not reached), its position and orientation errors,
         whether it is reached and a lower bound of its margin inside the limits. ``margin``
         is one of ``theta`` (0: not known, then ``theta`` is checked joint by joint). With
@@ -350,7 +352,7 @@ class _SampleSolver:
             margin = self.limits.margin(theta.tolist())
             if not margin >= 0.0:  # a prediction past a limit
                 theta, margin = self.limits.clipped(theta), 0.0
-        if margin == 0.0 or not trust_newton:
+        if bridge:
             bridged = self._bridge(q, target, theta)
             if bridged is not theta:
                 theta, margin = bridged, 0.0
