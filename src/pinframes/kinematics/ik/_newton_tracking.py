@@ -340,9 +340,10 @@ class _SampleSolver:
     def solve(self, index: int, theta: FloatArray, margin: float, trust_newton: bool,
               bridge: bool) -> Solved:
         """Sample ``index`` from ``theta``, with ``bridge`` bridged when far from its target
-        (see the module docstring; a prediction is not far), then offered to the secondary objective: the solution (the best
-        configuration when the target is not reached), its position and orientation errors,
-        whether it is reached and a lower bound of its margin inside the limits. ``margin``
+        (see the module docstring; a prediction is not far), then offered to the secondary
+        objective: the solution (the best configuration when the target is not reached), its
+        position and orientation errors, whether it is reached and a lower bound of its
+        margin inside the limits. ``margin``
         is one of ``theta`` (0: not known, then ``theta`` is checked joint by joint). With
         ``trust_newton``, a full step from within the quadratic region ends the sample
         unmeasured: errors NaN, reached True."""
