@@ -38,7 +38,7 @@ _SINGULAR_DAMPING = 1e-9
 """The damping of a step whose undamped system is singular (error units squared)."""
 
 AMPLIFICATION = 1e3
-"""A step whose joint changes sum to more than this times the largest error (radians or
+"""A step whose joint changes sum to more than this times the error's size (radians or
 metres per metre or radian) comes from a system near a singular configuration: its
 smallest singular values turn small errors into large motions along the directions the tool
 barely feels (a wrist's two axes in line trading turns). It is taken again with
@@ -94,10 +94,25 @@ class LeastSquares:
     def __init__(self) -> None:
         self._lu: dict[int, Any] = {}  # Eigen's partial-pivoting LU, by size
         self._llt: dict[int, Any] = {}  # Eigen's Cholesky, by size
+        self._undamped: FloatArray | None = None  # the rows of the latest undamped solve
+
+    def row_space_part(self, rows: FloatArray, motion: FloatArray) -> FloatArray:
+        """The part of ``motion`` (n,) that ``rows`` (m, n) feel, ``A^+ A motion``, with
+        :data:`NEAR_SINGULAR_DAMPING`; for the rows of the latest solve when it was
+        undamped (so not near a singular configuration) from its decomposition: all of
+        ``motion`` for a square system, one Cholesky solve for a redundant one."""
+        count, joints = rows.shape
+        if rows is self._undamped:
+            if joints == count:
+                return motion
+            if joints > count:
+                return self._llt[count].solve(rows.dot(motion)).dot(rows)  # type: ignore[no-any-return]
+        return self.correction(rows, rows.dot(motion), NEAR_SINGULAR_DAMPING)
 
     def correction(self, rows: FloatArray, error: FloatArray, damping: float) -> FloatArray:
         """``c`` (n,) for ``rows`` (m, n) and ``error`` (m,)."""
         count, joints = rows.shape
+        self._undamped = rows if damping == 0.0 and joints >= count else None
         if damping == 0.0 and count == joints:
             correction = _of_size(self._lu, eigenpy.PartialPivLU, count).compute(rows).solve(
                 error)
@@ -129,8 +144,8 @@ def _of_size(decompositions: dict[int, Any], kind: Any, size: int) -> Any:
 
 
 def bounded_step(solver: LeastSquares, rows: FloatArray, error: FloatArray, theta: FloatArray,
-                 limits: JointLimits, damping: float, longest_step: float, margin: float
-                 ) -> tuple[FloatArray, bool, float]:
+                 limits: JointLimits, damping: float, longest_step: float, margin: float,
+                 error_size: float) -> tuple[FloatArray, bool, float]:
     """The joint values after a least-squares Newton step from ``theta``: at most
     ``longest_step`` (radians or metres) per joint, within the ``limits`` (joints that would
     cross one are fixed on it); whether that was the full step (not shortened, not limited,
@@ -138,11 +153,15 @@ def bounded_step(solver: LeastSquares, rows: FloatArray, error: FloatArray, thet
 
     ``margin``: a lower bound of ``limits.margin`` of ``theta`` (0: not known). A step whose
     joint changes sum to less than half of it stays inside the limits, by at least the
-    margin less that sum: no need to check them joint by joint (the usual tracked sample)."""
+    margin less that sum: no need to check them joint by joint (the usual tracked sample).
+
+    ``error_size``: how large the error is (the position error in metres plus the
+    orientation error in radians): a step whose joint changes sum to more than
+    :data:`AMPLIFICATION` times it comes from a near-singular system."""
     correction = solver.correction(rows, error, damping)
     values = correction.tolist()
     total = sum(map(abs, values))  # NaN when one is
-    near_singular = not total <= AMPLIFICATION * max(map(abs, error.tolist()))
+    near_singular = not total <= AMPLIFICATION * error_size
     if near_singular and damping < NEAR_SINGULAR_DAMPING:
         damping = NEAR_SINGULAR_DAMPING
         correction = solver.correction(rows, error, damping)

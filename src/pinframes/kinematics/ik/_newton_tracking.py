@@ -58,7 +58,7 @@ import numpy as np
 import pinocchio as pin
 from numpy.typing import NDArray
 
-from ._bounded_step import NEAR_SINGULAR_DAMPING, LeastSquares, bounded_step
+from ._bounded_step import LeastSquares, bounded_step
 from ._null_space import NullSpaceObjective, null_space_motion
 from ._solved_joints import SolvedJoints
 from ._tool_error import PoseMatch, ToolMatch
@@ -323,6 +323,8 @@ class _SampleSolver:
         self.orientation_region = problem.orientation_region
         self.least_squares = problem.solver
         self.objective = problem.objective
+        self.objective_margin = -math.inf if self.objective is None else (
+            self.objective.quiet_margin)
         self.rows: FloatArray | None = None  # the task's rows at the latest linearisation
 
     def predicted(self, last: FloatArray, step: FloatArray, margin: float
@@ -331,9 +333,8 @@ class _SampleSolver:
         square system far from a singular configuration; its damped least-squares projection
         on the last rows), and a lower bound of its margin inside the limits: ``last``'s less
         the sum of the changes of the joints (NaN when one is)."""
-        rows = self.rows
-        if rows is not None:
-            step = self.least_squares.correction(rows, rows.dot(step), NEAR_SINGULAR_DAMPING)
+        if self.rows is not None:
+            step = self.least_squares.row_space_part(self.rows, step)
         changes = sum(map(abs, step.tolist()))
         return last + step, margin - changes
 
@@ -359,7 +360,7 @@ class _SampleSolver:
                 theta, margin = bridged, 0.0
         solved = self._newton(q, target, self.error, theta, margin, self.position_tolerance,
                               self.orientation_tolerance, MAX_ITERATIONS, trust_newton)
-        if solved[3] and self.objective is not None:
+        if solved[3] and solved[4] < self.objective_margin:
             return self._served(q, target, solved)
         return solved
 
@@ -462,8 +463,9 @@ class _SampleSolver:
                 damping = max(10.0 * damping, FIRST_DAMPING)
                 if damping > MAX_DAMPING:
                     break
-            theta, full, margin = bounded_step(least_squares, rows, residual, best,
-                                               limits, damping, LONGEST_STEP, best_margin)
+            theta, full, margin = bounded_step(least_squares, rows, residual, best, limits,
+                                               damping, LONGEST_STEP, best_margin,
+                                               best_position + best_orientation)
             if (full and damping == 0.0 and best_position <= position_region
                     and best_orientation <= orientation_region):
                 return theta, math.nan, math.nan, True, margin

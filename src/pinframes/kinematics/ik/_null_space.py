@@ -29,7 +29,16 @@ FloatArray = NDArray[np.float64]
 
 
 class NullSpaceObjective(Protocol):
-    """A wish for the solved joints' values, served in the task's null space."""
+    """A wish for the solved joints' values, served in the task's null space.
+
+    Attributes
+    ----------
+    quiet_margin : float
+        A margin inside the joint limits (radians or metres) from which on it asks for
+        nothing (``math.inf``: it may ask anywhere); the solver skips asking it there.
+    """
+
+    quiet_margin: float
 
     def motion(self, theta: FloatArray) -> FloatArray | None:
         """The joint motion (n,) wanted at the solution ``theta`` (n,), radians or metres;
@@ -50,20 +59,20 @@ PUSH = 0.2
 class AwayFromLimits:
     """Joints that come within the band along a limit are asked back out of it.
 
-    Outside the bands (a lower bound of the distance is checked first, in Python floats)
-    nothing is asked, so the solution is the smallest motion from the previous sample.
+    Outside the bands nothing is asked (:attr:`quiet_margin`: the widest band), so the
+    solution is the smallest motion from the previous sample.
     """
 
     def __init__(self, limits: JointLimits) -> None:
         bounded = np.isfinite(limits.lower) & np.isfinite(limits.upper)
         span = np.where(bounded, limits.upper - limits.lower, 0.0)
         self._band = np.minimum(BAND * span, WIDEST_BAND)
-        self._widest = float(self._band.max()) if self._band.shape[0] else 0.0
+        self.quiet_margin = float(self._band.max()) if self._band.shape[0] else 0.0
         self._limits = limits
 
     def motion(self, theta: FloatArray) -> FloatArray | None:
         """:data:`PUSH` of each joint's depth inside its band, away from the limit."""
-        if not self._widest > 0.0 or self._limits.margin(theta.tolist()) >= self._widest:
+        if not self._limits.margin(theta.tolist()) < self.quiet_margin:
             return None
         below = self._band - (theta - self._limits.lower)
         above = self._band - (self._limits.upper - theta)
