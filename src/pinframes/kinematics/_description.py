@@ -11,14 +11,14 @@ belongs to.
 from __future__ import annotations
 
 import contextlib
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
 
 import numpy as np
 
-from ..values.joint import Joint
+from ..values.joint import Joint, mimic_chain
 from ..values.joint_trajectory import JointTrajectory
 from ..values.pose import Pose
 from ..values.se3 import IDENTITY, Transform, compose, inverse
@@ -107,9 +107,8 @@ class TreeDescription:
         default_factory=dict, init=False, repr=False, compare=False)
     _time_groups: dict[str, str] | None = field(
         default=None, init=False, repr=False, compare=False)
-    # not empty once this version has warned about joints without samples
-    _warned_joints_without_samples: list[bool] = field(
-        default_factory=list, init=False, repr=False, compare=False)
+    # the warnings this version has given (each is given once per version)
+    _warned: set[str] = field(default_factory=set, init=False, repr=False, compare=False)
 
     @classmethod
     def freeze(
@@ -170,6 +169,19 @@ class TreeDescription:
         trajectory = self.joint_trajectories[joint_name]
         return TimedSource(joint_name, trajectory.times,
                            source_reference(trajectory.reference, self.reference_time))
+
+    def sources_of(self, joints: Iterable[ModelJoint]) -> list[TimedSource]:
+        """The moving frames and driven joints (a mimic joint's chain of primaries
+        included) whose samples a model of ``joints`` needs."""
+        sources: dict[str, TimedSource] = {}
+        for joint in joints:
+            if joint.joint is None:
+                sources[joint.frame] = self.frame_source(joint.frame)
+                continue
+            for link in mimic_chain(joint.joint, self.joints_by_name):
+                if link.name in self.joint_trajectories:
+                    sources[link.name] = self.joint_source(link.name)
+        return list(sources.values())
 
     def path_layout(self, frame: str, relative_to: str) -> Transform | ModelLayout:
         """The path between two frames: the static pose of ``frame`` in ``relative_to``
@@ -240,6 +252,14 @@ class TreeDescription:
                     leaders.append((name, source))
             object.__setattr__(self, "_time_groups", groups)  # whole, for concurrent queries
         return groups[joint_name]
+
+    def first_warning(self, kind: str) -> bool:
+        """True the first time this version is asked about the warning ``kind``: a
+        warning about the tree is given once per version."""
+        if kind in self._warned:
+            return False
+        self._warned.add(kind)
+        return True
 
     def cached(self, key: tuple[str, ...]) -> Any:
         """A prepared query path stored with :meth:`store`, or None."""

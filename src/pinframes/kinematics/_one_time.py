@@ -27,10 +27,9 @@ from numpy.typing import NDArray
 from ..values.interpolation import FrameInterpolation, JointInterpolation, segment_position
 from ..values.joint import mimic_chain
 from ..values.se3 import Transform
-from ..values.timeline import QueryTimeline
 from ._description import TreeDescription
 from ._model import CompiledModel
-from ._path import PreparedPath
+from ._plan import PreparedPath
 
 __all__ = ["FEW_TIMES", "MAX_DEGREES_OF_FREEDOM", "OneTimePlan", "one_time_plan",
            "takes_few_times"]
@@ -51,11 +50,10 @@ and 4 GB at 400 degrees of freedom; longer paths take the numpy kernels, which n
 such workspace."""
 
 
-def takes_few_times(timeline: QueryTimeline, model: CompiledModel) -> bool:
-    """Whether a query on ``timeline`` through ``model`` is answered here: it has at most
+def takes_few_times(times: NDArray[np.int64] | None, model: CompiledModel) -> bool:
+    """Whether a query at ``times`` through ``model`` is answered here: it has at most
     :data:`FEW_TIMES` evaluation times, or none (nothing on its path is sampled: one
     configuration), and at most :data:`MAX_DEGREES_OF_FREEDOM`."""
-    times = timeline.evaluation_times
     return ((times is None or times.shape[0] <= FEW_TIMES)
             and model.model.nv <= MAX_DEGREES_OF_FREEDOM)
 

@@ -146,9 +146,8 @@ def sample_joint_values(
 def warn_joints_without_samples(tree: TreeDescription) -> None:
     """One :class:`JointWithoutSamplesWarning` per version of a tree, naming its joints
     without samples."""
-    if tree._warned_joints_without_samples:
+    if not tree.first_warning("joints without samples"):
         return
-    tree._warned_joints_without_samples.append(True)
     idle = [name for name, joint in tree.joints_by_name.items()
             if joint.is_actuated and name not in tree.joint_trajectories]
     named = ", ".join(repr(name) for name in idle[:4]) + (

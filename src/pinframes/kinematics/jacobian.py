@@ -24,7 +24,8 @@ from ..errors import ArgumentTypeError, JointError, joint_not_found
 from ..values.joint import mimic_primary
 from ..values.se3 import IDENTITY
 from ._description import TreeDescription
-from ._sampled_path import SampledPath, plan_query
+from ._plan import plan_query
+from ._sampled_path import SampledPath, sampled_parts
 from ._twists import Twist, jacobian_columns
 
 __all__ = ["FrameJacobian", "evaluate_jacobian"]
@@ -62,12 +63,12 @@ def evaluate_jacobian(tree: TreeDescription, frame: str, relative_to: str, times
     """``tree.jacobian(...)``; frame names already checked."""
     names = _joint_names(tree, joints, frame)
     column_of = {name: column for column, name in enumerate(names)}
-    planned = plan_query(tree, frame, relative_to, times, time_ref, extrapolation)
-    matrix = np.zeros((planned.count, 6, len(names)))
-    if planned.prepared.static is None:
-        for part, path in planned.chunks(tree):
+    plan = plan_query(tree, frame, relative_to, times, time_ref, extrapolation)
+    matrix = np.zeros((plan.count, 6, len(names)))
+    if plan.path.static is None:
+        for part, path in sampled_parts(tree, plan):
             matrix[part] = _columns_in_reference(tree, path, column_of)
-    return FrameJacobian(matrix, tuple(names), planned.times, planned.reference_time)
+    return FrameJacobian(matrix, tuple(names), plan.result_times, plan.reference_time)
 
 
 def _columns_in_reference(tree: TreeDescription, path: SampledPath,

@@ -15,8 +15,8 @@ import numpy as np
 from ..errors import InvalidTimeError
 from ..values.joint import mimic_chain
 from ._description import TreeDescription
+from ._plan import plan_query
 from ._sampling import SegmentSearches, sample_joint_values
-from ._times import basis_shifts, plan_timeline
 
 __all__ = ["Snapshot", "snapshot"]
 
@@ -46,9 +46,10 @@ def snapshot(tree: TreeDescription, time: Any, time_ref: Any = None) -> Snapshot
     if time is None and sources:
         raise InvalidTimeError("parts of the tree move (" + ", ".join(
             s.name for s in sources) + "); give the time to take them at", field="time")
-    timeline = plan_timeline(tree, sources, None if time is None else [time], time_ref)
-    times = timeline.evaluation_times
-    searches = SegmentSearches(tree, times, basis_shifts(sources, timeline))
+    plan = plan_query(tree, tree.root, tree.root, None if time is None else [time], time_ref,
+                      "clamp", sources)
+    times = plan.times
+    searches = SegmentSearches(tree, times, plan.shifts)
     for joint in tree.joints_by_name.values():
         mimic_chain(joint, tree.joints_by_name)  # a JointError for a mimic of a missing joint
     cache: dict[str, Any] = {}
@@ -56,7 +57,7 @@ def snapshot(tree: TreeDescription, time: Any, time_ref: Any = None) -> Snapshot
               for name, joint in tree.joints_by_name.items()}
     if times is None:
         return Snapshot(None, values)
-    if timeline.absolute:
+    if plan.timeline.absolute:
         return Snapshot(np.datetime64(int(times[0]), "ns"), values)
     return Snapshot(np.timedelta64(int(times[0]), "ns"), values)
 

@@ -10,7 +10,7 @@ from numpy.typing import NDArray
 
 from ...values.se3 import Transform, compose, inverse, samples_last, to_stacks
 from .._description import TreeDescription
-from .._path import PreparedPath
+from .._plan import PreparedPath
 from .._sampling import sample_joints
 from ._tool_error import AxisError, PoseError
 
