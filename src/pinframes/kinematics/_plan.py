@@ -12,7 +12,7 @@ with :func:`plan_query`; a query that needs another path at the same times asks 
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator
+from collections.abc import Collection, Iterable, Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -20,13 +20,18 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ExtrapolationError, InvalidPoseError, InvalidTimeError
-from ..values.interpolation import Keyframes
 from ..values.numbers import require_finite_result
 from ..values.se3 import Transform
 from ..values.timeconv import TimeAxis, parse_time_axis, timestamp_ns
 from ..values.timeline import QueryTimeline, TimedSource, plan_query_timeline
 from ._description import ModelLayout, TreeDescription
 from ._model import CompiledModel
+from ._sampling import (
+    JointSampler,
+    frame_source,
+    path_samplers,
+    warn_joints_without_samples,
+)
 
 __all__ = ["EXTRAPOLATION_POLICIES", "PreparedPath", "QueryPlan", "plan_query",
            "prepare_path", "require_finite_pose"]
@@ -40,17 +45,17 @@ class PreparedPath:
     """A query path prepared for repeated evaluation, once per tree version.
 
     Either ``static`` (the pose of the frame in the reference frame, when nothing between
-    them can move) or ``model`` with, per joint, the moving frame's keyframes with the
-    joint placement folded in (:meth:`Keyframes.placed`; None for robot joints), and the
-    moving things it samples. ``plans`` keeps what queries derive from the path once (the
-    one-time plan), so that it lives as long as the path.
+    them can move) or ``model`` with, per joint, how it is sampled (its
+    :mod:`._sampling` sampler), and the moving things they read. ``plans`` keeps what
+    queries derive from the path once (the one-time plan), so that it lives as long as the
+    path.
     """
 
     frame: str
     relative_to: str
     static: Transform | None
     model: CompiledModel | None = None
-    placed_keyframes: tuple[Keyframes | None, ...] = ()
+    samplers: tuple[JointSampler, ...] = ()
     sources: tuple[TimedSource, ...] = ()
     plans: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
 
@@ -63,13 +68,8 @@ def prepare_path(tree: TreeDescription, frame: str, relative_to: str) -> Prepare
         return cached
     layout = tree.path_layout(frame, relative_to)
     if isinstance(layout, ModelLayout):
-        sources = tuple(tree.sources_of(layout.joints))
         model = CompiledModel(layout)
-        keyframes = tuple(
-            None if joint.joint is not None
-            else tree.local_poses[joint.frame].keyframes.placed(model.joint_placements[position])
-            for position, joint in enumerate(model.joints))
-        path = PreparedPath(frame, relative_to, None, model, keyframes, sources)
+        path = PreparedPath(frame, relative_to, None, model, *path_samplers(tree, model))
     else:
         require_finite_pose(layout[1], frame, relative_to)
         path = PreparedPath(frame, relative_to, layout)
@@ -144,8 +144,8 @@ class QueryPlan:
         """The plan of another path at this plan's times (its sources checked against
         ``extrapolation``, by default this plan's)."""
         path = prepare_path(tree, frame, relative_to)
-        return _planned(path, path.sources, self.timeline, extrapolation or self.extrapolation,
-                        self.times, self.offsets)
+        return _planned(tree, path, path.sources, (), self.timeline,
+                        extrapolation or self.extrapolation, self.times, self.offsets)
 
     def parts(self, size: int) -> Iterator[tuple[slice, QueryPlan]]:
         """The plan in slices of at most ``size`` samples, with where each goes in the
@@ -167,54 +167,61 @@ class QueryPlan:
 def plan_query(
     tree: TreeDescription, frame: str, relative_to: str, times: Any, time_ref: Any,
     extrapolation: str, sources: Iterable[TimedSource] | None = None,
+    held: Collection[str] = (),
 ) -> QueryPlan:
     """The plan of a query from the caller's arguments: the path from ``frame`` to
     ``relative_to`` and the timeline of ``times`` / ``time_ref`` on ``sources`` (by default
-    the moving things of the path; others where the times are those of other things, the
-    solved joints left out or a target added)."""
+    the moving things of the path but the ``held`` joints, whose values the caller gives;
+    others where the times are those of other things, or of a target).
+
+    Warns (once per tree version) when a joint of the path holds its rest value.
+    """
     if extrapolation not in EXTRAPOLATION_POLICIES:
         raise ExtrapolationError(f"expected one of {', '.join(EXTRAPOLATION_POLICIES)}, "
                                  f"got {extrapolation!r}", field="extrapolation")
+    requested = None
+    if times is not None:
+        requested = (_frame_times(tree, times) if isinstance(times, str) and times in tree.depths
+                     else parse_time_axis(times, field="times"))
     path = prepare_path(tree, frame, relative_to)
-    planned = path.sources if sources is None else tuple(sources)
-    if times is None and not planned:
-        return _planned(path, planned, _NO_TIMELINE, extrapolation, None, None)
-    timeline = plan_query_timeline(list(planned), _requested_times(tree, times), time_ref,
-                                   tree.reference_time, tree.has_frame_references)
-    return _planned(path, planned, timeline, extrapolation, timeline.evaluation_times,
-                    timeline.result_offsets)
+    planned = tuple(source for source in path.sources if source.name not in held
+                    ) if sources is None else tuple(sources)
+    timeline = _NO_TIMELINE
+    if requested is not None or planned:
+        timeline = plan_query_timeline(list(planned), requested, time_ref, tree.reference_time,
+                                       tree.has_frame_references)
+    return _planned(tree, path, planned, held, timeline, extrapolation,
+                    timeline.evaluation_times, timeline.result_offsets)
 
 
 _NO_TIMELINE = QueryTimeline(None, False, None)
 """The timeline of a query without times on a path on which nothing is sampled."""
 
 
-def _planned(path: PreparedPath, sources: Iterable[TimedSource], timeline: QueryTimeline,
-             extrapolation: str, times: NDArray[np.int64] | None,
-             offsets: NDArray[np.int64] | None) -> QueryPlan:
+def _frame_times(tree: TreeDescription, frame: str) -> TimeAxis:
+    """The keyframe times of the moving frame ``frame``, for ``times=frame``."""
+    if not tree.is_moving(frame):
+        raise InvalidTimeError(f"frame {frame!r} does not move, so it has no times to take "
+                               "(a string naming a frame means that frame's keyframe times; "
+                               "pass seconds as a number or as '5s')", field="times")
+    source = frame_source(tree, frame)
+    return TimeAxis(source.times, source.reference)
+
+
+def _planned(tree: TreeDescription, path: PreparedPath, sources: Iterable[TimedSource],
+             held: Collection[str], timeline: QueryTimeline, extrapolation: str,
+             times: NDArray[np.int64] | None, offsets: NDArray[np.int64] | None) -> QueryPlan:
     """The plan of ``path`` on ``timeline`` at ``times``: each source's shift, its
-    keyframes checked against the ``extrapolation`` policy."""
-    shifts = {}
-    for source in (*path.sources, *sources):
-        shifts[source.name] = (timestamp_ns(source.reference)
-                               if timeline.absolute and source.reference is not None else 0)
+    keyframes checked against the ``extrapolation`` policy; the warning about joints that
+    hold their rest value (but those ``held``)."""
+    warn_joints_without_samples(tree, path.samplers, held)
+    absolute = timeline.absolute
+    shifts = {source.name: (timestamp_ns(source.reference)
+                            if absolute and source.reference is not None else 0)
+              for source in (*path.sources, *sources)}
     if extrapolation == "error" and times is not None:
-        _check_within_keyframes(path.sources, timeline.absolute, times)
+        _check_within_keyframes(path.sources, absolute, times)
     return QueryPlan(path, timeline, shifts, extrapolation, times, offsets)
-
-
-def _requested_times(tree: TreeDescription, times: Any) -> TimeAxis | None:
-    if times is None:
-        return None
-    if isinstance(times, str) and times in tree.depths:
-        if not tree.is_moving(times):
-            raise InvalidTimeError(f"frame {times!r} does not move, so it has no times to "
-                                   "take (a string naming a frame means that frame's "
-                                   "keyframe times; pass seconds as a number or as '5s')",
-                                   field="times")
-        source = tree.frame_source(times)
-        return TimeAxis(source.times, source.reference)
-    return parse_time_axis(times, field="times")
 
 
 def _check_within_keyframes(sources: Iterable[TimedSource], absolute: bool,

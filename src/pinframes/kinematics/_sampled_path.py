@@ -17,7 +17,7 @@ from ..values.se3 import Transform
 from ._description import TreeDescription
 from ._model import CompiledModel
 from ._plan import QueryPlan
-from ._sampling import CHUNK, SegmentSearches, sample_joints
+from ._sampling import KERNEL_CHUNK, JointSampler, SegmentSearches, sample_joints
 from ._twists import Twist, joint_signs, robot_joint_axes
 
 __all__ = ["SampledPath", "sample_path", "sampled_parts"]
@@ -32,6 +32,8 @@ class SampledPath:
     ----------
     model : CompiledModel
         The compiled path.
+    samplers : tuple of JointSampler
+        How each of its joints is sampled (:mod:`._sampling`).
     origins : dict of int to array
         Per joint that moves an end (a key of ``signs``), its origin ``p_j`` in ``C``, metres.
     parent_rotations : dict of int to array
@@ -49,6 +51,7 @@ class SampledPath:
     """
 
     model: CompiledModel
+    samplers: tuple[JointSampler, ...]
     origins: dict[int, NDArray[np.float64]]
     parent_rotations: dict[int, NDArray[np.float64]]
     unit_twists: dict[int, Twist]
@@ -61,12 +64,12 @@ class SampledPath:
 
 def sampled_parts(tree: TreeDescription, plan: QueryPlan
                   ) -> Iterator[tuple[slice, SampledPath]]:
-    """The plan's path (a moving one) sampled in slices of at most ``CHUNK`` times, with
+    """The plan's path (a moving one) sampled in slices of at most ``KERNEL_CHUNK`` times, with
     where each goes in the result."""
     path = plan.path
     assert path.model is not None, "a static path has no model to sample"
     signs = joint_signs(path.model, path.frame, path.relative_to)
-    for part, piece in plan.parts(CHUNK):
+    for part, piece in plan.parts(KERNEL_CHUNK):
         yield part, sample_path(tree, piece, signs)
 
 
@@ -81,9 +84,8 @@ def sample_path(tree: TreeDescription, plan: QueryPlan, signs: dict[int, float]
     prepared, times = plan.path, plan.sample_times
     model = prepared.model
     assert model is not None, "a static path has no model to sample"
-    searches = SegmentSearches(tree, times, plan.shifts)
-    samples = sample_joints(tree, model, prepared.placed_keyframes, times, plan.shifts,
-                            searches)
+    searches = SegmentSearches(times, plan.shifts)
+    samples = sample_joints(prepared.samplers, times, plan.shifts, searches)
     ends = model.frame_parents([prepared.frame, prepared.relative_to])
     # the moving frames' free-flyers below another joint: their twists turn by its rotation
     flyer_parents = {index: joint.parent for index, joint in enumerate(model.joints)
@@ -104,7 +106,7 @@ def sample_path(tree: TreeDescription, plan: QueryPlan, signs: dict[int, float]
                         for index, parent in flyer_parents.items()}
     frame, relative_to = model.frame_placements_in_root(
         kept, [prepared.frame, prepared.relative_to])
-    return SampledPath(model, origins, parent_rotations, unit_twists,
+    return SampledPath(model, prepared.samplers, origins, parent_rotations, unit_twists,
                        (_rotations_first(frame[0]), _vectors_first(frame[1])),
                        (_rotations_first(relative_to[0]), _vectors_first(relative_to[1])),
                        signs, times, searches)

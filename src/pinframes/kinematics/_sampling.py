@@ -1,14 +1,19 @@
-"""Sampling a compiled path's joints at times: the one sampling step of every query and of
-:meth:`PinocchioTree.configurations`.
+"""How a compiled path's joints are sampled at times: the one sampling step of every query
+and of :meth:`PinocchioTree.configurations`.
 
-A free-flyer gets its moving frame's interpolated pose, a robot joint its value (radians or
-metres) from its trajectory, its mimic primary's, or its rest value (with one warning per
-tree version naming the joints without samples).
+A path is planned once with a sampler per joint (:func:`path_samplers`): a free-flyer is a
+:class:`MovingFrame` (its frame's keyframes), a robot joint a :class:`DrivenJoint` (the
+joint whose trajectory drives it, itself or its mimic primary, and the mimic links out to
+it). Sampling then reads the samplers alone: a free-flyer gets its moving frame's
+interpolated pose, a robot joint its value (radians or metres) from its driver's trajectory
+or its rest value (with one warning per tree version naming the joints without samples).
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+import math
+from collections.abc import Collection, Mapping, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -16,23 +21,117 @@ from numpy.typing import NDArray
 
 from ..errors import JointWithoutSamplesWarning, warn_at_caller
 from ..values.interpolation import Keyframes, Segments
-from ..values.joint import Joint
+from ..values.joint import Joint, mimic_chain
+from ..values.joint_trajectory import JointTrajectory
 from ..values.se3 import samples_first
+from ..values.timeline import TimedSource, source_reference
 from ._description import TreeDescription
 from ._model import CompiledModel
 
-__all__ = ["CHUNK", "SegmentSearches", "sample_configurations", "sample_joint_values",
-           "sample_joints", "warn_joints_without_samples"]
+__all__ = ["KERNEL_CHUNK", "DrivenJoint", "JointSampler", "MovingFrame", "SegmentSearches",
+           "frame_source", "joint_sampler", "joint_source", "path_samplers",
+           "sample_configurations", "sample_joints", "warn_joints_without_samples"]
 
-CHUNK = 1 << 12
-"""Samples evaluated at once: the temporaries of a chunk (under 300 kB each) stay in the
-CPU caches; 2,048-8,192 ran alike, 16,384 1.8x slower (Panda, 10^5 samples, one thread)."""
+KERNEL_CHUNK = 1 << 12
+"""Samples the numpy kernels evaluate at once: the temporaries of a chunk (under 300 kB
+each) stay in the CPU caches; 2,048-8,192 ran alike, 16,384 1.8x slower (Panda, 10^5
+samples, one thread)."""
+
+
+@dataclass(frozen=True)
+class MovingFrame:
+    """A free-flyer: the moving frame ``frame``, its keyframes in its parent (for Pinocchio's
+    configuration, whose model holds the joint's placement) and ``placed``, the same with
+    that placement folded in (:meth:`Keyframes.placed`, for the batched kernels)."""
+
+    frame: str
+    keyframes: Keyframes
+    placed: Keyframes
+
+
+@dataclass(frozen=True)
+class DrivenJoint:
+    """A robot joint: its value is that of ``primary`` (itself unless it mimics one) from
+    ``trajectory``, whose times it shares with the joints of ``time_group`` (see
+    :attr:`TreeDescription.time_groups`), or, without one, ``rest`` (radians or metres);
+    then each mimic link's ``(multiplier, offset)`` from the primary out to the joint."""
+
+    name: str
+    primary: str
+    trajectory: JointTrajectory | None
+    time_group: str
+    rest: float
+    mimics: tuple[tuple[float, float], ...]
+
+    @property
+    def multiplier(self) -> float:
+        """How fast the joint moves per unit velocity of its primary."""
+        return math.prod(multiplier for multiplier, _ in self.mimics)
+
+    def follow(self, primary: Any) -> Any:
+        """The joint's value(s) from its primary's."""
+        for multiplier, offset in self.mimics:
+            primary = multiplier * primary + offset
+        return primary
+
+
+JointSampler = MovingFrame | DrivenJoint
+
+
+def path_samplers(tree: TreeDescription, model: CompiledModel
+                  ) -> tuple[tuple[JointSampler, ...], tuple[TimedSource, ...]]:
+    """Per joint of ``model`` its sampler, and the moving frames and driven joints (a mimic
+    joint's chain of primaries included) whose samples they read."""
+    samplers: list[JointSampler] = []
+    sources: dict[str, TimedSource] = {}
+    for position, joint in enumerate(model.joints):
+        if joint.joint is None:
+            keyframes = tree.local_poses[joint.frame].keyframes
+            samplers.append(MovingFrame(joint.frame, keyframes,
+                                        keyframes.placed(model.joint_placements[position])))
+            sources[joint.frame] = frame_source(tree, joint.frame)
+            continue
+        chain = mimic_chain(joint.joint, tree.joints_by_name)
+        for link in chain:
+            if link.name in tree.joint_trajectories:
+                sources[link.name] = joint_source(tree, link.name)
+        samplers.append(_driven(tree, chain))
+    return tuple(samplers), tuple(sources.values())
+
+
+def frame_source(tree: TreeDescription, frame: str) -> TimedSource:
+    """The keyframe times of the moving frame ``frame`` and what they count from."""
+    pose = tree.local_poses[frame]
+    return TimedSource(frame, pose.keyframes.times,
+                       source_reference(pose.reference_time, tree.reference_time))
+
+
+def joint_source(tree: TreeDescription, joint_name: str) -> TimedSource:
+    """The sample times of the driven joint ``joint_name`` and what they count from."""
+    trajectory = tree.joint_trajectories[joint_name]
+    return TimedSource(joint_name, trajectory.times,
+                       source_reference(trajectory.reference, tree.reference_time))
+
+
+def joint_sampler(tree: TreeDescription, joint: Joint) -> DrivenJoint:
+    """The sampler of one robot joint of ``tree``."""
+    return _driven(tree, mimic_chain(joint, tree.joints_by_name))
+
+
+def _driven(tree: TreeDescription, chain: list[Joint]) -> DrivenJoint:
+    """The sampler of ``chain[0]``, driven by ``chain[-1]`` (see :func:`mimic_chain`)."""
+    primary = chain[-1]
+    trajectory = tree.joint_trajectories.get(primary.name)
+    return DrivenJoint(
+        chain[0].name, primary.name, trajectory,
+        "" if trajectory is None else tree.time_groups[primary.name], primary.rest_value,
+        tuple((link.mimic.multiplier, link.mimic.offset)
+              for link in reversed(chain[:-1]) if link.mimic is not None))
 
 
 class SegmentSearches:
     """Where one set of times (timeline basis, ns) falls among the samples of a query's
-    moving things: one search per moving frame and one per time group of joints
-    (:meth:`TreeDescription.time_group`: equal sample times and reference time), shared by
+    moving things: one search per moving frame and one per time group of joints, shared by
     everything taken at those times (poses, joint values, and their rates).
 
     Attributes
@@ -41,11 +140,9 @@ class SegmentSearches:
         The times; None for a path on which nothing is sampled.
     """
 
-    __slots__ = ("_found", "_shifts", "_tree", "times")
+    __slots__ = ("_found", "_shifts", "times")
 
-    def __init__(self, tree: TreeDescription, times: NDArray[np.int64] | None,
-                 shifts: dict[str, int]) -> None:
-        self._tree = tree
+    def __init__(self, times: NDArray[np.int64] | None, shifts: Mapping[str, int]) -> None:
         self.times = times
         self._shifts = shifts
         self._found: dict[tuple[str, str], Segments] = {}
@@ -54,9 +151,10 @@ class SegmentSearches:
         """The times among the keyframes of the moving frame ``frame`` (its own basis)."""
         return self._search(("frame", frame), frame, keyframe_times)
 
-    def of_joint(self, joint: str, sample_times: NDArray[np.int64]) -> Segments:
-        """The times among the samples of the driven joint ``joint`` (its own basis)."""
-        return self._search(("joints", self._tree.time_group(joint)), joint, sample_times)
+    def of_joint(self, joint: DrivenJoint, sample_times: NDArray[np.int64]) -> Segments:
+        """The times among the samples of the trajectory driving ``joint`` (its own
+        basis)."""
+        return self._search(("joints", joint.time_group), joint.primary, sample_times)
 
     def _search(self, key: tuple[str, str], source: str, sample_times: NDArray[np.int64]
                 ) -> Segments:
@@ -68,38 +166,46 @@ class SegmentSearches:
 
 
 def sample_joints(
-    tree: TreeDescription, model: CompiledModel, keyframes: Sequence[Keyframes | None],
-    times: NDArray[np.int64] | None, shifts: dict[str, int],
-    searches: SegmentSearches | None = None,
-    held: Mapping[str, NDArray[np.float64] | float] | None = None,
+    samplers: Sequence[JointSampler], times: NDArray[np.int64] | None,
+    shifts: Mapping[str, int], searches: SegmentSearches | None = None,
+    held: Mapping[str, NDArray[np.float64] | float] | None = None, placed: bool = True,
 ) -> list[Any]:
-    """Every joint of ``model`` at ``times`` (timeline basis, ns).
+    """Every joint of a path at ``times`` (timeline basis, ns).
 
-    A free-flyer gets its moving frame's ``(rotation, translation)`` from ``keyframes[i]``,
-    samples last (``(3, 3, N)``, ``(3, N)``); a robot joint its value(s) (radians or metres):
-    its trajectory, its mimic primary's, or 0. ``shifts`` holds, per source, what to
+    A free-flyer gets its moving frame's ``(rotation, translation)``, samples last (``(3,
+    3, N)``, ``(3, N)``), with its placement folded in (``placed``) or in its parent; a
+    robot joint its value(s) (radians or metres). ``shifts`` holds, per source, what to
     subtract from a timeline time to land on its own time basis; ``searches`` may pass the
     caller's :class:`SegmentSearches` of ``times`` (to reuse them for rates). ``held`` gives
     joints (by name) values (one, or one per time) instead of their samples; their mimic
     joints follow them.
     """
     if searches is None:
-        searches = SegmentSearches(tree, times, shifts)
-    cache: dict[str, NDArray[np.float64] | float] = dict(held or {})
+        searches = SegmentSearches(times, shifts)
+    values: dict[str, NDArray[np.float64] | float] = dict(held or {})
     samples: list[Any] = []
-    for joint, frames in zip(model.joints, keyframes, strict=True):
-        if joint.joint is None:
-            assert frames is not None
-            segments = searches.of_frame(joint.frame, frames.times)
-            samples.append(frames.transform_at(segments.times, segments))
-        else:
-            samples.append(sample_joint_values(tree, joint.joint, searches, cache))
+    for sampler in samplers:
+        if isinstance(sampler, MovingFrame):
+            keyframes = sampler.placed if placed else sampler.keyframes
+            segments = searches.of_frame(sampler.frame, keyframes.times)
+            samples.append(keyframes.transform_at(segments.times, segments))
+            continue
+        primary = values.get(sampler.primary)
+        if primary is None:
+            trajectory = sampler.trajectory
+            if trajectory is None:
+                primary = sampler.rest
+            else:
+                segments = searches.of_joint(sampler, trajectory.times)
+                primary = trajectory.sample(segments.times, segments)
+            values[sampler.primary] = primary
+        samples.append(sampler.follow(primary))
     return samples
 
 
 def sample_configurations(
-    tree: TreeDescription, model: CompiledModel, times: NDArray[np.int64],
-    shifts: dict[str, int], held: Mapping[str, NDArray[np.float64] | float] | None = None,
+    model: CompiledModel, samplers: Sequence[JointSampler], times: NDArray[np.int64],
+    shifts: Mapping[str, int], held: Mapping[str, NDArray[np.float64] | float] | None = None,
 ) -> NDArray[np.float64]:
     """Pinocchio configurations ``q`` of ``model``, shape ``(N, nq)``, at ``times`` (timeline
     basis, ns): each free-flyer the interpolated pose of its moving frame in the frame's
@@ -107,45 +213,21 @@ def sample_configurations(
     its value as :func:`sample_joints` gives it (with ``held``)."""
     if not model.joints:
         return np.zeros((times.shape[0], 0))
-    keyframes = [tree.local_poses[joint.frame].keyframes if joint.joint is None else None
-                 for joint in model.joints]
-    samples = sample_joints(tree, model, keyframes, times, shifts, held=held)
-    motions = [samples_first(sample) if joint.joint is None else None
-               for joint, sample in zip(model.joints, samples, strict=True)]
-    values = [None if joint.joint is None else sample
-              for joint, sample in zip(model.joints, samples, strict=True)]
+    samples = sample_joints(samplers, times, shifts, held=held, placed=False)
+    motions = [samples_first(sample) if isinstance(sampler, MovingFrame) else None
+               for sampler, sample in zip(samplers, samples, strict=True)]
+    values = [None if isinstance(sampler, MovingFrame) else sample
+              for sampler, sample in zip(samplers, samples, strict=True)]
     return model.configuration(motions, values, times.shape[0])
 
 
-def sample_joint_values(
-    tree: TreeDescription, joint: Joint, searches: SegmentSearches,
-    cache: dict[str, NDArray[np.float64] | float],
-) -> NDArray[np.float64] | float:
-    """Values of ``joint`` at the times of ``searches``: its trajectory, its mimic
-    primary's, or its rest value.
-
-    ``cache`` keeps the values per joint name for the other joints sampled at those times.
-    """
-    if joint.name in cache:
-        return cache[joint.name]
-    trajectory = tree.joint_trajectories.get(joint.name)
-    if joint.mimic is not None:
-        primary = sample_joint_values(tree, tree.joints_by_name[joint.mimic.joint], searches,
-                                      cache)
-        value = joint.mimic.multiplier * primary + joint.mimic.offset
-    elif trajectory is not None:
-        segments = searches.of_joint(joint.name, trajectory.times)
-        value = trajectory.sample(segments.times, segments)
-    else:
-        value = joint.rest_value
-        warn_joints_without_samples(tree)
-    cache[joint.name] = value
-    return value
-
-
-def warn_joints_without_samples(tree: TreeDescription) -> None:
+def warn_joints_without_samples(tree: TreeDescription, samplers: Sequence[JointSampler],
+                                held: Collection[str] = ()) -> None:
     """One :class:`JointWithoutSamplesWarning` per version of a tree, naming its joints
-    without samples."""
+    without samples, when one of ``samplers`` (but those ``held``) holds its rest value."""
+    if not any(isinstance(sampler, DrivenJoint) and sampler.trajectory is None
+               and sampler.primary not in held for sampler in samplers):
+        return
     if not tree.first_warning("joints without samples"):
         return
     idle = [name for name, joint in tree.joints_by_name.items()

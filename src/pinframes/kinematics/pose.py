@@ -4,7 +4,7 @@ when given none.
 The query is planned once (:func:`._plan.plan_query`: the path, prepared once per tree
 version, and the timeline); then a query at one or a few times takes Pinocchio's own forward
 kinematics time by time (:mod:`._one_time`), a longer one samples every joint
-(:mod:`._sampling`) and composes the path in chunks of :data:`~._sampling.CHUNK` samples
+(:mod:`._sampling`) and composes the path in chunks of :data:`~._sampling.KERNEL_CHUNK` samples
 with the sample axis last (:meth:`CompiledModel.forward_kinematics`).
 """
 
@@ -20,7 +20,7 @@ from ..values.timeconv import TimeAxis
 from ._description import TreeDescription
 from ._one_time import one_time_plan, takes_few_times
 from ._plan import QueryPlan, plan_query, require_finite_pose
-from ._sampling import CHUNK, sample_joints, warn_joints_without_samples
+from ._sampling import KERNEL_CHUNK, sample_joints
 
 __all__ = ["default_times", "evaluate_pose", "planned_pose", "planned_transforms"]
 
@@ -55,13 +55,10 @@ def planned_transforms(tree: TreeDescription, plan: QueryPlan) -> Transform:
     model = path.model
     assert model is not None
     if takes_few_times(plan.times, model):  # Pinocchio's own kinematics, time by time
-        one_time = one_time_plan(tree, path)
-        if one_time.holds_rest_values:
-            warn_joints_without_samples(tree)
-        rotation, translation = one_time.poses(plan.times, plan.shifts)
+        rotation, translation = one_time_plan(path).poses(plan.times, plan.shifts)
     else:
         rotation, translation = np.empty((plan.count, 3, 3)), np.empty((plan.count, 3))
-        for part, piece in plan.parts(CHUNK):
+        for part, piece in plan.parts(KERNEL_CHUNK):
             rotation[part], translation[part] = to_stacks(
                 _composed_path(tree, piece), part.stop - part.start)
     require_finite_pose(translation, path.frame, path.relative_to)
@@ -80,7 +77,7 @@ def _composed_path(tree: TreeDescription, plan: QueryPlan) -> Transform:
     path = plan.path
     model = path.model
     assert model is not None
-    samples = sample_joints(tree, model, path.placed_keyframes, plan.times, plan.shifts)
+    samples = sample_joints(path.samplers, plan.times, plan.shifts)
     frame_pose, reference_pose = model.forward_kinematics(
         samples, [path.frame, path.relative_to])
     return compose(inverse(reference_pose), frame_pose)

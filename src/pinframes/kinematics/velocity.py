@@ -18,12 +18,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..values.joint import Joint, mimic_primary
 from ..values.se3 import IDENTITY
 from ._description import TreeDescription
-from ._plan import PreparedPath, QueryPlan, plan_query
+from ._plan import QueryPlan, plan_query
 from ._sampled_path import SampledPath, sampled_parts
-from ._sampling import SegmentSearches
+from ._sampling import DrivenJoint, MovingFrame, SegmentSearches
 from ._twists import Twist, rotate, velocity_sum
 from .pose import planned_transforms
 
@@ -78,7 +77,7 @@ def planned_velocity(tree: TreeDescription, plan: QueryPlan, expressed_in: str) 
     linear, angular = np.zeros((plan.count, 3)), np.zeros((plan.count, 3))
     if plan.path.static is None:
         for part, path in sampled_parts(tree, plan):
-            linear_c, angular_c = _velocity_in_root(tree, plan.path, path)
+            linear_c, angular_c = _velocity_in_root(path)
             axes = (path.frame if expressed_in == frame else path.relative_to)[0]
             if axes is not IDENTITY[0]:  # the root's own axes need no turn
                 rotation_t = np.swapaxes(axes, -1, -2)
@@ -94,16 +93,15 @@ def planned_velocity(tree: TreeDescription, plan: QueryPlan, expressed_in: str) 
                     relative_to, expressed_in)
 
 
-def _velocity_in_root(tree: TreeDescription, prepared: PreparedPath, path: SampledPath
-                      ) -> tuple[FloatArray, FloatArray]:
+def _velocity_in_root(path: SampledPath) -> tuple[FloatArray, FloatArray]:
     """``(v, w)`` of the frame relative to the reference frame, in the root's axes."""
     twists: dict[int, Twist] = {}
-    for position, joint in enumerate(path.model.joints):
-        keyframes = prepared.placed_keyframes[position]
+    for position, sampler in enumerate(path.samplers):
         if position not in path.signs:
             continue
-        if keyframes is not None:  # a moving frame's free-flyer
-            segments = path.searches.of_frame(joint.frame, keyframes.times)
+        if isinstance(sampler, MovingFrame):  # a moving frame's free-flyer
+            keyframes = sampler.placed
+            segments = path.searches.of_frame(sampler.frame, keyframes.times)
             linear, angular = keyframes.rates(segments.times, segments)
             parent_rotation = path.parent_rotations.get(position)
             if parent_rotation is not None:
@@ -111,7 +109,7 @@ def _velocity_in_root(tree: TreeDescription, prepared: PreparedPath, path: Sampl
                 angular = rotate(parent_rotation, angular)
             twists[position] = (linear, angular)
             continue
-        rates = None if joint.joint is None else joint_rates(tree, joint.joint, path.searches)
+        rates = joint_rates(sampler, path.searches)
         if rates is not None:
             sliding, turning = path.unit_twists[position]
             twists[position] = (None if sliding is None else sliding * rates[:, None],
@@ -119,14 +117,12 @@ def _velocity_in_root(tree: TreeDescription, prepared: PreparedPath, path: Sampl
     return velocity_sum(path.signs, path.origins, twists, path.frame[1])
 
 
-def joint_rates(tree: TreeDescription, joint: Joint, searches: SegmentSearches
-                ) -> FloatArray | None:
+def joint_rates(joint: DrivenJoint, searches: SegmentSearches) -> FloatArray | None:
     """Velocities (N,) of ``joint`` at the times of ``searches``, rad/s or m/s: its
     trajectory's, or its mimic primary's times the product of the multipliers; None when
     no trajectory drives it."""
-    primary, multiplier = mimic_primary(joint, tree.joints_by_name)
-    trajectory = tree.joint_trajectories.get(primary.name)
+    trajectory = joint.trajectory
     if trajectory is None:
         return None
-    segments = searches.of_joint(primary.name, trajectory.times)
-    return multiplier * trajectory.rates(segments.times, segments)
+    segments = searches.of_joint(joint, trajectory.times)
+    return joint.multiplier * trajectory.rates(segments.times, segments)

@@ -26,7 +26,7 @@ from ...values.timeline import TimedSource
 from .._description import TreeDescription
 from .._model import CompiledModel
 from .._plan import PreparedPath, QueryPlan, plan_query, prepare_path
-from .._sampling import CHUNK, sample_configurations
+from .._sampling import KERNEL_CHUNK, sample_configurations
 from ._batch_check import measure_solutions
 from ._bounded_step import LeastSquares
 from ._newton_tracking import (
@@ -75,12 +75,12 @@ def evaluate_solve_joints(
     reference_id = _reference_id(model, reference)
     solver = LeastSquares()
     parts: list[Tracked] = []
-    for begin in range(0, moments.shape[0], CHUNK):
-        part = slice(begin, begin + CHUNK)
+    for begin in range(0, moments.shape[0], KERNEL_CHUNK):
+        part = slice(begin, begin + KERNEL_CHUNK)
         targets = _targets(target_pose, moments[part], shifts.get(_TARGET_SOURCE, 0))
         problem = TrackingProblem(
             model.model, model.data, model.frame_ids[frame], reference_id,
-            sample_configurations(tree, model, moments[part], shifts, held),
+            sample_configurations(model, path.samplers, moments[part], shifts, held),
             None if targets is None else _xyz_quaternions(targets),
             solved, error, tolerances[0], tolerances[1], ratios[part], solver)
         tracked = track_targets(problem, history, stop_when_unreached=strict)
@@ -107,7 +107,8 @@ def _plan(tree: TreeDescription, path: PreparedPath, solved: Mapping[str, float]
         assert target_times is not None
         sources.append(TimedSource(_TARGET_SOURCE, target_times.astype(np.int64),
                                    target.reference_time))
-    return plan_query(tree, path.frame, path.relative_to, times, time_ref, "clamp", sources)
+    return plan_query(tree, path.frame, path.relative_to, times, time_ref, "clamp", sources,
+                      held=solved)
 
 
 def _solved_joints(tree: TreeDescription, model: CompiledModel, joints: Any, frame: str,
