@@ -19,8 +19,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ExtrapolationError, InvalidPoseError, InvalidTimeError
-from ..values.numbers import require_finite_result
+from ..errors import ExtrapolationError, InvalidTimeError
+from ..values.numbers import require_finite_pose
 from ..values.se3 import Transform
 from ..values.timeconv import TimeAxis, parse_time_axis, timestamp_ns
 from ..values.timeline import QueryTimeline, TimedSource, plan_query_timeline
@@ -34,7 +34,7 @@ from ._sampling import (
 )
 
 __all__ = ["EXTRAPOLATION_POLICIES", "PreparedPath", "QueryPlan", "plan_query",
-           "prepare_path", "require_finite_pose"]
+           "prepare_path"]
 
 EXTRAPOLATION_POLICIES = ("clamp", "error")
 """Outside its keyframes a moving thing holds its first / last value, or the query fails."""
@@ -75,15 +75,6 @@ def prepare_path(tree: TreeDescription, frame: str, relative_to: str) -> Prepare
         path = PreparedPath(frame, relative_to, layout)
     tree.store(key, path)
     return path
-
-
-def require_finite_pose(translation: NDArray[np.float64], frame: str, relative_to: str
-                        ) -> None:
-    """An :class:`~pinframes.errors.InvalidPoseError` naming the frame when the pose of
-    ``frame`` in ``relative_to``, composed from finite poses, overflowed to infinity or NaN
-    (two translations of 1e308 m)."""
-    require_finite_result(translation, f"the pose of {frame!r} in {relative_to!r}",
-                          InvalidPoseError, frame=frame, field="translation")
 
 
 class QueryPlan:

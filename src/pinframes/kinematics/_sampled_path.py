@@ -13,11 +13,12 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ..values.interpolation import SegmentSearches
 from ..values.se3 import Transform
 from ._description import TreeDescription
 from ._model import CompiledModel
 from ._plan import QueryPlan
-from ._sampling import KERNEL_CHUNK, JointSampler, SegmentSearches, sample_joints
+from ._sampling import KERNEL_CHUNK, JointSampler, sample_joints
 from ._twists import Twist, joint_signs, robot_joint_axes
 
 __all__ = ["SampledPath", "sample_path", "sampled_parts"]

@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import JointWithoutSamplesWarning, warn_at_caller
-from ..values.interpolation import Keyframes, Segments
+from ..values.interpolation import Keyframes, SegmentSearches
 from ..values.joint import Joint, mimic_chain
 from ..values.joint_trajectory import JointTrajectory
 from ..values.se3 import samples_first
@@ -28,9 +28,9 @@ from ..values.timeline import TimedSource, source_reference
 from ._description import TreeDescription
 from ._model import CompiledModel
 
-__all__ = ["KERNEL_CHUNK", "DrivenJoint", "JointSampler", "MovingFrame", "SegmentSearches",
-           "frame_source", "joint_sampler", "joint_source", "path_samplers",
-           "sample_configurations", "sample_joints", "warn_joints_without_samples"]
+__all__ = ["KERNEL_CHUNK", "DrivenJoint", "JointSampler", "MovingFrame", "frame_source",
+           "joint_sampler", "joint_source", "path_samplers", "sample_configurations",
+           "sample_joints", "warn_joints_without_samples"]
 
 KERNEL_CHUNK = 1 << 12
 """Samples the numpy kernels evaluate at once: the temporaries of a chunk (under 300 kB
@@ -68,12 +68,6 @@ class DrivenJoint:
         """How fast the joint moves per unit velocity of its primary."""
         return math.prod(multiplier for multiplier, _ in self.mimics)
 
-    def follow(self, primary: Any) -> Any:
-        """The joint's value(s) from its primary's."""
-        for multiplier, offset in self.mimics:
-            primary = multiplier * primary + offset
-        return primary
-
 
 JointSampler = MovingFrame | DrivenJoint
 
@@ -83,34 +77,24 @@ def path_samplers(tree: TreeDescription, model: CompiledModel
     """Per joint of ``model`` its sampler, and the moving frames and driven joints (a mimic
     joint's chain of primaries included) whose samples they read."""
     samplers: list[JointSampler] = []
-    sources: dict[str, TimedSource] = {}
+    moving: dict[str, tuple[Any, np.datetime64 | None]] = {}  # times and own reference
     for position, joint in enumerate(model.joints):
         if joint.joint is None:
-            keyframes = tree.local_poses[joint.frame].keyframes
+            pose = tree.local_poses[joint.frame]
+            keyframes = pose.keyframes
             samplers.append(MovingFrame(joint.frame, keyframes,
                                         keyframes.placed(model.joint_placements[position])))
-            sources[joint.frame] = frame_source(tree, joint.frame)
+            moving[joint.frame] = (keyframes.times, pose.reference_time)
             continue
         chain = mimic_chain(joint.joint, tree.joints_by_name)
-        for link in chain:
-            if link.name in tree.joint_trajectories:
-                sources[link.name] = joint_source(tree, link.name)
         samplers.append(_driven(tree, chain))
-    return tuple(samplers), tuple(sources.values())
-
-
-def frame_source(tree: TreeDescription, frame: str) -> TimedSource:
-    """The keyframe times of the moving frame ``frame`` and what they count from."""
-    pose = tree.local_poses[frame]
-    return TimedSource(frame, pose.keyframes.times,
-                       source_reference(pose.reference_time, tree.reference_time))
-
-
-def joint_source(tree: TreeDescription, joint_name: str) -> TimedSource:
-    """The sample times of the driven joint ``joint_name`` and what they count from."""
-    trajectory = tree.joint_trajectories[joint_name]
-    return TimedSource(joint_name, trajectory.times,
-                       source_reference(trajectory.reference, tree.reference_time))
+        for link in chain:
+            driven = tree.joint_trajectories.get(link.name)
+            if driven is not None:
+                moving[link.name] = (driven.times, driven.reference)
+    sources = tuple(TimedSource(name, times, source_reference(own, tree.reference_time))
+                    for name, (times, own) in moving.items())
+    return tuple(samplers), sources
 
 
 def joint_sampler(tree: TreeDescription, joint: Joint) -> DrivenJoint:
@@ -129,40 +113,18 @@ def _driven(tree: TreeDescription, chain: list[Joint]) -> DrivenJoint:
               for link in reversed(chain[:-1]) if link.mimic is not None))
 
 
-class SegmentSearches:
-    """Where one set of times (timeline basis, ns) falls among the samples of a query's
-    moving things: one search per moving frame and one per time group of joints, shared by
-    everything taken at those times (poses, joint values, and their rates).
+def frame_source(tree: TreeDescription, frame: str) -> TimedSource:
+    """The keyframe times of the moving frame ``frame`` and what they count from."""
+    pose = tree.local_poses[frame]
+    return TimedSource(frame, pose.keyframes.times,
+                       source_reference(pose.reference_time, tree.reference_time))
 
-    Attributes
-    ----------
-    times : ndarray of int64 or None
-        The times; None for a path on which nothing is sampled.
-    """
 
-    __slots__ = ("_found", "_shifts", "times")
-
-    def __init__(self, times: NDArray[np.int64] | None, shifts: Mapping[str, int]) -> None:
-        self.times = times
-        self._shifts = shifts
-        self._found: dict[tuple[str, str], Segments] = {}
-
-    def of_frame(self, frame: str, keyframe_times: NDArray[np.int64]) -> Segments:
-        """The times among the keyframes of the moving frame ``frame`` (its own basis)."""
-        return self._search(("frame", frame), frame, keyframe_times)
-
-    def of_joint(self, joint: DrivenJoint, sample_times: NDArray[np.int64]) -> Segments:
-        """The times among the samples of the trajectory driving ``joint`` (its own
-        basis)."""
-        return self._search(("joints", joint.time_group), joint.primary, sample_times)
-
-    def _search(self, key: tuple[str, str], source: str, sample_times: NDArray[np.int64]
-                ) -> Segments:
-        found = self._found.get(key)
-        if found is None:
-            assert self.times is not None  # a moving thing is a source: the query has times
-            found = self._found[key] = Segments(sample_times, self.times - self._shifts[source])
-        return found
+def joint_source(tree: TreeDescription, joint_name: str) -> TimedSource:
+    """The sample times of the driven joint ``joint_name`` and what they count from."""
+    trajectory = tree.joint_trajectories[joint_name]
+    return TimedSource(joint_name, trajectory.times,
+                       source_reference(trajectory.reference, tree.reference_time))
 
 
 def sample_joints(
@@ -190,16 +152,19 @@ def sample_joints(
             segments = searches.of_frame(sampler.frame, keyframes.times)
             samples.append(keyframes.transform_at(segments.times, segments))
             continue
-        primary = values.get(sampler.primary)
-        if primary is None:
+        value = values.get(sampler.primary)
+        if value is None:
             trajectory = sampler.trajectory
             if trajectory is None:
-                primary = sampler.rest
+                value = sampler.rest
             else:
-                segments = searches.of_joint(sampler, trajectory.times)
-                primary = trajectory.sample(segments.times, segments)
-            values[sampler.primary] = primary
-        samples.append(sampler.follow(primary))
+                segments = searches.of_joints(sampler.time_group, sampler.primary,
+                                              trajectory.times)
+                value = trajectory.sample(segments.times, segments)
+            values[sampler.primary] = value
+        for multiplier, offset in sampler.mimics:  # from the primary out to the joint
+            value = multiplier * value + offset
+        samples.append(value)
     return samples
 
 

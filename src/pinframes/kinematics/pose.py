@@ -14,12 +14,13 @@ from typing import Any
 
 import numpy as np
 
+from ..values.numbers import require_finite_pose
 from ..values.pose import Pose, trusted_pose
 from ..values.se3 import Transform, compose, inverse, to_stacks
 from ..values.timeconv import TimeAxis
 from ._description import TreeDescription
 from ._one_time import one_time_plan, takes_few_times
-from ._plan import QueryPlan, plan_query, require_finite_pose
+from ._plan import QueryPlan, plan_query
 from ._sampling import KERNEL_CHUNK, sample_joints
 
 __all__ = ["default_times", "evaluate_pose", "planned_pose", "planned_transforms"]
@@ -30,18 +31,19 @@ def evaluate_pose(
     extrapolation: str,
 ) -> Pose:
     """``tree.pose(frame, relative_to, times, time_ref)``; arguments already checked."""
-    return planned_pose(tree, plan_query(tree, frame, relative_to, times, time_ref,
-                                         extrapolation))
+    plan = plan_query(tree, frame, relative_to, times, time_ref, extrapolation)
+    return planned_pose(tree, plan)
 
 
 def planned_pose(tree: TreeDescription, plan: QueryPlan) -> Pose:
     """The pose of the plan's frame in its reference frame at the plan's times."""
-    offsets = plan.offsets
-    if offsets is None and plan.path.static is not None:
-        return trusted_pose(*plan.path.static)
-    rotation, translation = planned_transforms(tree, plan)
-    if offsets is None:
-        return trusted_pose(rotation[0], translation[0])
+    path, offsets = plan.path, plan.offsets
+    if offsets is None and path.static is not None:
+        rotation, translation = path.static
+    else:
+        rotation, translation = planned_transforms(tree, plan)
+        if offsets is None:
+            rotation, translation = rotation[0], translation[0]
     return trusted_pose(rotation, translation, offsets, plan.reference_time)
 
 
@@ -50,17 +52,20 @@ def planned_transforms(tree: TreeDescription, plan: QueryPlan) -> Transform:
     ``(N, 3, 3)`` rotations and ``(N, 3)`` translations (metres); ``N`` is 1 for a static
     result."""
     path = plan.path
-    if path.static is not None:  # checked once, when it was prepared
-        return to_stacks(path.static, plan.count)
     model = path.model
-    assert model is not None
+    if model is None:  # a static path, checked once when it was prepared
+        assert path.static is not None
+        return to_stacks(path.static, plan.count)
     if takes_few_times(plan.times, model):  # Pinocchio's own kinematics, time by time
         rotation, translation = one_time_plan(path).poses(plan.times, plan.shifts)
-    else:
+    else:  # the numpy kernels, samples last, a chunk at a time
+        ends = [path.frame, path.relative_to]
         rotation, translation = np.empty((plan.count, 3, 3)), np.empty((plan.count, 3))
         for part, piece in plan.parts(KERNEL_CHUNK):
+            samples = sample_joints(path.samplers, piece.times, piece.shifts)
+            frame_pose, reference_pose = model.forward_kinematics(samples, ends)
             rotation[part], translation[part] = to_stacks(
-                _composed_path(tree, piece), part.stop - part.start)
+                compose(inverse(reference_pose), frame_pose), part.stop - part.start)
     require_finite_pose(translation, path.frame, path.relative_to)
     return rotation, translation
 
@@ -69,15 +74,3 @@ def default_times(tree: TreeDescription, frame: str, relative_to: str) -> TimeAx
     """The times ``tree.pose(frame, relative_to)`` evaluates at when given none."""
     plan = plan_query(tree, frame, relative_to, None, None, "clamp")
     return None if plan.offsets is None else TimeAxis(plan.offsets, plan.reference_time)
-
-
-def _composed_path(tree: TreeDescription, plan: QueryPlan) -> Transform:
-    """The pose of the query frame in the reference frame at the plan's times, samples
-    last (see :mod:`pinframes.values.se3`)."""
-    path = plan.path
-    model = path.model
-    assert model is not None
-    samples = sample_joints(path.samplers, plan.times, plan.shifts)
-    frame_pose, reference_pose = model.forward_kinematics(
-        samples, [path.frame, path.relative_to])
-    return compose(inverse(reference_pose), frame_pose)

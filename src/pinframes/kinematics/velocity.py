@@ -18,11 +18,12 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from ..values.interpolation import SegmentSearches
 from ..values.se3 import IDENTITY
 from ._description import TreeDescription
 from ._plan import QueryPlan, plan_query
 from ._sampled_path import SampledPath, sampled_parts
-from ._sampling import DrivenJoint, MovingFrame, SegmentSearches
+from ._sampling import DrivenJoint, MovingFrame
 from ._twists import Twist, rotate, velocity_sum
 from .pose import planned_transforms
 
@@ -124,5 +125,5 @@ def joint_rates(joint: DrivenJoint, searches: SegmentSearches) -> FloatArray | N
     trajectory = joint.trajectory
     if trajectory is None:
         return None
-    segments = searches.of_joint(joint, trajectory.times)
+    segments = searches.of_joints(joint.time_group, joint.primary, trajectory.times)
     return joint.multiplier * trajectory.rates(segments.times, segments)
