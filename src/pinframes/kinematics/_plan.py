@@ -19,16 +19,16 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ExtrapolationError, InvalidTimeError
+from ..errors import ExtrapolationError
 from ..values.numbers import require_finite_pose
 from ..values.se3 import Transform
-from ..values.timeconv import TimeAxis, parse_time_axis, timestamp_ns
+from ..values.timeconv import parse_time_axis
 from ..values.timeline import QueryTimeline, TimedSource, plan_query_timeline
 from ._description import ModelLayout, TreeDescription
 from ._model import CompiledModel
 from ._sampling import (
     JointSampler,
-    frame_source,
+    frame_times,
     path_samplers,
     warn_joints_without_samples,
 )
@@ -77,6 +77,7 @@ def prepare_path(tree: TreeDescription, frame: str, relative_to: str) -> Prepare
     return path
 
 
+@dataclass(frozen=True, slots=True)
 class QueryPlan:
     """A query's path, its timeline and its sources' shifts, made once per call.
 
@@ -86,29 +87,24 @@ class QueryPlan:
         The path from the query frame to the reference frame.
     timeline : QueryTimeline
         The query's times on one basis, and the reference time of its result.
-    times : ndarray of int64 or None
-        The times evaluated (timeline basis, ns): all of the timeline's, or one part of
-        them (:meth:`part`); None when nothing is sampled (a static result).
-    offsets : ndarray of int64 or None
-        The result's times for those samples, ns after :attr:`reference_time`.
     shifts : dict of str to int
         Per sampled source (moving frame, driven joint), what to subtract from a timeline
         time to land on its own time basis (ns).
     extrapolation : str
         The policy checked for every path planned on this timeline.
+    times : ndarray of int64 or None
+        The times evaluated (timeline basis, ns): all of the timeline's, or one part of
+        them (:meth:`parts`); None when nothing is sampled (a static result).
+    offsets : ndarray of int64 or None
+        The result's times for those samples, ns after :attr:`reference_time`.
     """
 
-    __slots__ = ("extrapolation", "offsets", "path", "shifts", "timeline", "times")
-
-    def __init__(self, path: PreparedPath, timeline: QueryTimeline, shifts: dict[str, int],
-                 extrapolation: str, times: NDArray[np.int64] | None,
-                 offsets: NDArray[np.int64] | None) -> None:
-        self.path = path
-        self.timeline = timeline
-        self.shifts = shifts
-        self.extrapolation = extrapolation
-        self.times = times
-        self.offsets = offsets
+    path: PreparedPath
+    timeline: QueryTimeline
+    shifts: dict[str, int]
+    extrapolation: str
+    times: NDArray[np.int64] | None
+    offsets: NDArray[np.int64] | None
 
     @property
     def count(self) -> int:
@@ -135,8 +131,12 @@ class QueryPlan:
         """The plan of another path at this plan's times (its sources checked against
         ``extrapolation``, by default this plan's)."""
         path = prepare_path(tree, frame, relative_to)
-        return _planned(tree, path, path.sources, (), self.timeline,
-                        extrapolation or self.extrapolation, self.times, self.offsets)
+        policy, timeline, times = extrapolation or self.extrapolation, self.timeline, self.times
+        warn_joints_without_samples(tree, path.samplers)
+        if policy == "error" and times is not None:
+            timeline.require_within(path.sources, times)
+        return QueryPlan(path, timeline, timeline.shifts(path.sources), policy, times,
+                         self.offsets)
 
     def parts(self, size: int) -> Iterator[tuple[slice, QueryPlan]]:
         """The plan in slices of at most ``size`` samples, with where each goes in the
@@ -170,60 +170,25 @@ def plan_query(
     if extrapolation not in EXTRAPOLATION_POLICIES:
         raise ExtrapolationError(f"expected one of {', '.join(EXTRAPOLATION_POLICIES)}, "
                                  f"got {extrapolation!r}", field="extrapolation")
-    requested = None
-    if times is not None:
-        requested = (_frame_times(tree, times) if isinstance(times, str) and times in tree.depths
-                     else parse_time_axis(times, field="times"))
     path = prepare_path(tree, frame, relative_to)
     planned = tuple(source for source in path.sources if source.name not in held
                     ) if sources is None else tuple(sources)
+    requested = None
+    if isinstance(times, str) and times in tree.depths:
+        requested = frame_times(tree, times)
+    elif times is not None:
+        requested = parse_time_axis(times, field="times")
     timeline = _NO_TIMELINE
     if requested is not None or planned:
         timeline = plan_query_timeline(list(planned), requested, time_ref, tree.reference_time,
                                        tree.has_frame_references)
-    return _planned(tree, path, planned, held, timeline, extrapolation,
-                    timeline.evaluation_times, timeline.result_offsets)
+    evaluated = timeline.evaluation_times
+    warn_joints_without_samples(tree, path.samplers, held)
+    if extrapolation == "error" and evaluated is not None:
+        timeline.require_within(path.sources, evaluated)
+    return QueryPlan(path, timeline, timeline.shifts((*path.sources, *planned)), extrapolation,
+                     evaluated, timeline.result_offsets)
 
 
 _NO_TIMELINE = QueryTimeline(None, False, None)
 """The timeline of a query without times on a path on which nothing is sampled."""
-
-
-def _frame_times(tree: TreeDescription, frame: str) -> TimeAxis:
-    """The keyframe times of the moving frame ``frame``, for ``times=frame``."""
-    if not tree.is_moving(frame):
-        raise InvalidTimeError(f"frame {frame!r} does not move, so it has no times to take "
-                               "(a string naming a frame means that frame's keyframe times; "
-                               "pass seconds as a number or as '5s')", field="times")
-    source = frame_source(tree, frame)
-    return TimeAxis(source.times, source.reference)
-
-
-def _planned(tree: TreeDescription, path: PreparedPath, sources: Iterable[TimedSource],
-             held: Collection[str], timeline: QueryTimeline, extrapolation: str,
-             times: NDArray[np.int64] | None, offsets: NDArray[np.int64] | None) -> QueryPlan:
-    """The plan of ``path`` on ``timeline`` at ``times``: each source's shift, its
-    keyframes checked against the ``extrapolation`` policy; the warning about joints that
-    hold their rest value (but those ``held``)."""
-    warn_joints_without_samples(tree, path.samplers, held)
-    absolute = timeline.absolute
-    shifts = {source.name: (timestamp_ns(source.reference)
-                            if absolute and source.reference is not None else 0)
-              for source in (*path.sources, *sources)}
-    if extrapolation == "error" and times is not None:
-        _check_within_keyframes(path.sources, absolute, times)
-    return QueryPlan(path, timeline, shifts, extrapolation, times, offsets)
-
-
-def _check_within_keyframes(sources: Iterable[TimedSource], absolute: bool,
-                            requested: NDArray[np.int64]) -> None:
-    first, last = requested.min(), requested.max()
-    for source in sources:
-        keyframes = source.on_basis(absolute)
-        early, late = keyframes[0] - first, last - keyframes[-1]
-        if early > 0 or late > 0:
-            sides = ([f"{early / 1e9:.9g} s before its first keyframe"] if early > 0 else []) + (
-                [f"{late / 1e9:.9g} s after its last keyframe"] if late > 0 else [])
-            raise ExtrapolationError(
-                f"requested times reach {' and '.join(sides)} (extrapolation='error')",
-                frame=source.name, field="times")

@@ -19,17 +19,18 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import JointWithoutSamplesWarning, warn_at_caller
+from ..errors import InvalidTimeError, JointWithoutSamplesWarning, warn_at_caller
 from ..values.interpolation import Keyframes, SegmentSearches
 from ..values.joint import Joint, mimic_chain
 from ..values.joint_trajectory import JointTrajectory
 from ..values.se3 import samples_first
+from ..values.timeconv import TimeAxis
 from ..values.timeline import TimedSource, source_reference
 from ._description import TreeDescription
 from ._model import CompiledModel
 
 __all__ = ["KERNEL_CHUNK", "DrivenJoint", "JointSampler", "MovingFrame", "frame_source",
-           "joint_sampler", "joint_source", "path_samplers", "sample_configurations",
+           "frame_times", "joint_sampler", "joint_source", "path_samplers", "sample_configurations",
            "sample_joints", "warn_joints_without_samples"]
 
 KERNEL_CHUNK = 1 << 12
@@ -79,19 +80,18 @@ def path_samplers(tree: TreeDescription, model: CompiledModel
     samplers: list[JointSampler] = []
     moving: dict[str, tuple[Any, np.datetime64 | None]] = {}  # times and own reference
     for position, joint in enumerate(model.joints):
-        if joint.joint is None:
-            pose = tree.local_poses[joint.frame]
-            keyframes = pose.keyframes
-            samplers.append(MovingFrame(joint.frame, keyframes,
-                                        keyframes.placed(model.joint_placements[position])))
-            moving[joint.frame] = (keyframes.times, pose.reference_time)
+        if joint.joint is not None:
+            samplers.append(joint_sampler(tree, joint.joint))
+            for link in mimic_chain(joint.joint, tree.joints_by_name):
+                driven = tree.joint_trajectories.get(link.name)
+                if driven is not None:
+                    moving[link.name] = (driven.times, driven.reference)
             continue
-        chain = mimic_chain(joint.joint, tree.joints_by_name)
-        samplers.append(_driven(tree, chain))
-        for link in chain:
-            driven = tree.joint_trajectories.get(link.name)
-            if driven is not None:
-                moving[link.name] = (driven.times, driven.reference)
+        pose = tree.local_poses[joint.frame]
+        keyframes = pose.keyframes
+        samplers.append(MovingFrame(joint.frame, keyframes,
+                                    keyframes.placed(model.joint_placements[position])))
+        moving[joint.frame] = (keyframes.times, pose.reference_time)
     sources = tuple(TimedSource(name, times, source_reference(own, tree.reference_time))
                     for name, (times, own) in moving.items())
     return tuple(samplers), sources
@@ -99,18 +99,24 @@ def path_samplers(tree: TreeDescription, model: CompiledModel
 
 def joint_sampler(tree: TreeDescription, joint: Joint) -> DrivenJoint:
     """The sampler of one robot joint of ``tree``."""
-    return _driven(tree, mimic_chain(joint, tree.joints_by_name))
-
-
-def _driven(tree: TreeDescription, chain: list[Joint]) -> DrivenJoint:
-    """The sampler of ``chain[0]``, driven by ``chain[-1]`` (see :func:`mimic_chain`)."""
+    chain = mimic_chain(joint, tree.joints_by_name)
     primary = chain[-1]
     trajectory = tree.joint_trajectories.get(primary.name)
     return DrivenJoint(
-        chain[0].name, primary.name, trajectory,
+        joint.name, primary.name, trajectory,
         "" if trajectory is None else tree.time_groups[primary.name], primary.rest_value,
         tuple((link.mimic.multiplier, link.mimic.offset)
               for link in reversed(chain[:-1]) if link.mimic is not None))
+
+
+def frame_times(tree: TreeDescription, frame: str) -> TimeAxis:
+    """The keyframe times of the moving frame ``frame``, for a query's ``times=frame``."""
+    if not tree.is_moving(frame):
+        raise InvalidTimeError(f"frame {frame!r} does not move, so it has no times to take "
+                               "(a string naming a frame means that frame's keyframe times; "
+                               "pass seconds as a number or as '5s')", field="times")
+    source = frame_source(tree, frame)
+    return TimeAxis(source.times, source.reference)
 
 
 def frame_source(tree: TreeDescription, frame: str) -> TimedSource:
