@@ -387,9 +387,14 @@ class _SampleSolver:
 
     def _served(self, q: FloatArray, target: pin.SE3 | None, solved: Solved) -> Solved:
         """``solved`` moved by the objective's motion in the task's null space, when the
-        tool gets back within its tolerances from there; else ``solved``."""
+        tool gets back within its tolerances from there; else ``solved`` (with its margin
+        measured afresh when that is wide enough for the objective to ask nothing: the
+        bound carried from sample to sample stays above it for a while)."""
         assert self.objective is not None
         theta = solved[0]
+        margin = self.limits.margin(theta.tolist())
+        if margin >= self.objective_margin:
+            return solved[0], solved[1], solved[2], solved[3], margin
         motion = self.objective.motion(theta)
         if motion is None or self.rows is None:
             return solved
