@@ -395,7 +395,8 @@ class _SampleSolver:
         margin = self.limits.margin(theta.tolist())
         if margin >= self.objective_margin:
             return solved[0], solved[1], solved[2], solved[3], margin
-        motion = self.objective.motion(theta)
+        self.joints.set_configuration(q, theta)
+        motion = self.objective.motion(theta, q)
         if motion is None or self.rows is None:
             return solved
         moved = self.limits.clipped(theta + null_space_motion(self.least_squares, self.rows,

@@ -10,8 +10,9 @@ there, the motion is dropped: an objective never costs the primary task anything
 objective that asks for nothing (None) leaves the solution as it is, so a static target keeps
 a static solution.
 
-:class:`AwayFromLimits` is the one the solver uses; others (keeping a frame's axis upright,
-a window of tilt angles) follow the :class:`NullSpaceObjective` protocol.
+:class:`AwayFromLimits` is the one ``solve_joints`` passes (``TrackingProblem.objective``);
+others (keeping a frame's axis upright, a window of tilt angles) follow the
+:class:`NullSpaceObjective` protocol and take its place, or add their motions to its.
 """
 
 from __future__ import annotations
@@ -40,9 +41,11 @@ class NullSpaceObjective(Protocol):
 
     quiet_margin: float
 
-    def motion(self, theta: FloatArray) -> FloatArray | None:
+    def motion(self, theta: FloatArray, configuration: FloatArray) -> FloatArray | None:
         """The joint motion (n,) wanted at the solution ``theta`` (n,), radians or metres;
-        None when there is nothing to do (the common case: it must be cheap then)."""
+        None when there is nothing to do. ``configuration`` is the sample's Pinocchio ``q``
+        (nq,) with ``theta`` in it: an objective about a frame's pose (a torch kept flat)
+        runs forward kinematics of it on the model it was made with."""
 
 
 BAND = 0.1
@@ -70,7 +73,7 @@ class AwayFromLimits:
         self.quiet_margin = float(self._band.max()) if self._band.shape[0] else 0.0
         self._limits = limits
 
-    def motion(self, theta: FloatArray) -> FloatArray | None:
+    def motion(self, theta: FloatArray, configuration: FloatArray) -> FloatArray | None:
         """:data:`PUSH` of each joint's depth inside its band, away from the limit."""
         if not self._limits.margin(theta.tolist()) < self.quiet_margin:
             return None
