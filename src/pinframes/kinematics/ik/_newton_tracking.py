@@ -267,8 +267,8 @@ def track_targets(problem: TrackingProblem, history: TrackingHistory,
     for index, (ratio, still) in enumerate(zip(ratios, stills, strict=True)):
         if not history.after_a_miss:
             last, step, margin = history.start(ratio)
-            if still:
-                solved = solve(index, last, margin, True, False)
+            if still:  # nothing moved: the last solution stands (no objective either)
+                solved = solve(index, last, margin, True, False, False)
             elif step is None:
                 solved = solve(index, last, margin, True, True)
             else:
@@ -339,10 +339,10 @@ class _SampleSolver:
         return last + step, margin - changes
 
     def solve(self, index: int, theta: FloatArray, margin: float, trust_newton: bool,
-              bridge: bool) -> Solved:
+              bridge: bool, serve: bool = True) -> Solved:
         """Sample ``index`` from ``theta``, with ``bridge`` bridged when far from its target
-        (see the module docstring; a prediction is not far), then offered to the secondary
-        objective: the solution (the best configuration when the target is not reached), its
+        (see the module docstring; a prediction is not far), then with ``serve`` offered to
+        the secondary objective: the solution (the best configuration when the target is not reached), its
         position and orientation errors, whether it is reached and a lower bound of its
         margin inside the limits. ``margin`` is one of ``theta`` (0: not known, then
         ``theta`` is checked joint by joint). With ``trust_newton``, a full step from
@@ -359,7 +359,7 @@ class _SampleSolver:
                 theta, margin = bridged, 0.0
         solved = self._newton(q, target, self.error, theta, margin, self.position_tolerance,
                               self.orientation_tolerance, MAX_ITERATIONS, trust_newton)
-        if solved[3] and solved[4] < self.objective_margin:
+        if serve and solved[3] and solved[4] < self.objective_margin:
             return self._served(q, target, solved)
         return solved
 
@@ -397,10 +397,11 @@ class _SampleSolver:
             return solved[0], solved[1], solved[2], solved[3], margin
         self.joints.set_configuration(q, theta)
         motion = self.objective.motion(theta, q)
-        if motion is None or self.rows is None:
+        if motion is None:
             return solved
-        moved = self.limits.clipped(theta + null_space_motion(self.least_squares, self.rows,
-                                                              motion))
+        tool_in_reference = self._tool_in_reference(q)  # the task's rows at the solution
+        rows = self.error.rows(self.joints.jacobian(self._tool_jacobian(q, tool_in_reference)))
+        moved = self.limits.clipped(theta + null_space_motion(self.least_squares, rows, motion))
         served = self._newton(q, target, self.error, moved, 0.0, self.position_tolerance,
                               self.orientation_tolerance, MAX_ITERATIONS, False)
         return served if served[3] else solved

@@ -43,13 +43,17 @@ from ._starts import track_from_the_best_start
 from ._tool_error import AXES, AxisMatch, PoseMatch, ToolMatch
 from .joint_solution import JointSolution
 
-__all__ = ["SMALLEST_TOLERANCE", "evaluate_solve_joints"]
+__all__ = ["SMALLEST_TOLERANCE", "STILL", "evaluate_solve_joints"]
 
 FloatArray = NDArray[np.float64]
 
 SMALLEST_TOLERANCE = 1e-12
 """The smallest position (m) and orientation (rad) tolerance: errors of poses a few metres
 from their origin are not resolved much below it in double precision."""
+
+STILL = 1e-12
+"""Metres, radians or quaternion components by which a sample may differ from the one
+before and still stand still (interpolation between equal keyframes rounds)."""
 
 _TARGET_SOURCE = "<target pose>"
 """Name of a time-dependent target pose among the timeline's sources."""
@@ -241,11 +245,11 @@ def _step_ratios(moments: NDArray[np.int64]) -> FloatArray:
 def _standing_still(configurations: FloatArray, targets: FloatArray | None
                     ) -> NDArray[np.bool_]:
     """Per sample, whether its configuration (everything not solved for) and its target
-    rows equal the sample's before (False for the first)."""
+    rows are those of the sample before, to :data:`STILL` (False for the first)."""
     still = np.zeros(configurations.shape[0], dtype=bool)
-    still[1:] = np.all(configurations[1:] == configurations[:-1], axis=1)
+    still[1:] = np.all(np.abs(configurations[1:] - configurations[:-1]) <= STILL, axis=1)
     if targets is not None:
-        still[1:] &= np.all(targets[1:] == targets[:-1], axis=1)
+        still[1:] &= np.all(np.abs(targets[1:] - targets[:-1]) <= STILL, axis=1)
     return still
 
 
