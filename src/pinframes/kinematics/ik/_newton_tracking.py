@@ -342,9 +342,9 @@ class _SampleSolver:
               bridge: bool, serve: bool = True) -> Solved:
         """Sample ``index`` from ``theta``, with ``bridge`` bridged when far from its target
         (see the module docstring; a prediction is not far), then with ``serve`` offered to
-        the secondary objective: the solution (the best configuration when the target is not reached), its
-        position and orientation errors, whether it is reached and a lower bound of its
-        margin inside the limits. ``margin`` is one of ``theta`` (0: not known, then
+        the secondary objective: the solution (the best configuration when the target is
+        not reached), its position and orientation errors, whether it is reached and a lower
+        bound of its margin inside the limits. ``margin`` is one of ``theta`` (0: not known, then
         ``theta`` is checked joint by joint). With ``trust_newton``, a full step from
         within the quadratic region ends the sample unmeasured: errors NaN, reached True."""
         q = self.configurations[index]  # the solved joints are written into it
