@@ -156,3 +156,52 @@ def test_solve_reproduces_the_bundled_robot_motion(run_cli, tmp_path):
     # two solutions within 1e-6 m and 1e-6 rad of one target differ by a few micro-radians
     # at the joints (the torch is about 0.5 m from the wrist)
     np.testing.assert_allclose(positions, recorded, atol=5e-6)
+
+
+def test_solve_keeps_a_seam_flat_with_a_positioner(run_cli, tmp_path):
+    """--flat: a tilt-turn positioner turns a seam whose face turns a quarter turn about
+    the faceplate's z so that the face looks up; the CSV checked with Pinocchio on the
+    positioner's URDF."""
+    from ik_paths import example_robot, serial_urdf
+    positioner = tmp_path / "positioner.urdf"
+    positioner.write_text(serial_urdf("positioner", [
+        ("tilt_x", "revolute", "cradle", "0 0 0.3", -2.0, 2.0),
+        ("turn", "revolute", "faceplate", "0 0 0", -6.0, 6.0)]))
+    half = np.pi / 8  # half the quarter turn
+    scene = tmp_path / "pipe.yaml"
+    scene.write_text(textwrap.dedent(f"""\
+        pinframes_scene: 1
+        name: pipe
+        frames:
+          - {{name: positioner_base, parent: world, xyz: [0.55, 0, 0]}}
+          - name: seam
+            parent: pos/faceplate
+            xyz: [0, 0, 0.05]
+            keyframes:
+              - {{time: 0, quaternion: [0.5, 0.5, 0.5, 0.5]}}
+              - {{time: 1, quaternion: [0, {float(np.sin(half))!r}, 0, {float(np.cos(half))!r}]}}
+          - {{name: torch_target, parent: seam, xyz: [0, 0, 0.1], quaternion: [1, 0, 0, 0]}}
+        robots:
+          - {{name: ur5, urdf: {example_robot("ur5_robot.urdf")}, parent: world, prefix: ur/}}
+          - {{name: positioner, urdf: {positioner}, parent: positioner_base, prefix: pos/}}
+        """))
+    arm = [f"ur/{name}" for name in ("shoulder_pan_joint", "shoulder_lift_joint",
+                                     "elbow_joint", "wrist_1_joint", "wrist_2_joint",
+                                     "wrist_3_joint")]
+    result = run_cli("solve", scene, "--frame", "ur/tool0", "--target", "torch_target",
+                     "--free-axis", "z", "--joints", *arm, "pos/tilt_x", "pos/turn",
+                     "--flat", "seam", "--up", "0", "0", "2", "--times", "0", "0.5", "1")
+    assert result.returncode == 0, result.stderr
+    assert "3 samples, 3 reached" in result.stderr
+    rows = np.array([[float(cell) for cell in line.split(",")]
+                     for line in result.stdout.splitlines()[1:]])
+    model = pin.buildModelFromUrdf(str(positioner))
+    data = model.createData()
+    plate = model.getFrameId("faceplate")
+    for time, tilt, turn in rows[:, [0, 7, 8]]:
+        pin.framesForwardKinematics(model, data, np.array([tilt, turn]))
+        start = pin.Quaternion(0.5, 0.5, 0.5, 0.5).matrix()  # w x y z
+        later = pin.Quaternion(np.cos(half), 0.0, np.sin(half), 0.0).matrix()
+        seam = pin.Quaternion(start).slerp(time, pin.Quaternion(later)).matrix()
+        face = data.oMf[plate].rotation @ seam[:, 2]
+        assert np.degrees(np.arccos(min(1.0, face[2]))) <= 2.0

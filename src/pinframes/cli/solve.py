@@ -44,6 +44,13 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         help="the joints to solve for, as the tree names them (default: every "
                         "robot joint between the tool and the lowest common ancestor of the "
                         "two frames); may name a positioner's joints to solve both together")
+    parser.add_argument("--flat", metavar="FRAME",
+                        help="a frame the solved joints move (a seam on a positioner solved "
+                        "with the robot): with the tool on its target, the joints left over "
+                        "turn its z up as far as they can (flat welding, PA)")
+    parser.add_argument("--up", nargs=3, type=float, metavar=("X", "Y", "Z"),
+                        help="the direction --flat turns its frame's z toward, in the root's "
+                        "axes (default: 0 0 1)")
     parser.add_argument("--position-tolerance", type=float, default=1e-6, metavar="M",
                         help="metres (default: 1e-6)")
     parser.add_argument("--orientation-tolerance", type=float, default=1e-6, metavar="RAD",
@@ -60,12 +67,13 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 def run(args: argparse.Namespace) -> int:
     """Solve, write the CSV, print the summary."""
     tree = read_tree(args.file)
-    require_frames(tree, args.file, args.frame, args.target)
+    require_frames(tree, args.file, args.frame, args.target, args.flat)
     times = requested_times(args, tree, args.frame, args.target)
     solution = tree.solve_joints(
         args.frame, args.target, times=None if times is None else times.as_numpy(),
         time_ref=args.time_ref, joints=args.joints,
-        free_axis=args.free_axis, position_tolerance=args.position_tolerance,
+        free_axis=args.free_axis, flat=args.flat, up=args.up,
+        position_tolerance=args.position_tolerance,
         orientation_tolerance=args.orientation_tolerance, strict=args.strict)
     moments = solution.absolute_times
     write_text(joint_trajectory_csv(solution.seconds if moments is None else moments,

@@ -298,7 +298,8 @@ class TreeQueries(TreeStructure):
         self, frame: str, target: str | Pose, *, relative_to: str | None = None,
         times: Any = None, time_ref: Any = None, joints: Sequence[str] | None = None,
         free_axis: str | None = None, seed: Any = None, position_tolerance: float = 1e-6,
-        orientation_tolerance: float = 1e-6, strict: bool = False,
+        orientation_tolerance: float = 1e-6, strict: bool = False, flat: str | None = None,
+        up: Any = None,
     ) -> JointSolution:
         """Joint values that put ``frame`` (a tool) on ``target`` at each time: inverse
         kinematics along a path.
@@ -339,6 +340,17 @@ class TreeQueries(TreeStructure):
         strict : bool
             Raise :class:`~pinframes.errors.TargetNotReachedError`, naming the first time
             not reached and its errors, instead of returning it as not reached.
+        flat : str, optional
+            A frame the solved joints move (a seam on a positioner solved with the robot):
+            once the tool is on its target, the freedom left turns this frame's z toward
+            ``up`` as far as it can (flat welding: the weld's face looks up, position PA).
+            A secondary task, in the null space of the tool's: the tool's target is never
+            traded for it. The first sample is turned to convergence, then every sample
+            follows with one step. Takes the place of the default secondary task of
+            keeping joints out of the bands along their limits.
+        up : sequence of 3 floats, optional
+            The direction ``flat``'s z is turned toward, in the root's axes (default: the
+            root's +z).
 
         Returns
         -------
@@ -357,11 +369,13 @@ class TreeQueries(TreeStructure):
             self._require(target, "target")
         if relative_to is not None:
             self._require(relative_to, "relative_to")
+        if flat is not None:
+            self._require(flat, "flat")
         return evaluate_solve_joints(
             self._frozen(), frame, target, relative_to=relative_to, times=times,
             time_ref=time_ref, joints=joints, free_axis=free_axis, seed=seed,
             position_tolerance=position_tolerance,
-            orientation_tolerance=orientation_tolerance, strict=strict)
+            orientation_tolerance=orientation_tolerance, strict=strict, flat=flat, up=up)
 
     def sample_times(self, frame: str, relative_to: str | None = None) -> TimeAxis | None:
         """The times :meth:`pose` evaluates at when given none, without evaluating.

@@ -360,7 +360,7 @@ class _SampleSolver:
         solved = self._newton(q, target, self.error, theta, margin, self.position_tolerance,
                               self.orientation_tolerance, MAX_ITERATIONS, trust_newton)
         if serve and solved[3] and solved[4] < self.objective_margin:
-            return self._served(q, target, solved)
+            return self._served(q, target, solved, bridge)
         return solved
 
     def _bridge(self, q: FloatArray, target: pin.SE3 | None, theta: FloatArray
@@ -385,26 +385,35 @@ class _SampleSolver:
             theta = reached[0]
         return theta
 
-    def _served(self, q: FloatArray, target: pin.SE3 | None, solved: Solved) -> Solved:
+    def _served(self, q: FloatArray, target: pin.SE3 | None, solved: Solved,
+                from_a_start: bool) -> Solved:
         """``solved`` moved by the objective's motion in the task's null space, when the
         tool gets back within its tolerances from there; else ``solved`` (with its margin
         measured afresh when that is wide enough for the objective to ask nothing: the
-        bound carried from sample to sample stays above it for a while)."""
+        bound carried from sample to sample stays above it for a while). ``from_a_start``:
+        served again while it asks, up to its ``rounds_from_a_start``."""
         assert self.objective is not None
         theta = solved[0]
         margin = self.limits.margin(theta.tolist())
         if margin >= self.objective_margin:
             return solved[0], solved[1], solved[2], solved[3], margin
-        self.joints.set_configuration(q, theta)
-        motion = self.objective.motion(theta, q)
-        if motion is None:
-            return solved
-        tool_in_reference = self._tool_in_reference(q)  # the task's rows at the solution
-        rows = self.error.rows(self.joints.jacobian(self._tool_jacobian(q, tool_in_reference)))
-        moved = self.limits.clipped(theta + null_space_motion(self.least_squares, rows, motion))
-        served = self._newton(q, target, self.error, moved, 0.0, self.position_tolerance,
-                              self.orientation_tolerance, MAX_ITERATIONS, False)
-        return served if served[3] else solved
+        for _ in range(self.objective.rounds_from_a_start if from_a_start else 1):
+            theta = solved[0]
+            self.joints.set_configuration(q, theta)
+            tool_in_reference = self._tool_in_reference(q)  # the task's rows at the solution
+            rows = self.error.rows(self.joints.jacobian(self._tool_jacobian(q,
+                                                                            tool_in_reference)))
+            motion = self.objective.motion(theta, q, rows)
+            if motion is None:
+                break
+            moved = self.limits.clipped(theta + null_space_motion(self.least_squares, rows,
+                                                                  motion))
+            served = self._newton(q, target, self.error, moved, 0.0, self.position_tolerance,
+                                  self.orientation_tolerance, MAX_ITERATIONS, False)
+            if not served[3]:
+                break
+            solved = served
+        return solved
 
     def _tool_in_target(self, q: FloatArray, theta: FloatArray, target: pin.SE3 | None
                         ) -> pin.SE3:

@@ -2,17 +2,18 @@
 tool does not feel (the null space of its task), taken only where the primary task, the tool
 on its target, holds.
 
-An objective asks for a joint motion ``m`` (radians or metres per joint) at a solution; the
-solver takes its exact projection into the null space of the task's rows ``A`` (the Newton
-system of :mod:`._tool_error` at that solution), ``m - A^+ A m``, then Newton steps on the
-primary task alone until the tool is back within its tolerances. When they do not get it
-there, the motion is dropped: an objective never costs the primary task anything. An
-objective that asks for nothing (None) leaves the solution as it is, so a static target keeps
-a static solution.
+An objective asks for a joint motion ``m`` (radians or metres per joint) at a solution, given
+the task's rows ``A`` there (the Newton system of :mod:`._tool_error`); the solver takes its
+exact projection into their null space, ``m - A^+ A m``, then Newton steps on the primary
+task alone until the tool is back within its tolerances. On a sample solved from a start (the
+first, or after a gap) rather than from a prediction, this is repeated up to the objective's
+``rounds_from_a_start`` times while it asks for something: to convergence. When Newton does
+not get the tool back there, the motion is dropped: an objective never costs the primary task
+anything. An objective that asks for nothing (None) leaves the solution as it is, so a static
+target keeps a static solution.
 
 :class:`AwayFromLimits` is the one ``solve_joints`` passes (``TrackingProblem.objective``);
-others (keeping a frame's axis upright, a window of tilt angles) follow the
-:class:`NullSpaceObjective` protocol and take its place, or add their motions to its.
+:class:`._flat.FlatFrame` (a frame's z turned up, ``flat=``) takes its place.
 """
 
 from __future__ import annotations
@@ -37,15 +38,22 @@ class NullSpaceObjective(Protocol):
     quiet_margin : float
         A margin inside the joint limits (radians or metres) from which on it asks for
         nothing (``math.inf``: it may ask anywhere); the solver skips asking it there.
+    rounds_from_a_start : int
+        How many times at most it is served, one after the other, on a sample solved from a
+        start rather than a prediction (1: once, as on every other sample).
     """
 
     quiet_margin: float
+    rounds_from_a_start: int
 
-    def motion(self, theta: FloatArray, configuration: FloatArray) -> FloatArray | None:
+    def motion(self, theta: FloatArray, configuration: FloatArray, rows: FloatArray
+               ) -> FloatArray | None:
         """The joint motion (n,) wanted at the solution ``theta`` (n,), radians or metres;
         None when there is nothing to do. ``configuration`` is the sample's Pinocchio ``q``
-        (nq,) with ``theta`` in it: an objective about a frame's pose (a torch kept flat)
-        runs forward kinematics of it on the model it was made with."""
+        (nq,) with ``theta`` in it: an objective about a frame's pose (a frame kept flat)
+        runs forward kinematics of it on the model it was made with. ``rows`` (m, n) are the
+        task's at ``theta``: an objective with a task of its own solves it within their null
+        space."""
 
 
 BAND = 0.1
@@ -71,9 +79,11 @@ class AwayFromLimits:
         span = np.where(bounded, limits.upper - limits.lower, 0.0)
         self._band = np.minimum(BAND * span, WIDEST_BAND)
         self.quiet_margin = float(self._band.max()) if self._band.shape[0] else 0.0
+        self.rounds_from_a_start = 1
         self._limits = limits
 
-    def motion(self, theta: FloatArray, configuration: FloatArray) -> FloatArray | None:
+    def motion(self, theta: FloatArray, configuration: FloatArray, rows: FloatArray
+               ) -> FloatArray | None:
         """:data:`PUSH` of each joint's depth inside its band, away from the limit."""
         if not self._limits.margin(theta.tolist()) < self.quiet_margin:
             return None

@@ -30,6 +30,7 @@ from .._plan import PreparedPath, QueryPlan, plan_query, prepare_path
 from .._sampling import KERNEL_CHUNK, sample_configurations
 from ._batch_check import measure_solutions
 from ._bounded_step import LeastSquares
+from ._flat import flat_objective
 from ._newton_tracking import (
     Tracked,
     TrackingHistory,
@@ -37,7 +38,7 @@ from ._newton_tracking import (
     solve_again,
     track_targets,
 )
-from ._null_space import AwayFromLimits
+from ._null_space import AwayFromLimits, NullSpaceObjective
 from ._solved_joints import SolvedJoints, solved_joints
 from ._starts import track_from_the_best_start
 from ._tool_error import AXES, AxisMatch, PoseMatch, ToolMatch
@@ -63,6 +64,7 @@ def evaluate_solve_joints(
     tree: TreeDescription, frame: str, target: str | Pose, *, relative_to: str | None,
     times: Any, time_ref: Any, joints: Any, free_axis: str | None, seed: Any,
     position_tolerance: float, orientation_tolerance: float, strict: bool,
+    flat: str | None = None, up: Any = None,
 ) -> JointSolution:
     """``tree.solve_joints(...)``; ``frame`` (and a target frame name) already checked."""
     reference, target_pose = _reference(tree, frame, target, relative_to)
@@ -85,7 +87,9 @@ def evaluate_solve_joints(
     history = TrackingHistory(start)
     reference_id = _reference_id(model, reference)
     solver = LeastSquares()
-    objective = AwayFromLimits(solved.limits)
+    objective: NullSpaceObjective = (
+        AwayFromLimits(solved.limits) if flat is None
+        else flat_objective(tree, model, solved, flat, up, frame, solver))
     parts: list[Tracked] = []
     for begin in range(0, moments.shape[0], KERNEL_CHUNK):
         part = slice(begin, begin + KERNEL_CHUNK)

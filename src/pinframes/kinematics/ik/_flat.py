@@ -1,0 +1,171 @@
+"""Flat welding: a frame's z turned toward up, a secondary task in the null space of the tool's.
+
+With a positioner solved together with the robot, the joints have freedom left once the tool
+is on its target; :class:`FlatFrame` spends it on turning a frame of the workpiece (a seam:
+its z the face of the weld) so that its z points up. Its task has two rows, the angular
+velocity of the frame across its z (its x and y, in the model root's axes) per unit rate of
+each solved joint, ``B``, and asks for the rotation ``w`` that carries z onto up, across z.
+Within the null space ``N`` of the tool's rows ``A``, the motion is
+``(B N)^T ((B N)(B N)^T + damping)^-1 w``, the task-priority step (it lies in that null space
+already, so the solver's projection keeps it whole), at most :data:`LONGEST_TURN` per joint.
+Where the remaining freedom cannot turn the frame further, the motion fades and the frame
+stays as close to up as it gets.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import pinocchio as pin
+from numpy.typing import NDArray
+
+from ...errors import ArgumentTypeError, InvalidDataError, JointError
+from .._description import TreeDescription
+from .._model import CompiledModel
+from .._plan import prepare_path
+from ._bounded_step import LeastSquares
+from ._null_space import null_space_motion
+from ._solved_joints import SolvedJoints
+
+__all__ = ["FLAT_ENOUGH", "FLAT_ROUNDS", "FlatFrame", "flat_objective"]
+
+FloatArray = NDArray[np.float64]
+
+FLAT_ENOUGH = 1e-9
+"""Radians between the frame's z and up below which nothing more is asked."""
+
+FLAT_ROUNDS = 100
+"""Rounds at most on a sample solved from a start (each one a task-priority step)."""
+
+LONGEST_TURN = 0.3
+"""Largest change of one joint per round, radians or metres."""
+
+DAMPING = 1e-6
+"""Damping of the two-row system (rad^2): where the freedom left cannot turn the frame, the
+step stays small instead of growing without bound."""
+
+SMALLEST_MOTION = 1e-12
+"""Radians or metres: a motion no larger is nothing (the freedom is spent)."""
+
+_WORLD_ALIGNED = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
+
+
+class FlatFrame:
+    """The secondary objective of ``solve_joints(flat=...)``.
+
+    Parameters
+    ----------
+    model, data : pinocchio.Model, pinocchio.Data
+        The compiled path (rooted at the lowest common ancestor of tool and target).
+    joints : SolvedJoints
+        The unknowns.
+    joint_id : int
+        The Pinocchio joint that carries the flat frame.
+    rotation_on_joint : ndarray, shape (3, 3)
+        The flat frame's axes in that joint's.
+    up : ndarray, shape (3,)
+        The unit direction the frame's z is turned toward, in the model root's axes.
+    solver : LeastSquares
+        The linear algebra of the null-space projection.
+    """
+
+    quiet_margin = math.inf
+    rounds_from_a_start = FLAT_ROUNDS
+
+    def __init__(self, model: pin.Model, data: pin.Data, joints: SolvedJoints, joint_id: int,
+                 rotation_on_joint: FloatArray, up: FloatArray, solver: LeastSquares) -> None:
+        self._model, self._data, self._joints = model, data, joints
+        self._joint_id = joint_id
+        self._rotation_on_joint = np.asarray(rotation_on_joint, dtype=float)
+        self._up = np.asarray(up, dtype=float)
+        self._solver = solver
+
+    def axes(self, configuration: FloatArray) -> FloatArray:
+        """The flat frame's axes (3, 3) in the model root's, at ``configuration``; leaves
+        Pinocchio's joint Jacobians computed there."""
+        pin.computeJointJacobians(self._model, self._data, configuration)
+        return self._data.oMi[self._joint_id].rotation.dot(self._rotation_on_joint)  # type: ignore[no-any-return]
+
+    def motion(self, theta: FloatArray, configuration: FloatArray, rows: FloatArray
+               ) -> FloatArray | None:
+        """The task-priority step toward up (module docstring); None when the frame is
+        within :data:`FLAT_ENOUGH` of up or the freedom left cannot turn it."""
+        axes = self.axes(configuration)
+        turn, angle = _turn_onto(axes[:, 2], self._up)
+        if angle <= FLAT_ENOUGH:
+            return None
+        jacobian = pin.getJointJacobian(self._model, self._data, self._joint_id, _WORLD_ALIGNED)
+        across = axes[:, :2].T.dot(self._joints.jacobian(jacobian)[3:])  # (2, n)
+        free = np.array([null_space_motion(self._solver, rows, row) for row in across])
+        wanted = axes[:, :2].T.dot(turn)
+        normal = free.dot(free.T)
+        normal.flat[::3] += DAMPING
+        motion: FloatArray = np.linalg.solve(normal, wanted).dot(free)
+        largest = float(np.abs(motion).max())
+        if not largest > SMALLEST_MOTION:
+            return None
+        if largest > LONGEST_TURN:
+            motion *= LONGEST_TURN / largest
+        return motion
+
+
+def _turn_onto(axis: FloatArray, up: FloatArray) -> tuple[FloatArray, float]:
+    """The rotation vector (3,) carrying the unit ``axis`` onto the unit ``up`` about an axis
+    across both, and its angle (rad); upside down, half a turn about any axis across."""
+    normal = np.cross(axis, up)
+    sine = float(np.linalg.norm(normal))
+    angle = math.atan2(sine, float(axis.dot(up)))
+    if sine > 0.0:
+        return normal * (angle / sine), angle
+    across = np.cross(axis, [1.0, 0.0, 0.0] if abs(axis[0]) < 0.9 else [0.0, 1.0, 0.0])
+    return across * (angle / float(np.linalg.norm(across))), angle
+
+
+def flat_objective(tree: TreeDescription, model: CompiledModel, joints: SolvedJoints,
+                   flat: str, up: Any, frame: str, solver: LeastSquares) -> FlatFrame:
+    """The :class:`FlatFrame` of ``solve_joints(frame, ..., flat=flat, up=up)`` on the
+    compiled path ``model``; ``up`` a 3-vector in the tree root's axes (None: its +z)."""
+    anchor, (rotation_on_anchor, _) = tree.anchor(flat)
+    carriers = [index + 1 for index, joint in enumerate(model.joints) if joint.frame == anchor]
+    pinocchio_model = model.model
+    if carriers:
+        slots = [pinocchio_model.idx_vs[support] for support in pinocchio_model.supports[
+            carriers[0]][1:]]
+        moved = bool(np.any(joints.tangent[slots]))
+    if not carriers or not moved:
+        raise JointError(f"no solved joint turns {flat!r}: flat= needs a frame that the solved "
+                         f"joints move (the workpiece on a positioner solved with "
+                         f"joints=[...])", frame=frame, field="flat")
+    direction = _up_in_model_root(tree, model.root, _unit_vector(up, frame))
+    return FlatFrame(pinocchio_model, model.data, joints, carriers[0], rotation_on_anchor,
+                     direction, solver)
+
+
+def _unit_vector(up: Any, frame: str) -> FloatArray:
+    """``up`` as a unit 3-vector (None: +z)."""
+    if up is None:
+        return np.array([0.0, 0.0, 1.0])
+    try:
+        vector = np.asarray(up, dtype=float)
+    except (TypeError, ValueError):
+        raise ArgumentTypeError(f"expected 3 numbers, got {up!r}", frame=frame,
+                                field="up") from None
+    length = float(np.linalg.norm(vector)) if vector.shape == (3,) else math.nan
+    if not (0.0 < length < math.inf):
+        raise InvalidDataError(f"expected a finite, non-zero 3-vector, got {up!r}", frame=frame,
+                               field="up")
+    return vector / length
+
+
+def _up_in_model_root(tree: TreeDescription, model_root: str, up: FloatArray) -> FloatArray:
+    """``up`` (tree root's axes) in the axes of the compiled path's root, which must not
+    turn in the tree's root."""
+    if model_root == tree.root:
+        return up
+    path = prepare_path(tree, model_root, tree.root)
+    if path.static is None:
+        raise JointError(f"flat= takes up in the root's axes, and {model_root!r} (where tool and "
+                         f"target meet) moves in the root", frame=model_root, field="up")
+    return path.static[0].T.dot(up)  # type: ignore[no-any-return]
