@@ -67,12 +67,12 @@ def prepare_path(tree: TreeDescription, frame: str, relative_to: str) -> Prepare
     if cached is not None:
         return cached
     layout = tree.path_layout(frame, relative_to)
-    if isinstance(layout, ModelLayout):
-        model = CompiledModel(layout)
-        path = PreparedPath(frame, relative_to, None, model, *path_samplers(tree, model))
-    else:
+    if not isinstance(layout, ModelLayout):
         require_finite_pose(layout[1], frame, relative_to)
         path = PreparedPath(frame, relative_to, layout)
+    else:
+        model = CompiledModel(layout)
+        path = PreparedPath(frame, relative_to, None, model, *path_samplers(tree, model))
     tree.store(key, path)
     return path
 
@@ -173,6 +173,7 @@ def plan_query(
     path = prepare_path(tree, frame, relative_to)
     planned = tuple(source for source in path.sources if source.name not in held
                     ) if sources is None else tuple(sources)
+    warn_joints_without_samples(tree, path.samplers, held)
     requested = None
     if isinstance(times, str) and times in tree.depths:
         requested = frame_times(tree, times)
@@ -183,7 +184,6 @@ def plan_query(
         timeline = plan_query_timeline(list(planned), requested, time_ref, tree.reference_time,
                                        tree.has_frame_references)
     evaluated = timeline.evaluation_times
-    warn_joints_without_samples(tree, path.samplers, held)
     if extrapolation == "error" and evaluated is not None:
         timeline.require_within(path.sources, evaluated)
     return QueryPlan(path, timeline, timeline.shifts((*path.sources, *planned)), extrapolation,
