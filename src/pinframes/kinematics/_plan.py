@@ -158,12 +158,13 @@ class QueryPlan:
 def plan_query(
     tree: TreeDescription, frame: str, relative_to: str, times: Any, time_ref: Any,
     extrapolation: str, sources: Iterable[TimedSource] | None = None,
-    held: Collection[str] = (),
+    held: Collection[str] = (), extra: Iterable[TimedSource] = (),
 ) -> QueryPlan:
     """The plan of a query from the caller's arguments: the path from ``frame`` to
     ``relative_to`` and the timeline of ``times`` / ``time_ref`` on ``sources`` (by default
-    the moving things of the path but the ``held`` joints, whose values the caller gives;
-    others where the times are those of other things, or of a target).
+    the moving things of the path but the ``held`` joints, whose values the caller gives,
+    and the ``extra`` ones, a target's; others where the times are those of other
+    things).
 
     Warns (once per tree version) when a joint of the path holds its rest value.
     """
@@ -171,8 +172,8 @@ def plan_query(
         raise ExtrapolationError(f"expected one of {', '.join(EXTRAPOLATION_POLICIES)}, "
                                  f"got {extrapolation!r}", field="extrapolation")
     path = prepare_path(tree, frame, relative_to)
-    planned = tuple(source for source in path.sources if source.name not in held
-                    ) if sources is None else tuple(sources)
+    planned = (*(source for source in path.sources if source.name not in held), *extra
+               ) if sources is None else tuple(sources)
     warn_joints_without_samples(tree, path.samplers, held)
     requested = None
     if isinstance(times, str) and times in tree.depths:
