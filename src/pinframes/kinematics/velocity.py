@@ -19,6 +19,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..values.se3 import IDENTITY
+from ..values.timed import Timed
 from ._description import TreeDescription
 from ._plan import QueryPlan, plan_query
 from ._sampled_path import SampledPath, sampled_parts
@@ -32,7 +33,7 @@ FloatArray = NDArray[np.float64]
 
 
 @dataclass(frozen=True)
-class Velocity:
+class Velocity(Timed):
     """Velocity of ``frame`` relative to ``relative_to`` per sample.
 
     Attributes

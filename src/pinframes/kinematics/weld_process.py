@@ -26,6 +26,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InvalidTimeError
+from ..values.timed import Timed
 from ._description import TreeDescription
 from ._plan import plan_query
 from .pose import planned_transforms
@@ -37,7 +38,7 @@ FloatArray = NDArray[np.float64]
 
 
 @dataclass(frozen=True)
-class WeldProcess:
+class WeldProcess(Timed):
     """The welding process of ``torch`` along ``seam``, per sample (SPEC section 9).
 
     Attributes
@@ -79,11 +80,6 @@ class WeldProcess:
     seam: str
     workpiece: str
     contact_tip: str | None
-
-    @property
-    def seconds(self) -> FloatArray | None:
-        """Sample times as float seconds after :attr:`reference_time`; None if static."""
-        return None if self.times is None else self.times.astype(np.int64) / 1e9
 
     def __len__(self) -> int:
         return int(self.travel_speed.shape[0])
