@@ -29,9 +29,21 @@ from ..values.timeline import TimedSource, source_reference
 from ._description import TreeDescription
 from ._model import CompiledModel
 
-__all__ = ["KERNEL_CHUNK", "DrivenJoint", "JointSampler", "MovingFrame", "frame_source",
-           "frame_times", "joint_sampler", "joint_source", "path_samplers", "sample_configurations",
-           "sample_joints", "warn_joints_without_samples"]
+__all__ = [
+    "KERNEL_CHUNK",
+    "DrivenJoint",
+    "JointSampler",
+    "MovingFrame",
+    "frame_source",
+    "frame_times",
+    "joint_sampler",
+    "joint_source",
+    "path_samplers",
+    "resting_joints",
+    "sample_configurations",
+    "sample_joints",
+    "warn_joints_without_samples",
+]
 
 KERNEL_CHUNK = 1 << 12
 """Samples the numpy kernels evaluate at once: the temporaries of a chunk (under 300 kB
@@ -192,12 +204,18 @@ def sample_configurations(
     return model.configuration(motions, values, times.shape[0])
 
 
-def warn_joints_without_samples(tree: TreeDescription, samplers: Sequence[JointSampler],
+def resting_joints(samplers: Sequence[JointSampler]) -> frozenset[str]:
+    """The joints driving ``samplers`` that have no samples: they hold their rest value."""
+    return frozenset(sampler.primary for sampler in samplers
+                     if isinstance(sampler, DrivenJoint) and sampler.trajectory is None)
+
+
+def warn_joints_without_samples(tree: TreeDescription, resting: Collection[str],
                                 held: Collection[str] = ()) -> None:
     """One :class:`JointWithoutSamplesWarning` per version of a tree, naming its joints
-    without samples, when one of ``samplers`` (but those ``held``) holds its rest value."""
-    if not any(isinstance(sampler, DrivenJoint) and sampler.trajectory is None
-               and sampler.primary not in held for sampler in samplers):
+    without samples, when one of the ``resting`` joints (:func:`resting_joints`) is not
+    ``held`` (given its values by the caller)."""
+    if all(name in held for name in resting):
         return
     if not tree.first_warning("joints without samples"):
         return

@@ -14,7 +14,12 @@ from ..values.geometry import FrameGeometry
 from ._description import TreeDescription
 from ._model import compile_model
 from ._plan import plan_query
-from ._sampling import path_samplers, sample_configurations, warn_joints_without_samples
+from ._sampling import (
+    path_samplers,
+    resting_joints,
+    sample_configurations,
+    warn_joints_without_samples,
+)
 from .collision.coal_objects import ShapeLoader
 
 __all__ = ["PinocchioTree"]
@@ -92,5 +97,5 @@ class PinocchioTree:
         tree, compiled = self._tree, self._compiled
         samplers, sources = path_samplers(tree, compiled)
         plan = plan_query(tree, tree.root, tree.root, times, time_ref, "clamp", sources)
-        warn_joints_without_samples(tree, samplers)
+        warn_joints_without_samples(tree, resting_joints(samplers))
         return sample_configurations(compiled, samplers, plan.sample_times, plan.shifts)
