@@ -30,7 +30,6 @@ from ._sampling import (
     JointSampler,
     frame_times,
     path_samplers,
-    resting_joints,
     warn_joints_without_samples,
 )
 
@@ -78,9 +77,7 @@ def prepare_path(tree: TreeDescription, frame: str, relative_to: str) -> Prepare
         path = PreparedPath(frame, relative_to, layout)
     else:
         model = CompiledModel(layout)
-        samplers, sources = path_samplers(tree, model)
-        path = PreparedPath(frame, relative_to, None, model, samplers, sources,
-                            resting_joints(samplers))
+        path = PreparedPath(frame, relative_to, None, model, *path_samplers(tree, model))
     tree.store(key, path)
     return path
 
@@ -202,11 +199,10 @@ def plan_query(
         timeline = plan_query_timeline(list(planned), requested, time_ref, tree.reference_time,
                                        tree.has_frame_references)
     evaluated = timeline.evaluation_times
+    shifts = timeline.shifts(planned if own_sources else (*path.sources, *planned))
     if extrapolation == "error" and evaluated is not None:
         timeline.require_within(path.sources, evaluated)
-    plan = QueryPlan(path, timeline,
-                     timeline.shifts(planned if own_sources else (*path.sources, *planned)),
-                     extrapolation, evaluated, timeline.result_offsets)
+    plan = QueryPlan(path, timeline, shifts, extrapolation, evaluated, timeline.result_offsets)
     if without_times:
         path.plans[_WITHOUT_TIMES[extrapolation]] = plan
     return plan

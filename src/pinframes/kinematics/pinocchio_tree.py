@@ -16,7 +16,6 @@ from ._model import compile_model
 from ._plan import plan_query
 from ._sampling import (
     path_samplers,
-    resting_joints,
     sample_configurations,
     warn_joints_without_samples,
 )
@@ -95,7 +94,7 @@ class PinocchioTree:
         moving thing's keyframe times (one configuration if nothing moves).
         """
         tree, compiled = self._tree, self._compiled
-        samplers, sources = path_samplers(tree, compiled)
+        samplers, sources, resting = path_samplers(tree, compiled)
         plan = plan_query(tree, tree.root, tree.root, times, time_ref, "clamp", sources)
-        warn_joints_without_samples(tree, resting_joints(samplers))
+        warn_joints_without_samples(tree, resting)
         return sample_configurations(compiled, samplers, plan.sample_times, plan.shifts)
