@@ -1,6 +1,6 @@
 """``FrameTree.weld_process``: the welding process a torch produces along a seam, per sample.
 
-The terms are the welders' own (SPEC section 9). The seam frame sits at the weld point: x
+The terms are the welders' own (docs/welding-process.md). The seam frame sits at the weld point: x
 along the travel direction, z the work surface's normal pointing out of the material,
 y = z x x. The torch frame is the tool centre point; its z axis is the wire axis, from the
 torch toward the work. With ``a`` the torch z axis and ``p`` the torch origin, both in seam
@@ -39,7 +39,7 @@ FloatArray = NDArray[np.float64]
 
 @dataclass(frozen=True)
 class WeldProcess(Timed):
-    """The welding process of ``torch`` along ``seam``, per sample (SPEC section 9).
+    """The welding process of ``torch`` along ``seam``, per sample (docs/welding-process.md).
 
     Attributes
     ----------

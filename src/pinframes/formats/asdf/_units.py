@@ -2,7 +2,7 @@
 
 weldx writes pint's long names (``millimeter``, ``meter``); older files and hand-written ones
 may use the short symbols (both in :mod:`pinframes.values.length_units`). Coordinates without
-a unit are millimetres.
+a unit are millimetres (docs/asdf-format.md).
 """
 
 from __future__ import annotations
