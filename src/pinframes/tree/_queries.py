@@ -47,6 +47,7 @@ from ..kinematics import (
     paths_to_common_ancestor,
     snapshot,
 )
+from ..kinematics.collision.mesh_reader import MAX_TRIANGLES
 from ..values.geometry import GEOMETRY_METADATA_KEY, FrameGeometry
 from ..values.numbers import require_finite_result
 from ..values.pose import Pose
@@ -393,7 +394,7 @@ class TreeQueries(TreeStructure):
         self, a: str | Sequence[str], b: str | Sequence[str], *, times: Any = None,
         time_ref: Any = None, package_dirs: Iterable[str | os.PathLike[str]] = (),
         geometry: str = "collision", exclude: Iterable[tuple[str, str]] = (),
-        extrapolation: str = "clamp",
+        extrapolation: str = "clamp", limits: Any = None,
     ) -> Clearance:
         """The smallest distance between the geometry of the links ``a`` and ``b``, per sample.
 
@@ -419,6 +420,9 @@ class TreeQueries(TreeStructure):
         exclude : iterable of (str, str)
             Pairs of frame names or patterns not to check, in either order (a torch that
             works at the seam, a robot standing on its base).
+        limits : pinframes.Limits or None
+            Its ``max_triangles`` bounds the triangles of each mesh file (None: the
+            default, 1,000,000).
 
         Returns
         -------
@@ -427,12 +431,15 @@ class TreeQueries(TreeStructure):
             ``closest`` (T, 2) the pair's frames; ``point_a``, ``point_b`` (T, 3) m in the
             root's axes; ``times``, ``seconds``, ``reference_time``; ``first_contact``.
             Distances are coal's, as ``pinocchio.computeDistances`` computes them on the
-            same URDF geometry.
+            same URDF geometry; but a closed mesh is a solid here (a shape wholly inside it
+            is in contact, at minus the distance between their surfaces), and COLLADA
+            meshes are in the unit their file gives.
 
         Raises
         ------
         GeometryError
-            A frame without geometry, a malformed shape, a mesh missing or unreadable.
+            A frame without geometry, a malformed shape, a mesh missing, unreadable or of more
+        triangles than ``max_triangles``, a shape not finite or placed beyond 1e9 m.
         FrameNotFoundError
             A name that is no frame and a pattern that matches none.
         """
@@ -442,8 +449,10 @@ class TreeQueries(TreeStructure):
                     for first in self._frames_matching(pattern_a, "exclude")
                     for second in self._frames_matching(pattern_b, "exclude")]
         recorded = {frame: self._recorded_geometry(frame) for frame in [*frames_a, *frames_b]}
+        max_triangles = MAX_TRIANGLES if limits is None else limits.max_triangles
         return evaluate_clearance(self._frozen(), recorded, frames_a, frames_b, excluded,
-                                  geometry, package_dirs, times, time_ref, extrapolation)
+                                  geometry, package_dirs, times, time_ref, extrapolation,
+                                  max_triangles)
 
     def clearance_times(self, a: str | Sequence[str], b: str | Sequence[str], *,
                         geometry: str = "collision") -> TimeAxis | None:
@@ -498,7 +507,8 @@ class TreeQueries(TreeStructure):
                 kept.append(frame)
         if not kept:
             raise GeometryError(f"{', '.join(map(repr, outright))} match no frame with {kind} "
-                                "geometry (only the links of attached URDFs have shapes)",
+                                "geometry (only the links of attached URDFs and frames given "
+                                "shapes by add_geometry have some)",
                                 field=field)
         return kept
 

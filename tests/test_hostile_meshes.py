@@ -1,0 +1,119 @@
+"""Meshes and shapes that would cost gigabytes or give phantom contacts (issue items 4, 10).
+
+- A COLLADA file of a few kB whose nodes instance each other describes 2**levels triangles:
+  counted before any is built, refused past ``Limits.max_triangles`` (the clearance: an
+  error naming the frame; the page: the mesh left out with a warning).
+- Shapes that are not finite, or so large or far that coal's squared distances overflow:
+  clear errors naming the frame and field, never a contact that does not exist.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+from meshes import nested_instances_dae, write_stl
+from pinframes import FrameTree, GeometryError, GeometryWarning, Limits, Pose
+from pinframes.view import load_geometry
+
+
+def one_link(name: str, geometry: str, kind: str = "collision") -> str:
+    return (f'<robot name="{name}"><link name="{name}"><{kind}><geometry>{geometry}</geometry>'
+            f'</{kind}></link></robot>')
+
+
+def with_ball(tree: FrameTree, at=(3.0, 0.0, 0.0)) -> FrameTree:
+    tree.add("ball_at", "world", Pose(list(at)))
+    tree.attach_urdf(one_link("ball", '<sphere radius="0.1"/>'), "ball_at")
+    return tree
+
+
+def nested_tree(tmp_path, levels: int) -> FrameTree:
+    path = tmp_path / "nested.dae"
+    path.write_text(nested_instances_dae(levels))
+    assert path.stat().st_size < 5_000
+    tree = FrameTree()
+    mesh = f'<mesh filename="{path}"/>'
+    tree.attach_urdf(f'<robot name="bomb"><link name="bomb"><collision><geometry>{mesh}'
+                     f'</geometry></collision><visual><geometry>{mesh}</geometry></visual>'
+                     '</link></robot>', "world")
+    return with_ball(tree, (0.5, 0.5, -1.0))
+
+
+def test_nested_instances_past_max_triangles_are_an_error_naming_the_frame(tmp_path):
+    tree = nested_tree(tmp_path, 20)  # 1,048,576 triangles from 2.9 kB
+    with pytest.raises(GeometryError, match=r"frame 'bomb'.*1,048,576 triangles after "
+                       r"instancing, over the limit max_triangles=1,000,000"):
+        tree.clearance("bomb", "ball")
+
+
+def test_nested_instances_within_a_raised_limit_are_measured_in_place(tmp_path):
+    tree = nested_tree(tmp_path, 10)  # 1,024 triangles, all 10 m up
+    with pytest.raises(GeometryError, match="max_triangles=1,000"):
+        tree.clearance("bomb", "ball", limits=Limits(max_triangles=1_000))
+    result = tree.clearance("bomb", "ball", limits=Limits(max_triangles=1_024))
+    # the triangle at z = 10 m above the ball at (0.5, 0.5, -1): 11 m less the radius
+    assert result.distance[0] == pytest.approx(11.0 - 0.1, abs=1e-9)
+
+
+def test_the_page_leaves_a_mesh_past_max_triangles_out_with_a_warning(tmp_path):
+    tree = nested_tree(tmp_path, 12)
+    with pytest.warns(GeometryWarning, match=r"nested.dae.*4,096 triangles.*max_triangles"):
+        pieces = load_geometry(tree, limits=Limits(max_triangles=4_000))
+    assert [piece.link for piece in pieces] == []  # the ball has collision geometry only
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", GeometryWarning)
+        pieces = load_geometry(tree, limits=Limits(max_triangles=4_096))
+    heights = np.concatenate([piece.vertices[:, 2] for piece in pieces])
+    assert sum(len(piece.faces) for piece in pieces) == 4_096 and heights.max() == 12.0
+
+
+def test_a_node_that_instances_itself_is_an_error(tmp_path):
+    text = nested_instances_dae(2).replace('<instance_node url="#n0"/>',
+                                           '<instance_node url="#n2"/>', 1)
+    (tmp_path / "loop.dae").write_text(text)
+    tree = with_ball(FrameTree())
+    tree.attach_urdf(one_link("loop", f'<mesh filename="{tmp_path / "loop.dae"}"/>'), "world")
+    with pytest.raises(GeometryError, match="frame 'loop'"):
+        tree.clearance("loop", "ball")
+
+
+@pytest.mark.parametrize(("geometry", "field"), [
+    ('<box size="1e308 1e308 1e308"/>', "dimensions"),
+    ('<sphere radius="1e300"/>', "dimensions"),
+    ('<cylinder radius="0.1" length="1e200"/>', "dimensions"),
+])
+def test_shapes_too_large_to_measure_are_errors_naming_frame_and_field(geometry, field):
+    tree = with_ball(FrameTree())
+    tree.attach_urdf(one_link("huge", geometry), "world")
+    with pytest.raises(GeometryError, match=rf"frame 'huge': field 'collision\[0\]\.{field}'"):
+        tree.clearance("huge", "ball")
+
+
+def test_a_shape_placed_beyond_reach_is_an_error_naming_frame_and_time():
+    tree = FrameTree()
+    tree.add("away", "world", Pose(translation=[[0.0, 0, 0], [1e300, 0, 0]], times=[0.0, 2.0]))
+    tree.attach_urdf(one_link("far", '<sphere radius="0.1"/>'), "away")
+    with_ball(tree)
+    with pytest.raises(GeometryError, match=r"frame 'far'.* at 1 s: positions must be finite"):
+        tree.clearance("far", "ball", times=[0.0, 1.0])
+    assert tree.clearance("far", "ball", times=[0.0]).distance[0] == pytest.approx(2.8)
+
+
+@pytest.mark.parametrize("scale", ["1e300 1 1", "1 1 1e155"])
+def test_a_mesh_scaled_past_reach_is_an_error(tmp_path, scale):
+    path = write_stl(tmp_path / "tri.stl", [[0, 0, 0], [1, 0, 0], [0, 1, 1]], [[0, 1, 2]])
+    tree = with_ball(FrameTree())
+    tree.attach_urdf(one_link("scaled", f'<mesh filename="{path}" scale="{scale}"/>'), "world")
+    with pytest.raises(GeometryError, match=r"frame 'scaled'.*finite and within"):
+        tree.clearance("scaled", "ball")
+
+
+def test_a_mesh_with_a_nan_corner_is_an_error(tmp_path):
+    path = write_stl(tmp_path / "nan.stl", [[0, 0, 0], [1, 0, 0], [0, 1, np.nan]], [[0, 1, 2]])
+    tree = with_ball(FrameTree())
+    tree.attach_urdf(one_link("broken", f'<mesh filename="{path}"/>'), "world")
+    with pytest.raises(GeometryError, match=r"frame 'broken'"):
+        tree.clearance("broken", "ball")
