@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..errors import ArgumentTypeError, InvalidDataError
 from .geometry import Shape
@@ -37,14 +38,15 @@ def _lengths(values: Any, count: int, field: str) -> tuple[float, ...]:
     return tuple(float(value) for value in numbers)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Box:
     """A box of full edge lengths ``size`` = ``(x, y, z)`` metres, centred on its origin."""
 
     size: tuple[float, float, float]
 
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "size", _lengths(self.size, 3, "size"))
+    def __init__(self, size: ArrayLike) -> None:
+        x, y, z = _lengths(size, 3, "size")
+        object.__setattr__(self, "size", (x, y, z))
 
 
 @dataclass(frozen=True)
@@ -70,7 +72,7 @@ class Sphere:
         object.__setattr__(self, "radius", _lengths(self.radius, 1, "radius")[0])
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Mesh:
     """The triangles of a mesh file (STL, COLLADA ``.dae``, OBJ, PLY), in its own
     coordinates times ``scale`` (one factor, or one per axis).
@@ -81,22 +83,25 @@ class Mesh:
     """
 
     path: str
-    scale: tuple[float, float, float] = (1.0, 1.0, 1.0)
+    scale: tuple[float, float, float]
 
-    def __post_init__(self) -> None:
-        if not isinstance(self.path, (str, os.PathLike)) or not os.fspath(self.path):
-            raise ArgumentTypeError(f"expected a mesh file name, got {self.path!r}",
-                                    field="path")
-        path = os.fspath(self.path)
-        if not path.startswith(_NAMED_LOCATIONS):
-            path = os.path.abspath(path)
-        object.__setattr__(self, "path", path)
-        scale = np.asarray(self.scale, dtype=float).reshape(-1)
-        if scale.shape == (1,):
-            scale = np.repeat(scale, 3)
-        factors = _lengths(np.abs(scale), 3, "scale")  # finite; mirroring signs allowed
-        object.__setattr__(self, "scale", tuple(float(np.copysign(f, s))
-                                                for f, s in zip(factors, scale, strict=True)))
+    def __init__(self, path: str | os.PathLike[str], scale: float | ArrayLike = 1.0) -> None:
+        if not isinstance(path, (str, os.PathLike)) or not os.fspath(path):
+            raise ArgumentTypeError(f"expected a mesh file name, got {path!r}", field="path")
+        name = os.fspath(path)
+        if not name.startswith(_NAMED_LOCATIONS):
+            name = os.path.abspath(name)
+        object.__setattr__(self, "path", name)
+        try:
+            factors = np.asarray(scale, dtype=float).reshape(-1)
+        except (TypeError, ValueError):
+            raise ArgumentTypeError(f"expected 1 or 3 numbers, got {scale!r}",
+                                    field="scale") from None
+        if factors.shape == (1,):
+            factors = np.repeat(factors, 3)
+        _lengths(np.abs(factors), 3, "scale")  # finite; mirroring signs allowed
+        x, y, z = (float(factor) for factor in factors)
+        object.__setattr__(self, "scale", (x, y, z))
 
 
 ShapeLike = Box | Cylinder | Sphere | Mesh
