@@ -89,3 +89,14 @@ def test_the_answer_does_not_depend_on_the_sphere_bounds_order(tmp_path):
     result = tree.clearance("fixture", ["ball", "far"], times=[0.0])
     assert result.closest[0].tolist() == ["fixture", "ball"]
     assert result.distance[0] == pytest.approx(-0.15, abs=1e-7)
+
+
+def test_a_mirrored_closed_mesh_is_still_a_solid(tmp_path):
+    """scale -1 along x turns every triangle over: still closed, the ball inside in contact."""
+    box = write_cube_stl(tmp_path / "box.stl", 0.4)
+    tree = FrameTree()
+    tree.add("fixture", "world")
+    tree.add_geometry("fixture", Mesh(box, scale=[-1.0, 1.0, 1.0]))
+    tree.add("ball", "world", Pose([0.05, 0.0, 0.0]))
+    tree.add_geometry("ball", Sphere(0.05))
+    assert tree.clearance("fixture", "ball").distance[0] == pytest.approx(-0.1, abs=1e-7)

@@ -47,12 +47,13 @@ class LinkGeometry:
     frame : str
         The tree frame of the link (prefix included).
     link : str
-        The link's name in its URDF.
+        The link's name in its URDF (a frame's own name for shapes it was given).
     pose_in_frame : ndarray, shape (4, 4)
         Placement of the vertices' coordinate system in ``frame`` (the ``<origin>`` of the
-        ``<visual>``/``<collision>`` times any placement inside the mesh file); metres.
+        ``<visual>``/``<collision>``, or of the added shape); metres.
     vertices : ndarray, shape (n, 3), float64
-        Metres, in the geometry's own coordinates (mesh scale applied).
+        Metres, in the shape's own coordinates (for a mesh: every node of the file placed,
+        its unit and the scale applied).
     faces : ndarray, shape (m, 3), int64
         Vertex indices of each triangle.
     colours : ndarray, shape (4,)

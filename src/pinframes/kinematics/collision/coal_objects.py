@@ -29,7 +29,7 @@ from ...errors import GeometryError
 from ...values.geometry import GEOMETRY_KINDS, FrameGeometry, Shape
 from .mesh_files import HOW_TO_SEARCH, MeshFiles, mesh_file_problem, package_search_dirs
 from .mesh_reader import MAX_TRIANGLES, read_mesh
-from .solid_meshes import SolidMesh, component_points, solid_mesh
+from .solid_meshes import SolidMesh, solid_mesh
 
 __all__ = ["LARGEST_COORDINATE", "CollisionShape", "ShapeLoader"]
 
@@ -180,8 +180,7 @@ class ShapeLoader:
             model.addVertices(vertices)
             model.addTriangles(triangles)
             model.endModel()
-            mesh = _Mesh(model, solid_mesh(vertices, triangles),
-                         component_points(vertices, triangles))
+            mesh = _Mesh(model, *solid_mesh(vertices, triangles))
             self._meshes[key] = mesh
         return mesh
 

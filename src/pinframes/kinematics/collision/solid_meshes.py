@@ -8,7 +8,7 @@ lies in it by the generalised winding number (the solid angle its triangles span
 from the point, over 4 pi: 1 inside, 0 outside), which holds for any closed mesh, convex or
 not. An open mesh (a sheet, a mesh with a hole) stays a surface.
 
-:func:`component_points` gives one point on each connected piece of a mesh: a shape whose
+:func:`solid_mesh` also gives one point on each connected piece of a mesh: a shape whose
 surface does not cross a closed mesh's lies either wholly inside it or wholly outside,
 piece by piece, so one point per piece tells which. Lengths in metres, in the mesh's own
 coordinates.
@@ -19,7 +19,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["SolidMesh", "component_points", "solid_mesh"]
+__all__ = ["SolidMesh", "solid_mesh"]
 
 FloatArray = NDArray[np.float64]
 IndexArray = NDArray[np.int64]
@@ -59,9 +59,15 @@ class SolidMesh:
         return float(2.0 * np.arctan2(numerator, denominator).sum() / (4.0 * np.pi))
 
 
-def solid_mesh(vertices: FloatArray, triangles: IndexArray) -> SolidMesh | None:
-    """The solid that the mesh bounds, or None when the mesh is open."""
+def solid_mesh(vertices: FloatArray, triangles: IndexArray
+               ) -> tuple[SolidMesh | None, FloatArray]:
+    """The solid that the mesh bounds (None when the mesh is open), and one vertex of each
+    connected piece of its triangles, shape ``(k, 3)``."""
     merged, triangles = _merged(vertices, triangles)
+    return _solid(merged, triangles), _piece_points(merged, triangles)
+
+
+def _solid(merged: FloatArray, triangles: IndexArray) -> SolidMesh | None:
     if triangles.shape[0] < 4:
         return None
     directed = np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]],
@@ -75,27 +81,29 @@ def solid_mesh(vertices: FloatArray, triangles: IndexArray) -> SolidMesh | None:
     return SolidMesh(merged[triangles])
 
 
-def component_points(vertices: FloatArray, triangles: IndexArray) -> FloatArray:
-    """One vertex of each connected piece of the mesh's triangles, shape ``(k, 3)``."""
-    merged, triangles = _merged(vertices, triangles)
-    labels = np.arange(merged.shape[0])
-    edges = np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]]])
-    while True:  # each vertex takes the smallest label of its neighbours until none changes
-        before = labels.copy()
-        smaller = np.minimum(labels[edges[:, 0]], labels[edges[:, 1]])
-        np.minimum.at(labels, edges[:, 0], smaller)
-        np.minimum.at(labels, edges[:, 1], smaller)
-        labels = labels[labels]
-        if np.array_equal(labels, before):
+def _piece_points(merged: FloatArray, triangles: IndexArray) -> FloatArray:
+    """One vertex of each connected piece, by union-find on whole arrays: every edge whose
+    ends lie in different trees hangs the larger root on the smaller, then every vertex
+    jumps to its root, until no edge joins two trees."""
+    start, end = triangles.reshape(-1), triangles[:, [1, 2, 0]].reshape(-1)
+    parent = np.arange(merged.shape[0])
+    while True:
+        first, second = parent[start], parent[end]
+        apart = first != second
+        if not apart.any():
             break
-    used = np.unique(triangles)
-    return merged[np.unique(labels[used])]
+        np.minimum.at(parent, np.maximum(first, second)[apart], np.minimum(first, second)[apart])
+        while not np.array_equal(jumped := parent[parent], parent):
+            parent = jumped
+    return merged[np.unique(parent[np.unique(triangles)])]
 
 
 def _merged(vertices: FloatArray, triangles: IndexArray) -> tuple[FloatArray, IndexArray]:
     """Identical vertices merged, and triangles with a repeated corner left out."""
-    merged, inverse = np.unique(vertices, axis=0, return_inverse=True)
+    rows = np.ascontiguousarray(vertices + 0.0)  # -0.0 and 0.0: one vertex
+    keys = rows.view(np.dtype((np.void, rows.dtype.itemsize * 3))).reshape(-1)
+    _, first, inverse = np.unique(keys, return_index=True, return_inverse=True)
     triangles = inverse.reshape(-1)[triangles]
     keep = ((triangles[:, 0] != triangles[:, 1]) & (triangles[:, 1] != triangles[:, 2])
             & (triangles[:, 0] != triangles[:, 2]))
-    return merged, triangles[keep]
+    return rows[first], triangles[keep]
