@@ -3,9 +3,10 @@ given by ``FrameTree.add_geometry``.
 
 A :class:`FrameGeometry` is what the URDF mounter records for every link it adds to a tree,
 and what ``add_geometry`` adds to (in the frame's metadata under
-:data:`GEOMETRY_METADATA_KEY`, so that renaming, removing, grafting and copying carry it). The clearance query turns it into coal objects, the 3-D page
-into triangles; neither parses the URDF again. Mesh files are named as the URDF writes them
-and are only opened by those consumers. Lengths in metres.
+:data:`GEOMETRY_METADATA_KEY`, so that renaming, removing, grafting and copying carry it).
+The clearance query turns it into coal objects, the 3-D page into triangles; neither parses
+the URDF again. Mesh files are named as the URDF writes them and are only opened by those
+consumers. Lengths in metres.
 """
 
 from __future__ import annotations
