@@ -117,3 +117,18 @@ def test_a_mesh_with_a_nan_corner_is_an_error(tmp_path):
     tree.attach_urdf(one_link("broken", f'<mesh filename="{path}"/>'), "world")
     with pytest.raises(GeometryError, match=r"frame 'broken'"):
         tree.clearance("broken", "ball")
+
+
+def test_triangles_of_no_area_are_left_out_not_measured_as_contact(tmp_path):
+    """coal reads a ball 0.9 m beside a triangle of three points on a line as -0.1 m."""
+    flat = [[0, 0, 0], [1, 0, 0], [2, 0, 0]]
+    path = write_stl(tmp_path / "flat.stl", [*flat, [0, 0, -1], [1, 0, -1], [0, 0, -2]],
+                     [[0, 1, 2], [3, 4, 5]])
+    tree = with_ball(FrameTree(), (0.5, 1.0, 0.0))
+    tree.attach_urdf(one_link("part", f'<mesh filename="{path}"/>'), "world")
+    # the one real triangle lies in the plane y = 0, below z = -1: the ball is above its edge
+    assert tree.clearance("part", "ball").distance[0] == pytest.approx(np.hypot(1.0, 1.0) - 0.1)
+    only_flat = write_stl(tmp_path / "only_flat.stl", flat, [[0, 1, 2]])
+    tree.attach_urdf(one_link("sheet", f'<mesh filename="{only_flat}"/>'), "world")
+    with pytest.raises(GeometryError, match="frame 'sheet'.*no triangle of non-zero area"):
+        tree.clearance("sheet", "ball")

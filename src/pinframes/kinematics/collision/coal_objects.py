@@ -175,6 +175,14 @@ class ShapeLoader:
                 raise GeometryError(
                     f"mesh vertices (scale {' '.join(map(str, scale))} applied) must be finite "
                     f"and within {LARGEST_COORDINATE:g} m", **where)
+            corners = vertices[triangles]
+            normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+            # coal measures a triangle of no area wrongly (a ball 0.9 m beside one reads
+            # -0.1 m): such triangles are left out
+            triangles = triangles[np.any(normals != 0.0, axis=1)]
+            if triangles.shape[0] == 0:
+                raise GeometryError("mesh has no triangle of non-zero area (with the scale "
+                                    f"{' '.join(map(str, scale))} applied)", **where)
             model = coal.BVHModelOBBRSS()
             model.beginModel(triangles.shape[0], vertices.shape[0])
             model.addVertices(vertices)
