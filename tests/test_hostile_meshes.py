@@ -130,5 +130,5 @@ def test_triangles_of_no_area_are_left_out_not_measured_as_contact(tmp_path):
     assert tree.clearance("part", "ball").distance[0] == pytest.approx(np.hypot(1.0, 1.0) - 0.1)
     only_flat = write_stl(tmp_path / "only_flat.stl", flat, [[0, 1, 2]])
     tree.attach_urdf(one_link("sheet", f'<mesh filename="{only_flat}"/>'), "world")
-    with pytest.raises(GeometryError, match="frame 'sheet'.*no triangle of non-zero area"):
+    with pytest.raises(GeometryError, match=r"frame 'sheet'.*no triangle of non-zero area"):
         tree.clearance("sheet", "ball")
