@@ -399,14 +399,15 @@ class TreeQueries(TreeStructure):
         geometry: str = "collision", exclude: Iterable[tuple[str, str]] = (),
         extrapolation: str = "clamp", limits: Any = None,
     ) -> Clearance:
-        """The smallest distance between the geometry of the links ``a`` and ``b``, per sample.
+        """The smallest distance between the shapes of the frames ``a`` and ``b``, per sample.
 
         Parameters
         ----------
         a, b : str or sequence of str
             Frame names or glob patterns over frame names (``"robot/*"``). Their geometry
             is the ``<collision>`` (or, with ``geometry="visual"``, ``<visual>``) geometry
-            of the URDF links among them: boxes, cylinders, spheres and meshes. A frame
+            of the URDF links among them and the shapes :meth:`add_geometry` gave them:
+            boxes, cylinders, spheres and meshes. A frame
             named outright must have such geometry; a pattern takes the frames it matches
             that have some (a link such as ``tool0`` without any is left out, as
             ``pinocchio.buildGeomFromUrdf`` leaves it out) and must take at least one.
