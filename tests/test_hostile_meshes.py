@@ -9,6 +9,7 @@
 
 from __future__ import annotations
 
+import re
 import warnings
 
 import numpy as np
@@ -132,3 +133,18 @@ def test_triangles_of_no_area_are_left_out_not_measured_as_contact(tmp_path):
     tree.attach_urdf(one_link("sheet", f'<mesh filename="{only_flat}"/>'), "world")
     with pytest.raises(GeometryError, match=r"frame 'sheet'.*no triangle of non-zero area"):
         tree.clearance("sheet", "ball")
+
+
+@pytest.mark.parametrize("how", ["instances", "elements"])
+def test_nodes_nested_thousands_deep_are_an_error_not_a_crash(tmp_path, how):
+    text = nested_instances_dae(3000, fan=1)
+    if how == "elements":  # <node> inside <node>, 3000 deep, around the triangle's node
+        inner = '<node id="n0"><instance_geometry url="#tri"/></node>'
+        nested = "<node>" * 3000 + inner + "</node>" * 3000
+        text = re.sub(r"<library_nodes>.*</library_nodes>", "", text, flags=re.S)
+        text = text.replace('<instance_node url="#n3000"/>', nested)
+    (tmp_path / "deep.dae").write_text(text)
+    tree = with_ball(FrameTree())
+    tree.attach_urdf(one_link("deep", f'<mesh filename="{tmp_path / "deep.dae"}"/>'), "world")
+    with pytest.raises(GeometryError, match="frame 'deep'.*cannot be read"):
+        tree.clearance("deep", "ball")

@@ -38,11 +38,16 @@ from numpy.typing import NDArray
 
 from ...errors import GeometryError
 
-__all__ = ["ASSIMP_SUFFIXES", "MAX_TRIANGLES", "MeshPart", "TriangleMesh", "read_mesh"]
+__all__ = ["ASSIMP_SUFFIXES", "MAX_NODE_DEPTH", "MAX_TRIANGLES", "MeshPart", "TriangleMesh",
+           "read_mesh"]
 
 MAX_TRIANGLES = 1_000_000
 """Default bound on the triangles of one mesh file after instancing (the largest of the 173
 mesh files of ROS-Industrial's kuka_experimental has 70,010)."""
+
+MAX_NODE_DEPTH = 256
+"""COLLADA nodes nested deeper than this (through ``<node>`` and ``<instance_node>``) are
+refused; robot meshes nest a few levels."""
 
 ASSIMP_SUFFIXES = (".stl", ".obj", ".ply", ".off")
 """Mesh formats read by coal's loader (assimp): none of them instances a part."""
@@ -197,6 +202,9 @@ def _count_triangles(nodes: Any, counted: dict[int, int], path_ids: tuple[int, .
     for node in nodes:
         target = getattr(node, "node", node)  # an <instance_node> counts as its node
         key = id(target)
+        if len(path_ids) >= MAX_NODE_DEPTH:
+            raise GeometryError(f"cannot be read: COLLADA nodes nested more than "
+                                f"{MAX_NODE_DEPTH} deep", file=str(path))
         if key in path_ids:
             raise GeometryError(f"cannot be read: COLLADA node {getattr(target, 'id', None)!r} "
                                 "instances itself", file=str(path))
