@@ -146,5 +146,5 @@ def test_nodes_nested_thousands_deep_are_an_error_not_a_crash(tmp_path, how):
     (tmp_path / "deep.dae").write_text(text)
     tree = with_ball(FrameTree())
     tree.attach_urdf(one_link("deep", f'<mesh filename="{tmp_path / "deep.dae"}"/>'), "world")
-    with pytest.raises(GeometryError, match="frame 'deep'.*cannot be read"):
+    with pytest.raises(GeometryError, match=r"frame 'deep'.*cannot be read"):
         tree.clearance("deep", "ball")
