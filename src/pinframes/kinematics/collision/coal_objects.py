@@ -7,10 +7,10 @@ uses too) from the file :class:`~.mesh_files.MeshFiles` finds, into the BVH mode
 (``BVHModelOBBRSS``, the scale applied) that ``pinocchio.buildGeomFromUrdf`` builds. So a
 distance computed here is the distance Pinocchio + coal compute on the same URDF (for
 COLLADA meshes, once their unit is applied, which Pinocchio's loader does not do). A closed
-mesh also carries the solid it bounds (:mod:`.solid_meshes`). Sizes, scales and vertices
-must be finite and within :data:`LARGEST_COORDINATE` metres, where coal's squared distances
-stay exact enough. Every problem is a :class:`~pinframes.errors.GeometryError` naming the
-frame, the shape's field and the file.
+mesh also carries the solid it bounds (:mod:`.solid_meshes`). Sizes, origins and scaled
+vertices must be finite and within :data:`LARGEST_COORDINATE` metres, where coal's squared
+distances stay exact enough. Every problem is a :class:`~pinframes.errors.GeometryError`
+naming the frame, the shape's field and the file.
 """
 
 from __future__ import annotations
@@ -204,14 +204,13 @@ class _Mesh:
 
 
 def _check_sizes(frame: str, field: str, shape: Shape, geometry: FrameGeometry) -> None:
-    """Sizes and scales finite, not negative, and within :data:`LARGEST_COORDINATE`."""
-    for name, values in (("dimensions", shape.dimensions), ("scale", shape.scale),
-                         ("origin", (*shape.xyz, *shape.rpy))):
+    """Sizes and the origin finite and within :data:`LARGEST_COORDINATE`, sizes not negative
+    (a mesh's scaled vertices are checked when it is read)."""
+    for name, values in (("dimensions", shape.dimensions), ("origin", (*shape.xyz, *shape.rpy))):
         numbers = np.asarray(values, dtype=float)
         if not np.all(np.abs(numbers) <= LARGEST_COORDINATE) or (
                 name == "dimensions" and np.any(numbers < 0)):
             raise GeometryError(
                 f"{shape.describe()}: {name} must be finite and within "
                 f"{LARGEST_COORDINATE:g} m (sizes not negative), got {tuple(values)}",
-                file=geometry.urdf,
-                frame=frame, field=f"{field}.{name}")
+                file=geometry.urdf, frame=frame, field=f"{field}.{name}")
