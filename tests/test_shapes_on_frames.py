@@ -18,6 +18,7 @@ from pinframes import (
     Mesh,
     Pose,
     Sphere,
+    write_urdf,
 )
 from pinframes.view import load_geometry
 
@@ -124,3 +125,33 @@ def test_add_geometry_names_the_frame_and_field_of_what_is_wrong():
     with pytest.raises(FrameNotFoundError, match="frame 'nowhere'"):
         tree.add_geometry("nowhere", Sphere(0.1))
     assert "geometry" not in tree.frame_metadata("part")  # nothing recorded on failure
+
+
+def test_write_urdf_keeps_added_shapes_for_pinocchio_to_read(tmp_path):
+    """The written URDF, read by Pinocchio's own buildGeomFromUrdf: the same distance."""
+    cube = write_cube_stl(tmp_path / "cube.stl", 1.0)
+    tree = FrameTree()
+    tree.add("part", "world", Pose.from_xyz_rpy(0.1, 0.0, 0.2, 0.0, 0.0, 0.4))
+    tree.add_geometry("part", Box([0.2, 0.3, 0.1]), origin=Pose([0.05, 0, 0]))
+    tree.add_geometry("part", Cylinder(0.05, 0.4), origin=Pose.from_xyz_rpy(0, 0, 0.3, 0.5, 0, 0),
+                      kind="collision")
+    tree.add("probe", "world", Pose([0.7, 0.3, 0.4]))
+    tree.add_geometry("probe", Mesh(cube, scale=0.1), rgba=(0.2, 0.4, 0.6, 1.0))
+    path = tmp_path / "cell.urdf"
+    write_urdf(tree, path)
+    model = pin.buildModelFromUrdf(str(path))
+    geometry = pin.buildGeomFromUrdf(model, str(path), pin.GeometryType.COLLISION)
+    assert geometry.ngeoms == 3
+    part = [i for i, obj in enumerate(geometry.geometryObjects) if obj.name.startswith("part")]
+    probe = [i for i, obj in enumerate(geometry.geometryObjects) if obj.name.startswith("probe")]
+    for i in part:
+        geometry.addCollisionPair(pin.CollisionPair(i, probe[0]))
+    data, geometry_data = model.createData(), pin.GeometryData(geometry)
+    pin.updateGeometryPlacements(model, data, geometry, geometry_data, pin.neutral(model))
+    pin.computeDistances(geometry, geometry_data)
+    theirs = min(result.min_distance for result in geometry_data.distanceResults)
+    assert tree.clearance("part", "probe").distance[0] == pytest.approx(theirs, abs=1e-9)
+    visual = pin.buildGeomFromUrdf(model, str(path), pin.GeometryType.VISUAL)
+    colours = [obj.meshColor.tolist() for obj in visual.geometryObjects
+               if obj.name.startswith("probe")]
+    np.testing.assert_allclose(colours, [[0.2, 0.4, 0.6, 1.0]], atol=1e-7)  # float32 there
