@@ -148,3 +148,14 @@ def test_nodes_nested_thousands_deep_are_an_error_not_a_crash(tmp_path, how):
     tree.attach_urdf(one_link("deep", f'<mesh filename="{tmp_path / "deep.dae"}"/>'), "world")
     with pytest.raises(GeometryError, match=r"frame 'deep'.*cannot be read"):
         tree.clearance("deep", "ball")
+
+
+def test_a_mesh_file_over_max_decompressed_bytes_is_not_opened(tmp_path):
+    path = write_stl(tmp_path / "tri.stl", [[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])
+    tree = with_ball(FrameTree())
+    tree.attach_urdf(one_link("part", f'<mesh filename="{path}"/>'), "world")
+    size = path.stat().st_size
+    with pytest.raises(GeometryError, match=rf"frame 'part'.*max_decompressed_bytes={size - 1}"):
+        tree.clearance("part", "ball", limits=Limits(max_decompressed_bytes=size - 1))
+    measured = tree.clearance("part", "ball", limits=Limits(max_decompressed_bytes=size))
+    assert measured.distance[0] == pytest.approx(2.0 - 0.1, abs=1e-9)  # from (1, 0, 0)

@@ -47,7 +47,7 @@ from ..kinematics import (
     paths_to_common_ancestor,
     snapshot,
 )
-from ..kinematics.collision.mesh_reader import MAX_TRIANGLES
+from ..kinematics.collision.mesh_reader import DEFAULT_BOUNDS, MeshBounds
 from ..values.geometry import GEOMETRY_METADATA_KEY, FrameGeometry
 from ..values.numbers import require_finite_result
 from ..values.pose import Pose
@@ -425,8 +425,9 @@ class TreeQueries(TreeStructure):
             Pairs of frame names or patterns not to check, in either order (a torch that
             works at the seam, a robot standing on its base).
         limits : pinframes.Limits or None
-            Its ``max_triangles`` bounds the triangles of each mesh file (None: the
-            default, 1,000,000).
+            Its ``max_triangles`` bounds the triangles of each mesh file after
+            instancing, its ``max_decompressed_bytes`` the file's size (None: 1,000,000
+            triangles, any size; the command line passes its ``--max-...`` options).
 
         Returns
         -------
@@ -453,10 +454,11 @@ class TreeQueries(TreeStructure):
                     for first in self._frames_matching(pattern_a, "exclude")
                     for second in self._frames_matching(pattern_b, "exclude")]
         recorded = {frame: self._recorded_geometry(frame) for frame in [*frames_a, *frames_b]}
-        max_triangles = MAX_TRIANGLES if limits is None else limits.max_triangles
+        bounds = DEFAULT_BOUNDS if limits is None else MeshBounds(
+            limits.max_triangles, limits.max_decompressed_bytes)
         return evaluate_clearance(self._frozen(), recorded, frames_a, frames_b, excluded,
                                   geometry, package_dirs, times, time_ref, extrapolation,
-                                  max_triangles)
+                                  bounds)
 
     def clearance_times(self, a: str | Sequence[str], b: str | Sequence[str], *,
                         geometry: str = "collision") -> TimeAxis | None:

@@ -30,7 +30,7 @@ from .._description import TreeDescription
 from .._plan import QueryPlan, plan_query, prepare_path
 from ..poses import planned_poses
 from .coal_objects import LARGEST_COORDINATE, CollisionShape, ShapeLoader
-from .mesh_reader import MAX_TRIANGLES
+from .mesh_reader import DEFAULT_BOUNDS, MeshBounds
 
 __all__ = ["Clearance", "clearance_times", "evaluate_clearance"]
 
@@ -118,15 +118,15 @@ def evaluate_clearance(
     tree: TreeDescription, geometry: Mapping[str, FrameGeometry | None],
     frames_a: Sequence[str], frames_b: Sequence[str], excluded: Iterable[tuple[str, str]],
     kind: str, package_dirs: Iterable[str | os.PathLike[str]], times: Any, time_ref: Any,
-    extrapolation: str, max_triangles: int = MAX_TRIANGLES,
+    extrapolation: str, bounds: MeshBounds = DEFAULT_BOUNDS,
 ) -> Clearance:
     """``tree.clearance(...)`` for frames already named and checked.
 
     ``geometry`` holds the recorded geometry of every frame of ``frames_a`` and
     ``frames_b``; ``excluded`` the frame pairs (either order) not to check;
-    ``max_triangles`` bounds each mesh file.
+    ``bounds`` what reading each mesh file may cost.
     """
-    loader = _loader(tree, kind, package_dirs, max_triangles)
+    loader = _loader(tree, kind, package_dirs, bounds)
     frames = list(dict.fromkeys([*frames_a, *frames_b]))
     shapes = [shape for frame in frames for shape in loader.shapes(frame, geometry[frame])]
     skipped = {frozenset(pair) for pair in excluded}
@@ -162,15 +162,15 @@ def evaluate_clearance(
 
 
 def _loader(tree: TreeDescription, kind: str,
-            package_dirs: Iterable[str | os.PathLike[str]], max_triangles: int) -> ShapeLoader:
+            package_dirs: Iterable[str | os.PathLike[str]], bounds: MeshBounds) -> ShapeLoader:
     """The shape loader of this tree version for ``kind``, these search folders and this
     bound (meshes are read once per version)."""
     folders = tuple(os.fspath(folder) for folder in package_dirs)
-    key = ("clearance shapes", kind, str(max_triangles), os.environ.get("ROS_PACKAGE_PATH", ""),
+    key = ("clearance shapes", kind, repr(bounds), os.environ.get("ROS_PACKAGE_PATH", ""),
            *folders)
     loader = tree.cached(key)
     if loader is None:
-        loader = ShapeLoader(kind, folders, max_triangles)
+        loader = ShapeLoader(kind, folders, bounds)
         tree.store(key, loader)
     return loader
 

@@ -28,7 +28,7 @@ from numpy.typing import NDArray
 from ...errors import GeometryError
 from ...values.geometry import GEOMETRY_KINDS, FrameGeometry, Shape
 from .mesh_files import HOW_TO_SEARCH, MeshFiles, mesh_file_problem, package_search_dirs
-from .mesh_reader import MAX_TRIANGLES, read_mesh
+from .mesh_reader import DEFAULT_BOUNDS, MeshBounds, read_mesh
 from .solid_meshes import SolidMesh, solid_mesh
 
 __all__ = ["LARGEST_COORDINATE", "CollisionShape", "ShapeLoader"]
@@ -91,17 +91,17 @@ class ShapeLoader:
     package_dirs : iterable of path
         Folders searched for ``package://`` and relative mesh names first (see
         :class:`~pinframes.kinematics.collision.mesh_files.MeshFiles`).
-    max_triangles : int
-        The most triangles one mesh file may hold after instancing.
+    bounds : MeshBounds
+        The most triangles one mesh file may hold after instancing, and its most bytes.
     """
 
     def __init__(self, kind: str, package_dirs: Iterable[str | os.PathLike[str]] = (),
-                 max_triangles: int = MAX_TRIANGLES) -> None:
+                 bounds: MeshBounds = DEFAULT_BOUNDS) -> None:
         if kind not in GEOMETRY_KINDS:
             raise GeometryError(f"expected one of {', '.join(GEOMETRY_KINDS)}, got {kind!r}",
                                 field="geometry")
         self.kind = kind
-        self.max_triangles = max_triangles
+        self.bounds = bounds
         self._search_dirs = package_search_dirs(package_dirs)
         self._meshes: dict[tuple[str, tuple[float, ...]], _Mesh] = {}
 
@@ -162,11 +162,11 @@ class ShapeLoader:
         mesh = self._meshes.get(key)
         if mesh is None:
             where = {"file": path, "frame": frame, "field": f"{field}.mesh"}
-            if (problem := mesh_file_problem(Path(path), None)) is not None:
+            if (problem := mesh_file_problem(Path(path), self.bounds.max_bytes)) is not None:
                 raise GeometryError(f"mesh {problem}", **where)
             try:
-                vertices, triangles = read_mesh(Path(path),
-                                                max_triangles=self.max_triangles).merged()
+                vertices, triangles = read_mesh(
+                    Path(path), max_triangles=self.bounds.max_triangles).merged()
             except GeometryError as exc:
                 raise GeometryError(f"mesh {exc.message}", **where) from None
             with np.errstate(over="ignore", invalid="ignore"):

@@ -38,8 +38,8 @@ from numpy.typing import NDArray
 
 from ...errors import GeometryError
 
-__all__ = ["ASSIMP_SUFFIXES", "MAX_NODE_DEPTH", "MAX_TRIANGLES", "MeshPart", "TriangleMesh",
-           "read_mesh"]
+__all__ = ["ASSIMP_SUFFIXES", "DEFAULT_BOUNDS", "MAX_NODE_DEPTH", "MAX_TRIANGLES", "MeshBounds",
+           "MeshPart", "TriangleMesh", "read_mesh"]
 
 MAX_TRIANGLES = 1_000_000
 """Default bound on the triangles of one mesh file after instancing (the largest of the 173
@@ -57,6 +57,19 @@ _XML_DECLARATIONS = (b"<!DOCTYPE", b"<!ENTITY")
 
 FloatArray = NDArray[np.float64]
 IndexArray = NDArray[np.int64]
+
+
+@dataclass(frozen=True)
+class MeshBounds:
+    """What reading one mesh file may cost: ``max_triangles`` after instancing, and
+    ``max_bytes`` of file (None: any size)."""
+
+    max_triangles: int = MAX_TRIANGLES
+    max_bytes: int | None = None
+
+
+DEFAULT_BOUNDS = MeshBounds()
+"""1,000,000 triangles, files of any size."""
 
 
 @dataclass(frozen=True)
