@@ -346,9 +346,10 @@ class TreeQueries(EditableTree):
             once the tool is on its target, the freedom left turns this frame's z toward
             ``up`` as far as it can (flat welding: the weld's face looks up, position PA).
             A secondary task, in the null space of the tool's: the tool's target is never
-            traded for it. The first sample is turned to convergence, then every sample
-            follows with one step. Takes the place of the default secondary task of
-            keeping joints out of the bands along their limits.
+            traded for it. The first sample is turned to convergence, then sample by
+            sample one step turns the frame back wherever its z has come more than 0.5
+            degrees from ``up``. Takes the place of the default secondary task of keeping
+            joints out of the bands along their limits.
         up : sequence of 3 floats, optional
             The direction ``flat``'s z is turned toward, in the root's axes (default: the
             root's +z).

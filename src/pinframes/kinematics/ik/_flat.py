@@ -5,16 +5,24 @@ is on its target; :class:`FlatFrame` spends it on turning a frame of the workpie
 its z the face of the weld) so that its z points up. Its task has two rows, the angular
 velocity of the frame across its z (its x and y, in the model root's axes) per unit rate of
 each solved joint, ``B``, and asks for the rotation ``w`` that carries z onto up, across z.
-Within the null space ``N`` of the tool's rows ``A``, the motion is
-``(B N)^T ((B N)(B N)^T + damping)^-1 w``, the task-priority step (it lies in that null space
-already, so the solver's projection keeps it whole), at most :data:`LONGEST_TURN` per joint.
+Within the null space ``N`` of the tool's rows ``A``, the motion is the task-priority step
+``(B N)^+ w``: the smallest with ``A m = 0`` and ``B m = w``, from one damped least-squares
+solve of the two stacked (the solver's projection keeps it whole, and removes what the
+damping lets into the tool's rows), at most :data:`LONGEST_TURN` per joint.
 Where the remaining freedom cannot turn the frame further, the motion fades and the frame
 stays as close to up as it gets.
+
+A sample solved from a start is served until the frame is within :data:`FLAT_ENOUGH` of up;
+a tracked sample only when it is beyond :data:`FLAT_TOLERANCE` (one forward kinematics to
+look), then by one step: the tool's smallest motion lets the frame drift a little per
+sample, and serving only where that adds up keeps ``flat=`` within twice a plain solve's
+time (benchmarks/bench_flat.py).
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -26,15 +34,20 @@ from .._description import TreeDescription
 from .._model import CompiledModel
 from .._plan import prepare_path
 from ._bounded_step import LeastSquares
-from ._null_space import null_space_motion
 from ._solved_joints import SolvedJoints
 
-__all__ = ["FLAT_ENOUGH", "FLAT_ROUNDS", "FlatFrame", "flat_objective"]
+__all__ = ["FLAT_ENOUGH", "FLAT_ROUNDS", "FLAT_TOLERANCE", "FlatFrame", "flat_objective"]
 
 FloatArray = NDArray[np.float64]
 
 FLAT_ENOUGH = 1e-9
-"""Radians between the frame's z and up below which nothing more is asked."""
+"""Radians between the frame's z and up below which nothing more is asked on a sample solved
+from a start (the first: to convergence)."""
+
+FLAT_TOLERANCE = math.radians(0.5)
+"""Radians between the frame's z and up below which nothing is asked on a sample solved from
+a prediction: a sample beyond it is turned back (to within the step's linearisation error),
+the others left as the tool's smallest motion put them."""
 
 FLAT_ROUNDS = 100
 """Rounds at most on a sample solved from a start (each one a task-priority step)."""
@@ -50,6 +63,9 @@ SMALLEST_MOTION = 1e-12
 """Radians or metres: a motion no larger is nothing (the freedom is spent)."""
 
 _WORLD_ALIGNED = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
+
+_WITHIN_TOLERANCE = math.cos(FLAT_TOLERANCE)
+"""The cosine of :data:`FLAT_TOLERANCE`: z dot up at least this, nothing is asked."""
 
 
 class FlatFrame:
@@ -79,30 +95,36 @@ class FlatFrame:
         self._model, self._data, self._joints = model, data, joints
         self._joint_id = joint_id
         self._rotation_on_joint = np.asarray(rotation_on_joint, dtype=float)
+        self._z_on_joint = self._rotation_on_joint[:, 2].copy()
         self._up = np.asarray(up, dtype=float)
         self._solver = solver
 
-    def axes(self, configuration: FloatArray) -> FloatArray:
-        """The flat frame's axes (3, 3) in the model root's, at ``configuration``; leaves
-        Pinocchio's joint Jacobians computed there."""
-        pin.computeJointJacobians(self._model, self._data, configuration)
-        return self._data.oMi[self._joint_id].rotation.dot(self._rotation_on_joint)  # type: ignore[no-any-return]
-
-    def motion(self, theta: FloatArray, configuration: FloatArray, rows: FloatArray
-               ) -> FloatArray | None:
+    def motion(self, theta: FloatArray, configuration: FloatArray,
+               task_rows: Callable[[], FloatArray], settle: bool) -> FloatArray | None:
         """The task-priority step toward up (module docstring); None when the frame is
-        within :data:`FLAT_ENOUGH` of up or the freedom left cannot turn it."""
-        axes = self.axes(configuration)
-        turn, angle = _turn_onto(axes[:, 2], self._up)
-        if angle <= FLAT_ENOUGH:
+        within :data:`FLAT_TOLERANCE` of up (``settle``: :data:`FLAT_ENOUGH`) or the freedom
+        left cannot turn it."""
+        model, data = self._model, self._data
+        if not settle:  # a look first: most samples stay within the tolerance
+            pin.forwardKinematics(model, data, configuration)
+            face = data.oMi[self._joint_id].rotation.dot(self._z_on_joint)
+            if face.dot(self._up) >= _WITHIN_TOLERANCE:
+                return None
+        rows = task_rows()
+        if not self._joints.moves_reference:  # else task_rows() computed them
+            pin.computeJointJacobians(model, data, configuration)
+        axes = self._axes()
+        wanted = _turn_across(axes, self._up, FLAT_ENOUGH)
+        if wanted is None:
             return None
-        jacobian = pin.getJointJacobian(self._model, self._data, self._joint_id, _WORLD_ALIGNED)
+        jacobian = pin.getJointJacobian(model, data, self._joint_id, _WORLD_ALIGNED)
         across = axes[:, :2].T.dot(self._joints.jacobian(jacobian)[3:])  # (2, n)
-        free = np.array([null_space_motion(self._solver, rows, row) for row in across])
-        wanted = axes[:, :2].T.dot(turn)
-        normal = free.dot(free.T)
-        normal.flat[::3] += DAMPING
-        motion: FloatArray = np.linalg.solve(normal, wanted).dot(free)
+        # the smallest motion with rows @ m = 0 and across @ m = wanted: (B N)^+ w when the
+        # stacked rows have full rank (the solver's projection removes what damping leaks)
+        stacked = np.concatenate([rows, across])
+        goal = np.zeros(stacked.shape[0])
+        goal[-2:] = wanted
+        motion: FloatArray = self._solver.correction(stacked, goal, DAMPING)
         largest = float(np.abs(motion).max())
         if not largest > SMALLEST_MOTION:
             return None
@@ -110,17 +132,29 @@ class FlatFrame:
             motion *= LONGEST_TURN / largest
         return motion
 
+    def _axes(self) -> FloatArray:
+        """The flat frame's axes (3, 3) in the model root's, from Pinocchio's data."""
+        return self._data.oMi[self._joint_id].rotation.dot(self._rotation_on_joint)  # type: ignore[no-any-return]
 
-def _turn_onto(axis: FloatArray, up: FloatArray) -> tuple[FloatArray, float]:
-    """The rotation vector (3,) carrying the unit ``axis`` onto the unit ``up`` about an axis
-    across both, and its angle (rad); upside down, half a turn about any axis across."""
-    normal = np.cross(axis, up)
-    sine = float(np.linalg.norm(normal))
-    angle = math.atan2(sine, float(axis.dot(up)))
-    if sine > 0.0:
-        return normal * (angle / sine), angle
-    across = np.cross(axis, [1.0, 0.0, 0.0] if abs(axis[0]) < 0.9 else [0.0, 1.0, 0.0])
-    return across * (angle / float(np.linalg.norm(across))), angle
+
+def _turn_across(axes: FloatArray, up: FloatArray, tolerance: float) -> FloatArray | None:
+    """The rotation (2,) carrying the frame's z onto ``up``, in the frame's x and y (rad:
+    its length the angle between them); None within ``tolerance`` (rad). Upside down, half
+    a turn about x."""
+    (x_x, y_x, z_x), (x_y, y_y, z_y), (x_z, y_z, z_z) = axes.tolist()
+    up_x, up_y, up_z = up.tolist()
+    # z x up, in the frame's axes: its z component is 0
+    normal_x, normal_y, normal_z = (z_y * up_z - z_z * up_y, z_z * up_x - z_x * up_z,
+                                    z_x * up_y - z_y * up_x)
+    along_x = x_x * normal_x + x_y * normal_y + x_z * normal_z
+    along_y = y_x * normal_x + y_y * normal_y + y_z * normal_z
+    sine = math.hypot(along_x, along_y)
+    angle = math.atan2(sine, z_x * up_x + z_y * up_y + z_z * up_z)
+    if angle <= tolerance:
+        return None
+    if sine == 0.0:
+        return np.array([angle, 0.0])
+    return np.array([along_x * angle / sine, along_y * angle / sine])
 
 
 def flat_objective(tree: TreeDescription, model: CompiledModel, joints: SolvedJoints,

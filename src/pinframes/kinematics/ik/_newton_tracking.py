@@ -326,6 +326,8 @@ class _SampleSolver:
         self.objective_margin = -math.inf if self.objective is None else (
             self.objective.quiet_margin)
         self.rows: FloatArray | None = None  # the task's rows at the latest linearisation
+        self._asked_rows: FloatArray | None = None  # the rows at the solution being served
+        self._asked_at = np.empty(0)  # and its configuration
 
     def predicted(self, last: FloatArray, step: FloatArray, margin: float
                   ) -> tuple[FloatArray, float]:
@@ -400,20 +402,27 @@ class _SampleSolver:
         for _ in range(self.objective.rounds_from_a_start if from_a_start else 1):
             theta = solved[0]
             self.joints.set_configuration(q, theta)
-            tool_in_reference = self._tool_in_reference(q)  # the task's rows at the solution
-            rows = self.error.rows(self.joints.jacobian(self._tool_jacobian(q,
-                                                                            tool_in_reference)))
-            motion = self.objective.motion(theta, q, rows)
+            self._asked_rows, self._asked_at = None, q
+            motion = self.objective.motion(theta, q, self._task_rows, from_a_start)
             if motion is None:
                 break
-            moved = self.limits.clipped(theta + null_space_motion(self.least_squares, rows,
-                                                                  motion))
+            moved = self.limits.clipped(theta + null_space_motion(self.least_squares,
+                                                                  self._task_rows(), motion))
             served = self._newton(q, target, self.error, moved, 0.0, self.position_tolerance,
-                                  self.orientation_tolerance, MAX_ITERATIONS, False)
+                                  self.orientation_tolerance, MAX_ITERATIONS, True)
             if not served[3]:
                 break
             solved = served
         return solved
+
+    def _task_rows(self) -> FloatArray:
+        """The task's rows (m, n) at the configuration being served, computed once."""
+        if self._asked_rows is None:
+            q = self._asked_at
+            tool_in_reference = self._tool_in_reference(q)
+            self._asked_rows = self.error.rows(self.joints.jacobian(
+                self._tool_jacobian(q, tool_in_reference)))
+        return self._asked_rows
 
     def _tool_in_target(self, q: FloatArray, theta: FloatArray, target: pin.SE3 | None
                         ) -> pin.SE3:

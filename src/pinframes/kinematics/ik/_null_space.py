@@ -18,6 +18,7 @@ target keeps a static solution.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Protocol
 
 import numpy as np
@@ -46,14 +47,18 @@ class NullSpaceObjective(Protocol):
     quiet_margin: float
     rounds_from_a_start: int
 
-    def motion(self, theta: FloatArray, configuration: FloatArray, rows: FloatArray
-               ) -> FloatArray | None:
+    def motion(self, theta: FloatArray, configuration: FloatArray,
+               task_rows: Callable[[], FloatArray], settle: bool) -> FloatArray | None:
         """The joint motion (n,) wanted at the solution ``theta`` (n,), radians or metres;
         None when there is nothing to do. ``configuration`` is the sample's Pinocchio ``q``
         (nq,) with ``theta`` in it: an objective about a frame's pose (a frame kept flat)
-        runs forward kinematics of it on the model it was made with. ``rows`` (m, n) are the
-        task's at ``theta``: an objective with a task of its own solves it within their null
-        space."""
+        runs forward kinematics of it on the model it was made with. ``task_rows()`` gives
+        the task's rows (m, n) at ``theta`` (computed on the first call: an objective with
+        a task of its own solves it within their null space); it leaves Pinocchio's data
+        with the forward kinematics of ``configuration`` and, when solved joints move the
+        reference, every joint's Jacobian (``computeJointJacobians``). ``settle``: the
+        sample is solved from a start, served round after round: ask for what is left,
+        however little."""
 
 
 BAND = 0.1
@@ -82,8 +87,8 @@ class AwayFromLimits:
         self.rounds_from_a_start = 1
         self._limits = limits
 
-    def motion(self, theta: FloatArray, configuration: FloatArray, rows: FloatArray
-               ) -> FloatArray | None:
+    def motion(self, theta: FloatArray, configuration: FloatArray,
+               task_rows: Callable[[], FloatArray], settle: bool) -> FloatArray | None:
         """:data:`PUSH` of each joint's depth inside its band, away from the limit."""
         if not self._limits.margin(theta.tolist()) < self.quiet_margin:
             return None
