@@ -205,3 +205,22 @@ def test_solve_keeps_a_seam_flat_with_a_positioner(run_cli, tmp_path):
         seam = pin.Quaternion(start).slerp(time, pin.Quaternion(later)).matrix()
         face = data.oMf[plate].rotation @ seam[:, 2]
         assert np.degrees(np.arccos(min(1.0, face[2]))) <= 2.0
+
+
+def test_solve_with_process_windows_keeps_the_tilt_within_them(cell, run_cli):
+    """--tilt in radians: the flange's z within 0.1 rad of the seam's about its x and y,
+    by Pinocchio on the URDF; the summary names the largest tilt."""
+    scene, table, seam_in_table = cell
+    result = run_cli("solve", scene, "--frame", "robot/flange", "--target", "seam",
+                     "--free-axis", "z", "--tilt", "0.1", "0.1", "--times", "0", "1", "2")
+    assert result.returncode == 0, result.stderr
+    assert "3 samples, 3 reached" in result.stderr
+    assert "largest tilt" in result.stderr
+    rows = np.array([[float(cell) for cell in line.split(",")]
+                     for line in result.stdout.splitlines()[1:]])
+    targets = seam_targets(table, seam_in_table, rows[:, 0])
+    for placement, target in zip(flange_poses(rows[:, 1:]), targets, strict=True):
+        offset = target.actInv(placement)
+        assert np.linalg.norm(offset.translation) <= 1e-6
+        x, y, z = offset.rotation[:, 2]
+        assert abs(np.arctan2(-y, z)) <= 0.1 + 1e-6 and abs(np.arcsin(x)) <= 0.1 + 1e-6

@@ -51,6 +51,11 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     parser.add_argument("--up", nargs=3, type=float, metavar=("X", "Y", "Z"),
                         help="the direction --flat turns its frame's z toward, in the root's "
                         "axes (default: 0 0 1)")
+    parser.add_argument("--tilt", nargs=2, type=float, metavar=("ABOUT_X", "ABOUT_Y"),
+                        help="process windows in radians, as --orientation-tolerance: the "
+                        "tool's z may tilt from the target's by up to ABOUT_X about the "
+                        "target's x and ABOUT_Y about its y; the summary gives the largest "
+                        "tilt used")
     parser.add_argument("--position-tolerance", type=float, default=1e-6, metavar="M",
                         help="metres (default: 1e-6)")
     parser.add_argument("--orientation-tolerance", type=float, default=1e-6, metavar="RAD",
@@ -72,7 +77,7 @@ def run(args: argparse.Namespace) -> int:
     solution = tree.solve_joints(
         args.frame, args.target, times=None if times is None else times.as_numpy(),
         time_ref=args.time_ref, joints=args.joints,
-        free_axis=args.free_axis, flat=args.flat, up=args.up,
+        free_axis=args.free_axis, flat=args.flat, up=args.up, tilt=args.tilt,
         position_tolerance=args.position_tolerance,
         orientation_tolerance=args.orientation_tolerance, strict=args.strict)
     # timestamps when the solution has a reference time, else seconds (it has a time per sample)
@@ -120,6 +125,9 @@ def summary(tree: FrameTree, solution: JointSolution) -> str:
             margins.append((float(np.min(values - joint.lower)), name))
         if joint.kind != "continuous" and joint.upper is not None:
             margins.append((float(np.min(joint.upper - values)), name))
+    if solution.tilt is not None and count:
+        largest = np.abs(solution.tilt).max(axis=0)
+        line += f"; largest tilt {largest[0]:.3g} rad about x, {largest[1]:.3g} rad about y"
     if margins:
         margin, name = min(margins)
         unit = "m" if joints[name].kind == "prismatic" else "rad"

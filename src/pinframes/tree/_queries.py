@@ -300,7 +300,7 @@ class TreeQueries(EditableTree):
         times: Any = None, time_ref: Any = None, joints: Sequence[str] | None = None,
         free_axis: str | None = None, seed: Any = None, position_tolerance: float = 1e-6,
         orientation_tolerance: float = 1e-6, strict: bool = False, flat: str | None = None,
-        up: Any = None,
+        up: Any = None, tilt: tuple[float, float] | None = None,
     ) -> JointSolution:
         """Joint values that put ``frame`` (a tool) on ``target`` at each time: inverse
         kinematics along a path.
@@ -353,6 +353,15 @@ class TreeQueries(EditableTree):
         up : sequence of 3 floats, optional
             The direction ``flat``'s z is turned toward, in the root's axes (default: the
             root's +z).
+        tilt : (about_x, about_y), optional
+            Process windows, radians (each from 0 to below pi/2): the tool's z may tilt
+            from the target's by up to ``about_x`` about the target's x and ``about_y`` about
+            its y (a seam-like target, x along the travel: the work and travel angle
+            windows). The tilt is free within them: the solver spends it on reach and the
+            smallest motion, and reports it per sample (``JointSolution.tilt``). With
+            ``free_axis="z"`` the spin about the tool's z is free too; without, it is the
+            target's. A sample is reached within the windows (to ``orientation_tolerance``)
+            and the position tolerance.
 
         Returns
         -------
@@ -377,7 +386,8 @@ class TreeQueries(EditableTree):
             self._frozen(), frame, target, relative_to=relative_to, times=times,
             time_ref=time_ref, joints=joints, free_axis=free_axis, seed=seed,
             position_tolerance=position_tolerance,
-            orientation_tolerance=orientation_tolerance, strict=strict, flat=flat, up=up)
+            orientation_tolerance=orientation_tolerance, strict=strict, flat=flat, up=up,
+            tilt=tilt)
 
     def sample_times(self, frame: str, relative_to: str | None = None) -> TimeAxis | None:
         """The times :meth:`pose` evaluates at when given none, without evaluating.

@@ -14,7 +14,7 @@ from .._plan import PreparedPath
 from .._sampling import sample_joints
 from ._tool_error import ToolMatch
 
-__all__ = ["measure_solutions"]
+__all__ = ["measure_solutions", "tools_in_targets"]
 
 FloatArray = NDArray[np.float64]
 
@@ -30,6 +30,16 @@ def measure_solutions(
     ``targets``: the targets in the path's reference frame, ``(N, 3, 3)`` rotations and
     ``(N, 3)`` translations (None: the reference frame itself).
     """
+    return error.errors(*tools_in_targets(tree, path, times, shifts, joint_names, positions,
+                                          targets))
+
+
+def tools_in_targets(
+    tree: TreeDescription, path: PreparedPath, times: NDArray[np.int64], shifts: dict[str, int],
+    joint_names: tuple[str, ...], positions: FloatArray, targets: Transform | None,
+) -> Transform:
+    """The tool of ``path`` in its targets with the solved joints at ``positions`` (N, n) at
+    ``times``: ``(N, 3, 3)`` rotations and ``(N, 3)`` translations (metres)."""
     model = path.model
     assert model is not None
     count = times.shape[0]
@@ -39,4 +49,4 @@ def measure_solutions(
     tool_in_target = compose(inverse(reference), tool)
     if targets is not None:
         tool_in_target = compose(inverse(samples_last(targets)), tool_in_target)
-    return error.errors(*to_stacks(tool_in_target, count))
+    return to_stacks(tool_in_target, count)

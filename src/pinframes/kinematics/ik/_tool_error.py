@@ -13,6 +13,10 @@ velocity, then the angular velocity, in the tool's axes) per unit rate of each j
   (``error = R^T p``) and the two angular ones across the axis (``error`` the rotation
   carrying the target's axis onto the tool's, written in the tool's axes).
 
+- process windows (``tilt=``, :class:`WindowMatch`): the origin, and the tool's z within
+  windows of tilt about the target's x and y; the rows of the tilt angles enter only past
+  their windows (and the spin's, unless it is free).
+
 :meth:`PoseMatch.measure` gives the position error (m, the distance between the origins) and
 the orientation error (rad: the angle of the rotation between the frames, or between the two
 axes), which the tolerances are checked against.
@@ -26,7 +30,7 @@ import numpy as np
 import pinocchio as pin
 from numpy.typing import NDArray
 
-__all__ = ["AXES", "AxisMatch", "PoseMatch", "ToolMatch"]
+__all__ = ["AXES", "AxisMatch", "PoseMatch", "ToolMatch", "WindowMatch", "tilts_of"]
 
 FloatArray = NDArray[np.float64]
 
@@ -121,5 +125,107 @@ class AxisMatch:
                 np.arctan2(sines, tool_axes[:, self.axis]))
 
 
-ToolMatch = PoseMatch | AxisMatch
+class WindowMatch:
+    """What must match: the tool's origin, and its z within windows of tilt about the
+    target's x and y (process windows: work and travel angles); with ``free_spin`` its
+    rotation about z is free, else it is the target's carried by the tilt.
+
+    The tilt is the tool's orientation in the target written ``Rx(a) Ry(b) Rz(c)`` (x, then
+    the new y, then the new z; radians): ``(a, b)`` turn the target's z onto the tool's,
+    ``z = (sin b, -sin a cos b, cos a cos b)`` in the target's axes, and ``c`` is the spin.
+    Within the windows, ``|a| <= about_x`` and ``|b| <= about_y``, the tilt is free: its rows
+    leave the Newton system (the solver spends it on the smallest motion and on reach); past
+    a window, the row of that angle asks for the excess back. The orientation error is the
+    Euclidean norm of the excesses (and of the spin without ``free_spin``), radians.
+    """
+
+    def __init__(self, about_x: float, about_y: float, free_spin: bool) -> None:
+        self.windows = (about_x, about_y)
+        self.free_spin = free_spin
+        self._active = [0, 1, 2]  # rows kept at the latest measure: position, then angles
+        self._rates = np.eye(3)  # Euler rates per local angular velocity there
+
+    def measure(self, tool_in_target: pin.SE3) -> tuple[float, float, FloatArray]:
+        """Position error (m), orientation error (rad) and the error vector (the position
+        in the tool's axes, then the excess of each angle past its window)."""
+        rotation = tool_in_target.rotation
+        offset = tool_in_target.translation
+        about_x, about_y = self.windows
+        tilt_x, tilt_y, spin = _euler_xyz(rotation)
+        excesses = [_excess(tilt_x, about_x), _excess(tilt_y, about_y),
+                    0.0 if self.free_spin else spin]
+        active = [0, 1, 2] + [3 + index for index, excess in enumerate(excesses)
+                              if excess or (index == 2 and not self.free_spin)]
+        self._active = active
+        self._rates = _euler_rates(tilt_y, spin)
+        error = np.empty(len(active))
+        error[:3] = rotation.T.dot(offset)
+        error[3:] = [excesses[index - 3] for index in active[3:]]
+        return (math.hypot(*offset.tolist()), math.hypot(*excesses), error)
+
+    def rows(self, jacobian: FloatArray) -> FloatArray:
+        """The rows of the Newton system from the tool's ``LOCAL`` Jacobian (6, n), for the
+        rows kept at the latest :meth:`measure`."""
+        angles = self._rates.dot(jacobian[3:])
+        return np.concatenate([jacobian[:3], angles[[index - 3 for index in self._active[3:]]]])
+
+    def nearest_match(self, tool_in_target: pin.SE3) -> pin.SE3:
+        """The pose in the target's axes nearest to the tool that matches: its tilt within
+        the windows, its spin (when free)."""
+        tilt_x, tilt_y, spin = _euler_xyz(tool_in_target.rotation)
+        about_x, about_y = self.windows
+        rotation = (pin.utils.rotate("x", tilt_x - _excess(tilt_x, about_x))
+                    @ pin.utils.rotate("y", tilt_y - _excess(tilt_y, about_y))
+                    @ pin.utils.rotate("z", spin if self.free_spin else 0.0))
+        return pin.SE3(rotation, np.zeros(3))
+
+    def errors(self, rotations: FloatArray, translations: FloatArray
+               ) -> tuple[FloatArray, FloatArray]:
+        """Position errors (m) and orientation errors (rad), shape (N,), of many tool poses
+        in their targets (``(N, 3, 3)`` rotations, ``(N, 3)`` translations)."""
+        tilts = tilts_of(rotations)
+        about_x, about_y = self.windows
+        excess_x = np.abs(tilts[:, 0]) - np.minimum(np.abs(tilts[:, 0]), about_x)
+        excess_y = np.abs(tilts[:, 1]) - np.minimum(np.abs(tilts[:, 1]), about_y)
+        spins = (np.zeros(rotations.shape[0]) if self.free_spin
+                 else np.arctan2(-rotations[:, 0, 1], rotations[:, 0, 0]))
+        return (np.linalg.norm(translations, axis=1),
+                np.sqrt(excess_x ** 2 + excess_y ** 2 + spins ** 2))
+
+
+def tilts_of(rotations: FloatArray) -> FloatArray:
+    """The tilt ``(a, b)`` (N, 2), radians, of tool orientations in their targets
+    ``(N, 3, 3)``: the tool's z is ``Rx(a) Ry(b)`` the target's (see :class:`WindowMatch`)."""
+    axes = rotations[:, :, 2]
+    return np.stack([np.arctan2(-axes[:, 1], axes[:, 2]),
+                     np.arctan2(axes[:, 0], np.hypot(axes[:, 1], axes[:, 2]))], axis=1)
+
+
+def _euler_xyz(rotation: FloatArray) -> tuple[float, float, float]:
+    """``(a, b, c)`` of ``rotation = Rx(a) Ry(b) Rz(c)``, radians (b within +-pi/2)."""
+    (r00, r01, r02), (_, _, r12), (_, _, r22) = rotation.tolist()
+    return (math.atan2(-r12, r22), math.atan2(r02, math.hypot(r12, r22)),
+            math.atan2(-r01, r00))
+
+
+def _euler_rates(tilt_y: float, spin: float) -> FloatArray:
+    """The rates of ``(a, b, c)`` (3, 3) per angular velocity in the tool's axes: the inverse
+    of ``[Rz(-c) Ry(-b) x, Rz(-c) y, z]``."""
+    cos_b, sin_b = math.cos(tilt_y), math.sin(tilt_y)
+    cos_c, sin_c = math.cos(spin), math.sin(spin)
+    rates = np.array([[cos_b * cos_c, sin_c, 0.0], [-cos_b * sin_c, cos_c, 0.0],
+                      [sin_b, 0.0, 1.0]])
+    return np.linalg.inv(rates)  # type: ignore[no-any-return]
+
+
+def _excess(angle: float, window: float) -> float:
+    """How far ``angle`` lies past ``[-window, window]`` (signed; 0 within), radians."""
+    if angle > window:
+        return angle - window
+    if angle < -window:
+        return angle + window
+    return 0.0
+
+
+ToolMatch = PoseMatch | AxisMatch | WindowMatch
 """What a solve makes match between the tool and its target."""

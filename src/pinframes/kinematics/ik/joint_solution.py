@@ -43,6 +43,11 @@ class JointSolution(Timed):
     reached : ndarray of bool, shape (T,)
         Whether both errors are within the tolerances. Where not, :attr:`positions` hold the
         closest configuration found within the limits.
+    tilt : ndarray, shape (T, 2), or None
+        With process windows (``tilt=``): the tilt of the tool's z from the target's, radians,
+        ``(a, b)`` with the tool's z ``Rx(a) Ry(b)`` the target's (about the target's x, then
+        the y so turned): ``z = (sin b, -sin a cos b, cos a cos b)`` in the target's axes.
+        None without windows.
     """
 
     joint_names: tuple[str, ...]
@@ -52,6 +57,7 @@ class JointSolution(Timed):
     position_error: FloatArray
     orientation_error: FloatArray
     reached: NDArray[np.bool_]
+    tilt: FloatArray | None = None
 
     @property
     def all_reached(self) -> bool:

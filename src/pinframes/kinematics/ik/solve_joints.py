@@ -28,7 +28,7 @@ from .._description import TreeDescription
 from .._model import CompiledModel
 from .._plan import PreparedPath, plan_query, prepare_path
 from .._sampling import KERNEL_CHUNK, sample_configurations
-from ._batch_check import measure_solutions
+from ._batch_check import measure_solutions, tools_in_targets
 from ._bounded_step import LeastSquares
 from ._flat import flat_objective
 from ._newton_tracking import (
@@ -41,7 +41,7 @@ from ._newton_tracking import (
 from ._null_space import AwayFromLimits, NullSpaceObjective
 from ._solved_joints import SolvedJoints, solved_joints
 from ._starts import track_from_the_best_start
-from ._tool_error import AXES, AxisMatch, PoseMatch, ToolMatch
+from ._tool_error import AXES, AxisMatch, PoseMatch, ToolMatch, WindowMatch, tilts_of
 from .joint_solution import JointSolution
 
 __all__ = ["SMALLEST_TOLERANCE", "STILL", "evaluate_solve_joints"]
@@ -64,11 +64,11 @@ def evaluate_solve_joints(
     tree: TreeDescription, frame: str, target: str | Pose, *, relative_to: str | None,
     times: Any, time_ref: Any, joints: Any, free_axis: str | None, seed: Any,
     position_tolerance: float, orientation_tolerance: float, strict: bool,
-    flat: str | None = None, up: Any = None,
+    flat: str | None = None, up: Any = None, tilt: Any = None,
 ) -> JointSolution:
     """``tree.solve_joints(...)``; ``frame`` (and a target frame name) already checked."""
     reference, target_pose = _reference(tree, frame, target, relative_to)
-    error = _tool_match(free_axis, frame)
+    error = _tool_match(free_axis, tilt, frame)
     tolerances = (_tolerance(position_tolerance, "position_tolerance", frame),
                   _tolerance(orientation_tolerance, "orientation_tolerance", frame))
     # a time-dependent target's times are the solve's, beside those of what moves
@@ -96,6 +96,7 @@ def evaluate_solve_joints(
         AwayFromLimits(solved.limits) if flat is None
         else flat_objective(tree, model, solved, flat, up, frame, solver))
     parts: list[Tracked] = []
+    tilts: list[FloatArray] = []  # per chunk, with process windows
     for begin in range(0, moments.shape[0], KERNEL_CHUNK):
         part = slice(begin, begin + KERNEL_CHUNK)
         targets = _targets(target_pose, moments[part], shifts.get(_TARGET_SOURCE, 0))
@@ -111,6 +112,10 @@ def evaluate_solve_joints(
         else:
             tracked = track_targets(problem, history, stop_when_unreached=strict)
         _measure_the_rest(tree, path, moments[part], shifts, targets, problem, tracked)
+        if isinstance(error, WindowMatch):
+            rotations, _ = tools_in_targets(tree, path, moments[part], shifts, solved.names,
+                                            tracked.positions, targets)
+            tilts.append(tilts_of(rotations))
         parts.append(tracked)
         if strict and not tracked.reached.all():
             _raise_unreached(parts, offsets, plan.reference_time, tolerances, frame)
@@ -119,7 +124,8 @@ def evaluate_solve_joints(
         offsets.astype("timedelta64[ns]"), plan.reference_time,
         np.concatenate([part.position_error for part in parts]),
         np.concatenate([part.orientation_error for part in parts]),
-        np.concatenate([part.reached for part in parts]))
+        np.concatenate([part.reached for part in parts]),
+        np.concatenate(tilts) if tilts else None)
 
 
 def _solved_joints(tree: TreeDescription, path: PreparedPath, joints: Any) -> SolvedJoints:
@@ -154,13 +160,32 @@ def _reference(tree: TreeDescription, frame: str, target: str | Pose, relative_t
                             frame=frame, field="target")
 
 
-def _tool_match(free_axis: Any, frame: str) -> ToolMatch:
-    if free_axis is None:
-        return PoseMatch()
-    if free_axis not in AXES:
+def _tool_match(free_axis: Any, tilt: Any, frame: str) -> ToolMatch:
+    if free_axis is not None and free_axis not in AXES:
         raise ArgumentTypeError(f"expected one of {', '.join(AXES)} or None, got {free_axis!r}",
                                 frame=frame, field="free_axis")
-    return AxisMatch(free_axis)
+    if tilt is not None:
+        if free_axis not in (None, "z"):
+            raise ArgumentTypeError(f"tilt= tilts the tool's z, which free_axis={free_axis!r} "
+                                    "leaves free; use free_axis='z' or None", frame=frame,
+                                    field="free_axis")
+        about_x, about_y = _windows(tilt, frame)
+        return WindowMatch(about_x, about_y, free_spin=free_axis == "z")
+    return PoseMatch() if free_axis is None else AxisMatch(free_axis)
+
+
+def _windows(tilt: Any, frame: str) -> tuple[float, float]:
+    """``tilt`` as two angles within ``[0, pi/2)`` radians."""
+    try:
+        about_x, about_y = (float(angle) for angle in tilt)
+    except (TypeError, ValueError):
+        raise ArgumentTypeError(f"expected two angles (about_x, about_y) in radians, got "
+                                f"{tilt!r}", frame=frame, field="tilt") from None
+    for angle in (about_x, about_y):
+        if not 0.0 <= angle < math.pi / 2:
+            raise InvalidDataError(f"expected angles from 0 to below pi/2 radians, got {tilt!r}",
+                                   frame=frame, field="tilt")
+    return about_x, about_y
 
 
 def _tolerance(value: Any, field: str, frame: str) -> float:

@@ -1,19 +1,24 @@
-"""Flat welding: ``solve_joints(flat=...)`` against the same solve without it.
+"""Flat welding and process windows: ``solve_joints(flat=...)`` and ``solve_joints(tilt=...)``
+against the same solves without them.
 
-A UR5 of example-robot-data at the floor's origin holds its tool0 (z free, a torch) on a
-pipe's girth seam, half a turn sampled at 1,000 and 10,000 points, on a two-axis (tilt,
+Flat: a UR5 of example-robot-data at the floor's origin holds its tool0 (z free, a torch) on
+a pipe's girth seam, half a turn sampled at 1,000 and 10,000 points, on a two-axis (tilt,
 turn) positioner solved with it: 8 joints for 5 rows. ``solve_joints`` runs with
 ``flat="seam"`` (the freedom left keeps the seam's face up) and without it (the smallest
-motion), in alternation; the reference that shares no code with pinframes is Pinocchio
-called directly for the least any sample-by-sample solve does, one ``framesForwardKinematics``
-and one ``computeFrameJacobian`` per sample. The table gives medians of the time per call and
-ratios to the plain solve per round; the flat solution's largest angle between the seam's
-face and up is checked with Pinocchio on the positioner's URDF.
+motion); the flat solution's largest angle between the seam's face and up is checked with
+Pinocchio on the positioner's URDF. Windows: the UR5 alone (z free) follows a target that
+wanders and tilts by up to 0.3 rad about its x and 0.2 rad about its y, 1,000 and 10,000
+samples, with ``tilt=(0.2, 0.2)`` and without.
+
+The solves of a case run in alternation with a reference that shares no code with
+pinframes: Pinocchio called directly for the least any sample-by-sample solve does, one
+``framesForwardKinematics`` and one ``computeFrameJacobian`` per sample. The table gives
+medians of the time per call and ratios to the plain solve per round.
 
 Run from the repository root after ``pip install ".[bench]"``::
 
-    python benchmarks/bench_flat.py            # 5 rounds
-    python benchmarks/bench_flat.py --quick    # 3 rounds
+    python benchmarks/bench_positioner.py            # 5 rounds
+    python benchmarks/bench_positioner.py --quick    # 3 rounds
 """
 
 from __future__ import annotations
@@ -23,6 +28,7 @@ import sys
 import tempfile
 from importlib import metadata
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pinocchio as pin
@@ -33,6 +39,7 @@ from _machine import describe_machine, interleaved, print_table, quick_or_child,
 RADIUS, ALONG = 0.1, 0.05  # m: the pipe's radius, the seam's height on the faceplate
 BASE = [0.55, 0.0, 0.0]  # m: the positioner's base in the floor
 PLAIN = "solve_joints (plain)"
+WINDOWS = (0.2, 0.2)  # rad about the target's x and y
 POSITIONER = """<?xml version="1.0"?>
 <robot name="positioner">
   <link name="base"/><link name="cradle"/><link name="faceplate"/>
@@ -131,7 +138,50 @@ def measure(quick: bool) -> list[dict]:
                                      f"{face_from_up(urdf, plain.positions[:, 6:], axes):.2g} "
                                      "deg from up at most")
             rows.extend(measured)
+        for count in (1_000, 10_000):
+            rows.extend(windows_case(pinframes, robot, count, rounds))
     return rows
+
+
+def windows_case(pinframes: Any, robot: pin.Model, count: int, rounds: int) -> list[dict]:
+    """The rows of the process-window case at ``count`` samples."""
+    data = robot.createData()
+    tool = robot.getFrameId("tool0")
+    pin.framesForwardKinematics(robot, data, np.array([0.2, -1.2, 1.5, -1.8, -1.571, 0.0]))
+    start = data.oMf[tool].copy()
+    times = np.linspace(0.0, 10.0, count)
+    targets = [start * pin.SE3(pin.utils.rotate("x", 0.3 * np.sin(t))
+                               @ pin.utils.rotate("y", 0.2 * np.sin(0.7 * t)),
+                               np.array([0.1 * np.sin(0.5 * t), 0.01 * t, 0.0]))
+               for t in times]
+    target = pinframes.Pose(np.array([t.translation for t in targets]),
+                            np.array([t.rotation for t in targets]), times=times)
+    tree = pinframes.FrameTree("floor")
+    tree.attach_urdf(ur5_urdf(), "floor")
+    configurations = np.zeros((count, robot.nq))
+    solutions = {}
+
+    def solve(tilt: tuple[float, float] | None) -> None:
+        solutions[tilt] = tree.solve_joints("tool0", target, free_axis="z", tilt=tilt)
+
+    def pinocchio_per_sample() -> None:
+        for q in configurations:
+            pin.framesForwardKinematics(robot, data, q)
+            pin.computeFrameJacobian(robot, data, q, tool, pin.ReferenceFrame.LOCAL)
+
+    measured = interleaved(f"UR5 windows, {count:,} samples",
+                           {PLAIN: lambda: solve(None), "tilt=(0.2, 0.2)": lambda: solve(WINDOWS),
+                            "Pinocchio FK+Jacobian": pinocchio_per_sample},
+                           rounds, reference=PLAIN)
+    for entry in measured:
+        solution = solutions.get(None if entry["method"] == PLAIN else WINDOWS)
+        if entry["method"] != "Pinocchio FK+Jacobian" and solution is not None:
+            note = f"reached {int(solution.reached.sum()):,}/{count:,}"
+            if solution.tilt is not None:
+                largest = np.abs(solution.tilt).max(axis=0)
+                note += f"; largest tilt {largest[0]:.4f}, {largest[1]:.4f} rad"
+            entry["note"] = note
+    return measured
 
 
 def child(quick: bool) -> None:
@@ -139,7 +189,8 @@ def child(quick: bool) -> None:
 
 
 def main() -> None:
-    quick = quick_or_child(__doc__.splitlines()[0], child, "3 rounds")
+    quick = quick_or_child(__doc__.splitlines()[0] + __doc__.splitlines()[1], child,
+                           "3 rounds")
     if quick is None:
         return
     print(describe_machine())
