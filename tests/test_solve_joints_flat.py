@@ -141,3 +141,35 @@ def test_a_bad_up_is_an_error(cell, up):
         tree.solve_joints("tool0", "torch_target", joints=solved_joints(tree),
                           free_axis="z", flat="seam", up=up)
     assert raised.value.field == "up"
+
+
+def test_up_is_in_the_root_s_axes_when_the_cell_is_mounted_turned(cell):
+    """The same cell under a mount turned 90 degrees about x in the root: the root's +z is
+    the cell floor's -y, and the seam's face turns there (checked in the root's axes)."""
+    _, urdf, times = cell
+    tree = FrameTree("site")
+    tree.add("floor", "site", Pose([0.0, 0.0, 1.0], rotation_x(np.pi / 2)))
+    tree.attach_urdf(example_robot("ur5_robot.urdf"), "floor")
+    tree.add("positioner_base", "floor", Pose(BASE))
+    tree.attach_urdf(urdf, "positioner_base", prefix="positioner/")
+    tree.add("seam", "positioner/faceplate", Pose(*girth_seam(times.shape[0]), times=times))
+    tree.add("torch_target", "seam", Pose([0.0, 0.0, 0.0], rotation_x(np.pi)))
+    solution = tree.solve_joints("tool0", "torch_target", joints=solved_joints(tree),
+                                 free_axis="z", flat="seam")
+    assert solution.all_reached
+    _, axes = girth_seam(len(solution))
+    plates = faceplate_in_floor(urdf, solution.positions[:, 6:])
+    faces = np.array([rotation_x(np.pi / 2) @ plate.rotation @ seam[:, 2]
+                      for plate, seam in zip(plates, axes, strict=True)])
+    assert np.degrees(np.arccos(np.clip(faces[:, 2], -1.0, 1.0))).max() <= 2.0
+
+
+def test_flat_and_windows_together(cell):
+    """flat= with tilt=: the face kept up and the torch within its windows."""
+    tree, urdf, _ = cell
+    solution = tree.solve_joints("tool0", "torch_target", joints=solved_joints(tree),
+                                 free_axis="z", flat="seam", tilt=(0.2, 0.1))
+    assert solution.all_reached
+    assert solution.tilt is not None
+    assert np.all(np.abs(solution.tilt) <= [0.2 + TOLERANCE, 0.1 + TOLERANCE])
+    assert face_angles(urdf, solution.positions[:, 6:]).max() <= 2.0

@@ -346,7 +346,11 @@ class TreeQueries(EditableTree):
             once the tool is on its target, the freedom left turns this frame's z toward
             ``up`` as far as it can (flat welding: the weld's face looks up, position PA).
             A secondary task, in the null space of the tool's: the tool's target is never
-            traded for it. The first sample is turned to convergence, then sample by
+            traded for it. Without a seed, the default start first has the joints turn
+            ``flat`` up alone (the tool let go), so that the solve does not settle for a
+            local best against a joint limit. The first sample is turned to convergence
+            (from the seed, when given: a local method, it finds the flat configuration
+            nearest to where it starts), then sample by
             sample one step turns the frame back wherever its z has come more than 0.5
             degrees from ``up``. Takes the place of the default secondary task of keeping
             joints out of the bands along their limits.

@@ -16,7 +16,9 @@ A sample solved from a start is served until the frame is within :data:`FLAT_ENO
 a tracked sample only when it is beyond :data:`FLAT_TOLERANCE` (one forward kinematics to
 look), then by one step: the tool's smallest motion lets the frame drift a little per
 sample, and serving only where that adds up keeps ``flat=`` within twice a plain solve's
-time (benchmarks/bench_flat.py).
+time (benchmarks/bench_positioner.py). The prediction of each sample carries on the whole
+last step, the positioner's turning included (``carries_self_motion``), so the frame drifts
+by second-order amounts only and few samples need serving.
 """
 
 from __future__ import annotations
@@ -89,6 +91,7 @@ class FlatFrame:
 
     quiet_margin = math.inf
     rounds_from_a_start = FLAT_ROUNDS
+    carries_self_motion = True
 
     def __init__(self, model: pin.Model, data: pin.Data, joints: SolvedJoints, joint_id: int,
                  rotation_on_joint: FloatArray, up: FloatArray, solver: LeastSquares) -> None:
@@ -131,6 +134,33 @@ class FlatFrame:
         if largest > LONGEST_TURN:
             motion *= LONGEST_TURN / largest
         return motion
+
+    def turned_up(self, theta: FloatArray, configuration: FloatArray) -> FloatArray:
+        """``theta`` (n,) with the frame's z turned up by the joints alone, the tool let go:
+        the default start of the first sample, so that the tool's smallest motion starts
+        near a flat configuration rather than wherever the joints rest (from there the
+        frame might only get to a local best against a limit). ``configuration``: the
+        first sample's ``q``, copied."""
+        model, data, joints = self._model, self._data, self._joints
+        q = configuration.copy()
+        for _ in range(FLAT_ROUNDS):
+            joints.set_configuration(q, theta)
+            pin.computeJointJacobians(model, data, q)
+            axes = self._axes()
+            wanted = _turn_across(axes, self._up, FLAT_ENOUGH)
+            if wanted is None:
+                break
+            jacobian = pin.getJointJacobian(model, data, self._joint_id, _WORLD_ALIGNED)
+            across = axes[:, :2].T.dot(joints.jacobian(jacobian)[3:])
+            step = self._solver.correction(across, wanted, DAMPING)
+            largest = float(np.abs(step).max())
+            if largest > LONGEST_TURN:
+                step *= LONGEST_TURN / largest
+            moved = joints.limits.clipped(theta + step)
+            if not float(np.abs(moved - theta).max()) > SMALLEST_MOTION:
+                break
+            theta = moved
+        return theta
 
     def _axes(self) -> FloatArray:
         """The flat frame's axes (3, 3) in the model root's, from Pinocchio's data."""

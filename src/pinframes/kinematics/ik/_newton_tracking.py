@@ -5,10 +5,11 @@ Each sample starts from the previous solution carried on by the step between the
 at most :data:`LONGEST_PREDICTION` times the one before; else from the previous solution; the
 first sample starts from the seed (:class:`TrackingHistory`). The carried step keeps only its
 part that moves the tool (its damped projection on the rows of the previous sample: all of it
-away from singular configurations, with as many joints as rows), and every Newton step is the
-smallest: with more joints than rows (a 7-axis arm, a free tool axis, a positioner solved
-with the robot) the solution is the smallest joint motion
-from the previous sample, with no self-motion carried on. So it follows one branch (no
+away from singular configurations, with as many joints as rows; all of the step when the
+secondary objective ``carries_self_motion``, as a frame kept flat does), and every Newton
+step is the smallest: with more joints than rows (a 7-axis arm, a free tool axis, a
+positioner solved with the robot) the solution is the smallest joint motion from the
+previous sample, with no self-motion carried on. So it follows one branch (no
 elbow or wrist flips), usually with one Newton step per sample. A sample whose target and
 everything else stand still starts from the last solution, already on it: a static target
 gives a static solution. The prediction comes with a lower bound of how far it lies inside the joint
@@ -323,6 +324,8 @@ class _SampleSolver:
         self.orientation_region = problem.orientation_region
         self.least_squares = problem.solver
         self.objective = problem.objective
+        self.carry_self_motion = self.objective is not None and (
+            self.objective.carries_self_motion)
         self.objective_margin = -math.inf if self.objective is None else (
             self.objective.quiet_margin)
         self.rows: FloatArray | None = None  # the task's rows at the latest linearisation
@@ -335,7 +338,7 @@ class _SampleSolver:
         square system far from a singular configuration; its damped least-squares projection
         on the last rows), and a lower bound of its margin inside the limits: ``last``'s less
         the sum of the changes of the joints (NaN when one is)."""
-        if self.rows is not None:
+        if self.rows is not None and not self.carry_self_motion:
             step = self.least_squares.row_space_part(self.rows, step)
         changes = sum(map(abs, step.tolist()))
         return last + step, margin - changes
@@ -361,7 +364,7 @@ class _SampleSolver:
                 theta, margin = bridged, 0.0
         solved = self._newton(q, target, self.error, theta, margin, self.position_tolerance,
                               self.orientation_tolerance, MAX_ITERATIONS, trust_newton)
-        if serve and solved[3] and solved[4] < self.objective_margin:
+        if serve and solved[3] and solved[4] <= self.objective_margin:  # inf: always
             return self._served(q, target, solved, bridge)
         return solved
 
@@ -397,7 +400,7 @@ class _SampleSolver:
         assert self.objective is not None
         theta = solved[0]
         margin = self.limits.margin(theta.tolist())
-        if margin >= self.objective_margin:
+        if margin > self.objective_margin:
             return solved[0], solved[1], solved[2], solved[3], margin
         for _ in range(self.objective.rounds_from_a_start if from_a_start else 1):
             theta = solved[0]

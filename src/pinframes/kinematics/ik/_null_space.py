@@ -42,10 +42,15 @@ class NullSpaceObjective(Protocol):
     rounds_from_a_start : int
         How many times at most it is served, one after the other, on a sample solved from a
         start rather than a prediction (1: once, as on every other sample).
+    carries_self_motion : bool
+        Whether the prediction of the next sample carries on the whole last step, the
+        motion the objective asked for included (a frame kept flat turns on smoothly), or
+        only its part that moves the tool (the smallest motion).
     """
 
     quiet_margin: float
     rounds_from_a_start: int
+    carries_self_motion: bool
 
     def motion(self, theta: FloatArray, configuration: FloatArray,
                task_rows: Callable[[], FloatArray], settle: bool) -> FloatArray | None:
@@ -85,6 +90,7 @@ class AwayFromLimits:
         self._band = np.minimum(BAND * span, WIDEST_BAND)
         self.quiet_margin = float(self._band.max()) if self._band.shape[0] else 0.0
         self.rounds_from_a_start = 1
+        self.carries_self_motion = False
         self._limits = limits
 
     def motion(self, theta: FloatArray, configuration: FloatArray,

@@ -30,7 +30,7 @@ from .._plan import PreparedPath, plan_query, prepare_path
 from .._sampling import KERNEL_CHUNK, sample_configurations
 from ._batch_check import measure_solutions, tools_in_targets
 from ._bounded_step import LeastSquares
-from ._flat import flat_objective
+from ._flat import FlatFrame, flat_objective
 from ._newton_tracking import (
     Tracked,
     TrackingHistory,
@@ -108,6 +108,8 @@ def evaluate_solve_joints(
             target_rows, solved, error, tolerances[0], tolerances[1], ratios[part], solver,
             objective, _standing_still(configurations, target_rows))
         if begin == 0 and seed is None:
+            if isinstance(objective, FlatFrame):
+                start = objective.turned_up(start, configurations[0])
             tracked, history = track_from_the_best_start(problem, start, strict)
         else:
             tracked = track_targets(problem, history, stop_when_unreached=strict)
