@@ -134,3 +134,21 @@ def test_bad_windows_are_errors(ur5, tilt, free_axis, error):
     _, tree = ur5
     with pytest.raises(error):
         tree.solve_joints("tool0", Pose([0.4, 0.1, 0.4]), tilt=tilt, free_axis=free_axis)
+
+
+def test_without_a_free_axis_the_spin_is_the_target_s(ur5):
+    """Six joints, windows of 0.2 rad, no free axis: the tool's orientation in its target
+    is Rx(a) Ry(b) with no turn about z (by hand from Pinocchio's pose)."""
+    model, tree = ur5
+    times = np.linspace(0.0, 1.0, 11)
+    start = tool0(model, np.array([0.2, -1.2, 1.5, -1.8, -1.571, 0.0]))
+    targets = [start * pin.SE3(pin.utils.rotate("y", 0.4 * t) @ pin.utils.rotate("z", 0.3 * t),
+                               np.array([0.0, 0.05 * t, 0.0])) for t in times]
+    solution = tree.solve_joints("tool0", as_pose(targets, times), tilt=(0.2, 0.2))
+    assert solution.all_reached
+    for q, target, tilt in zip(solution.positions, targets, solution.tilt, strict=True):
+        rotation = target.actInv(tool0(model, q)).rotation
+        a, b = tilt
+        np.testing.assert_allclose(rotation, pin.utils.rotate("x", a) @ pin.utils.rotate("y", b),
+                                   atol=1e-6)
+        assert abs(a) <= 0.2 + TOLERANCE and abs(b) <= 0.2 + TOLERANCE
