@@ -127,7 +127,7 @@ def evaluate_solve_joints(
         np.concatenate([part.position_error for part in parts]),
         np.concatenate([part.orientation_error for part in parts]),
         np.concatenate([part.reached for part in parts]),
-        np.concatenate(tilts) if tilts else None)
+        tilt=np.concatenate(tilts) if tilts else None)
 
 
 def _solved_joints(tree: TreeDescription, path: PreparedPath, joints: Any) -> SolvedJoints:
