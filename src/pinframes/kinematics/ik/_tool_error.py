@@ -210,12 +210,18 @@ def _euler_xyz(rotation: FloatArray) -> tuple[float, float, float]:
 
 def _euler_rates(tilt_y: float, spin: float) -> FloatArray:
     """The rates of ``(a, b, c)`` (3, 3) per angular velocity in the tool's axes: the inverse
-    of ``[Rz(-c) Ry(-b) x, Rz(-c) y, z]``."""
-    cos_b, sin_b = math.cos(tilt_y), math.sin(tilt_y)
+    of ``[Rz(-c) Ry(-b) x, Rz(-c) y, z]`` (each angle's axis in the tool's axes), in closed
+    form. At ``b = +-pi/2`` (the tool's z along the target's x, far past any window) the
+    angles are singular: ``cos b`` is kept at least :data:`_SMALLEST_COSINE`."""
+    cos_b = max(math.cos(tilt_y), _SMALLEST_COSINE)
+    tan_b = math.sin(tilt_y) / cos_b
     cos_c, sin_c = math.cos(spin), math.sin(spin)
-    rates = np.array([[cos_b * cos_c, sin_c, 0.0], [-cos_b * sin_c, cos_c, 0.0],
-                      [sin_b, 0.0, 1.0]])
-    return np.linalg.inv(rates)  # type: ignore[no-any-return]
+    return np.array([[cos_c / cos_b, -sin_c / cos_b, 0.0], [sin_c, cos_c, 0.0],
+                     [-tan_b * cos_c, tan_b * sin_c, 1.0]])
+
+
+_SMALLEST_COSINE = 1e-6
+"""The smallest cosine of the tilt about y in the Euler rates (their singularity at 90°)."""
 
 
 def _excess(angle: float, window: float) -> float:
