@@ -173,3 +173,24 @@ def test_flat_and_windows_together(cell):
     assert solution.tilt is not None
     assert np.all(np.abs(solution.tilt) <= [0.2 + TOLERANCE, 0.1 + TOLERANCE])
     assert face_angles(urdf, solution.positions[:, 6:]).max() <= 2.0
+
+
+def test_a_tilt_limit_leaves_the_face_as_near_up_as_it_allows(tmp_path):
+    """A tilt axis limited to +-0.5 rad can bring a face that looks sideways on the upright
+    pipe only 0.5 rad up: by hand, the best is 90 degrees less 0.5 rad from up, with the
+    tilt on its limit; the torch stays on target."""
+    urdf = tmp_path / "positioner.urdf"
+    urdf.write_text(TILT_TURN.replace('lower="-2" upper="2"', 'lower="-0.5" upper="0.5"'))
+    tree = FrameTree("floor")
+    tree.attach_urdf(example_robot("ur5_robot.urdf"), "floor")
+    tree.add("positioner_base", "floor", Pose(BASE))
+    tree.attach_urdf(urdf, "positioner_base", prefix="positioner/")
+    times = np.linspace(0.0, 9.0, 31)
+    tree.add("seam", "positioner/faceplate", Pose(*girth_seam(times.shape[0]), times=times))
+    tree.add("torch_target", "seam", Pose([0.0, 0.0, 0.0], rotation_x(np.pi)))
+    solution = tree.solve_joints("tool0", "torch_target", joints=solved_joints(tree),
+                                 free_axis="z", flat="seam")
+    assert solution.all_reached
+    np.testing.assert_allclose(np.abs(solution.positions[:, 6]), 0.5, atol=1e-3)
+    np.testing.assert_allclose(face_angles(urdf, solution.positions[:, 6:]),
+                               90.0 - np.degrees(0.5), atol=0.5)

@@ -9,8 +9,9 @@ Within the null space ``N`` of the tool's rows ``A``, the motion is the task-pri
 ``(B N)^+ w``: the smallest with ``A m = 0`` and ``B m = w``, from one damped least-squares
 solve of the two stacked (the solver's projection keeps it whole, and removes what the
 damping lets into the tool's rows), at most :data:`LONGEST_TURN` per joint.
-Where the remaining freedom cannot turn the frame further, the motion fades and the frame
-stays as close to up as it gets.
+A joint whose step would cross its limit goes to the limit and the others solve for the
+rest. Where the remaining freedom cannot turn the frame further, the motion fades and the
+frame stays as close to up as it gets.
 
 A sample solved from a start is served until the frame is within :data:`FLAT_ENOUGH` of up;
 a tracked sample only when it is beyond :data:`FLAT_TOLERANCE` (one forward kinematics to
@@ -128,6 +129,13 @@ class FlatFrame:
         goal = np.zeros(stacked.shape[0])
         goal[-2:] = wanted
         motion: FloatArray = self._solver.correction(stacked, goal, DAMPING)
+        limits = self._joints.limits
+        beyond = (theta + motion > limits.upper) | (theta + motion < limits.lower)
+        if beyond.any():  # those go to their limit, the others do the rest
+            onto_limits = np.where(beyond, limits.clipped(theta + motion) - theta, 0.0)
+            rest = goal - stacked.dot(onto_limits)
+            stacked[:, beyond] = 0.0
+            motion = self._solver.correction(stacked, rest, DAMPING) + onto_limits
         largest = float(np.abs(motion).max())
         if not largest > SMALLEST_MOTION:
             return None

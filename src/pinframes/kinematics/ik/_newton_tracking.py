@@ -411,6 +411,8 @@ class _SampleSolver:
                 break
             moved = self.limits.clipped(theta + null_space_motion(self.least_squares,
                                                                   self._task_rows(), motion))
+            if not np.any(moved != theta):  # no freedom left, or the limits took it all
+                break
             served = self._newton(q, target, self.error, moved, 0.0, self.position_tolerance,
                                   self.orientation_tolerance, MAX_ITERATIONS, True)
             if not served[3]:
