@@ -45,14 +45,19 @@ def cell(tmp_path_factory: pytest.TempPathFactory) -> tuple[FrameTree, Path, np.
     and the torch target on the seam (z into the weld)."""
     urdf = tmp_path_factory.mktemp("positioner") / "positioner.urdf"
     urdf.write_text(TILT_TURN)
+    times = np.linspace(0.0, 9.0, 91)
     tree = FrameTree("floor")
+    add_cell(tree, urdf, times)
+    return tree, urdf, times
+
+
+def add_cell(tree: FrameTree, urdf: Path, times: np.ndarray) -> None:
+    """The UR5, the positioner of ``urdf``, the seam and the torch target under ``floor``."""
     tree.attach_urdf(example_robot("ur5_robot.urdf"), "floor")
     tree.add("positioner_base", "floor", Pose(BASE))
     tree.attach_urdf(urdf, "positioner_base", prefix="positioner/")
-    times = np.linspace(0.0, 9.0, 91)
     tree.add("seam", "positioner/faceplate", Pose(*girth_seam(times.shape[0]), times=times))
     tree.add("torch_target", "seam", Pose([0.0, 0.0, 0.0], rotation_x(np.pi)))
-    return tree, urdf, times
 
 
 def solved_joints(tree: FrameTree) -> list[str]:
@@ -145,15 +150,11 @@ def test_a_bad_up_is_an_error(cell, up):
 
 def test_up_is_in_the_root_s_axes_when_the_cell_is_mounted_turned(cell):
     """The same cell under a mount turned 90 degrees about x in the root: the root's +z is
-    the cell floor's -y, and the seam's face turns there (checked in the root's axes)."""
+    the cell floor's +y, and the seam's face turns there (checked in the root's axes)."""
     _, urdf, times = cell
     tree = FrameTree("site")
     tree.add("floor", "site", Pose([0.0, 0.0, 1.0], rotation_x(np.pi / 2)))
-    tree.attach_urdf(example_robot("ur5_robot.urdf"), "floor")
-    tree.add("positioner_base", "floor", Pose(BASE))
-    tree.attach_urdf(urdf, "positioner_base", prefix="positioner/")
-    tree.add("seam", "positioner/faceplate", Pose(*girth_seam(times.shape[0]), times=times))
-    tree.add("torch_target", "seam", Pose([0.0, 0.0, 0.0], rotation_x(np.pi)))
+    add_cell(tree, urdf, times)
     solution = tree.solve_joints("tool0", "torch_target", joints=solved_joints(tree),
                                  free_axis="z", flat="seam")
     assert solution.all_reached
@@ -182,12 +183,7 @@ def test_a_tilt_limit_leaves_the_face_as_near_up_as_it_allows(tmp_path):
     urdf = tmp_path / "positioner.urdf"
     urdf.write_text(TILT_TURN.replace('lower="-2" upper="2"', 'lower="-0.5" upper="0.5"'))
     tree = FrameTree("floor")
-    tree.attach_urdf(example_robot("ur5_robot.urdf"), "floor")
-    tree.add("positioner_base", "floor", Pose(BASE))
-    tree.attach_urdf(urdf, "positioner_base", prefix="positioner/")
-    times = np.linspace(0.0, 9.0, 31)
-    tree.add("seam", "positioner/faceplate", Pose(*girth_seam(times.shape[0]), times=times))
-    tree.add("torch_target", "seam", Pose([0.0, 0.0, 0.0], rotation_x(np.pi)))
+    add_cell(tree, urdf, np.linspace(0.0, 9.0, 31))
     solution = tree.solve_joints("tool0", "torch_target", joints=solved_joints(tree),
                                  free_axis="z", flat="seam")
     assert solution.all_reached
