@@ -47,7 +47,8 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     parser.add_argument("--flat", metavar="FRAME",
                         help="a frame the solved joints move (a seam on a positioner solved "
                         "with the robot): with the tool on its target, the joints left over "
-                        "turn its z up as far as they can (flat welding, PA)")
+                        "turn its z up as far as they can (flat welding, PA; default: no "
+                        "such wish, the smallest motion)")
     parser.add_argument("--up", nargs=3, type=float, metavar=("X", "Y", "Z"),
                         help="the direction --flat turns its frame's z toward, in the root's "
                         "axes (default: 0 0 1)")
@@ -55,7 +56,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         help="process windows in radians, as --orientation-tolerance: the "
                         "tool's z may tilt from the target's by up to ABOUT_X about the "
                         "target's x and ABOUT_Y about its y; the summary gives the largest "
-                        "tilt used")
+                        "tilt used (default: none, the target's z exactly)")
     parser.add_argument("--position-tolerance", type=float, default=1e-6, metavar="M",
                         help="metres (default: 1e-6)")
     parser.add_argument("--orientation-tolerance", type=float, default=1e-6, metavar="RAD",
