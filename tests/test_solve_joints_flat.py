@@ -12,7 +12,12 @@ import pytest
 
 from ik_paths import TOLERANCE, example_robot, serial_urdf
 from pinframes import FrameTree, Pose
-from pinframes.errors import InvalidDataError, JointError, JointWithoutSamplesWarning
+from pinframes.errors import (
+    ArgumentTypeError,
+    InvalidDataError,
+    JointError,
+    JointWithoutSamplesWarning,
+)
 
 RADIUS = 0.1  # m, the pipe's
 ALONG = 0.05  # m, the seam's height on the faceplate
@@ -190,3 +195,10 @@ def test_a_tilt_limit_leaves_the_face_as_near_up_as_it_allows(tmp_path):
     np.testing.assert_allclose(np.abs(solution.positions[:, 6]), 0.5, atol=1e-3)
     np.testing.assert_allclose(face_angles(urdf, solution.positions[:, 6:]),
                                90.0 - np.degrees(0.5), atol=0.5)
+
+
+def test_up_without_flat_is_an_error(cell):
+    tree, _, _ = cell
+    with pytest.raises(ArgumentTypeError) as raised:
+        tree.solve_joints("tool0", "torch_target", joints=solved_joints(tree), up=[0, 0, 1])
+    assert raised.value.field == "up"

@@ -69,6 +69,9 @@ def evaluate_solve_joints(
     """``tree.solve_joints(...)``; ``frame`` (and a target frame name) already checked."""
     reference, target_pose = _reference(tree, frame, target, relative_to)
     error = _tool_match(free_axis, tilt, frame)
+    if up is not None and flat is None:
+        raise ArgumentTypeError("up= is the direction flat= turns its frame toward; give flat= "
+                                "too", frame=frame, field="up")
     tolerances = (_tolerance(position_tolerance, "position_tolerance", frame),
                   _tolerance(orientation_tolerance, "orientation_tolerance", frame))
     # a time-dependent target's times are the solve's, beside those of what moves
