@@ -152,3 +152,29 @@ def test_without_a_free_axis_the_spin_is_the_target_s(ur5):
         np.testing.assert_allclose(rotation, pin.utils.rotate("x", a) @ pin.utils.rotate("y", b),
                                    atol=1e-6)
         assert abs(a) <= 0.2 + TOLERANCE and abs(b) <= 0.2 + TOLERANCE
+
+
+def test_the_window_error_of_hand_built_orientations():
+    """Orientations built as Rx(a) Ry(b) Rz(c): the measured tilt and excess, one at a time
+    (the solver's) and many at once (the batch check's), are those of a, b and c."""
+    from pinframes.kinematics.ik._tool_error import WindowMatch, tilts_of
+
+    rng = np.random.default_rng(7)
+    angles = rng.uniform([-0.6, -0.6, -0.5], [0.6, 0.6, 0.5], size=(50, 3))
+    rotations = np.array([pin.utils.rotate("x", a) @ pin.utils.rotate("y", b)
+                          @ pin.utils.rotate("z", c) for a, b, c in angles])
+    offsets = rng.normal(size=(50, 3))
+    np.testing.assert_allclose(tilts_of(rotations), angles[:, :2], atol=1e-12)
+    for free_spin in (False, True):
+        match = WindowMatch(0.2, 0.1, free_spin=free_spin)
+        excess = np.hypot(np.maximum(np.abs(angles[:, 0]) - 0.2, 0.0),
+                          np.maximum(np.abs(angles[:, 1]) - 0.1, 0.0))
+        if not free_spin:
+            excess = np.hypot(excess, angles[:, 2])
+        one_by_one = [match.measure(pin.SE3(rotation, offset))[:2]
+                      for rotation, offset in zip(rotations, offsets, strict=True)]
+        np.testing.assert_allclose(np.array(one_by_one),
+                                   np.stack([np.linalg.norm(offsets, axis=1), excess], 1),
+                                   atol=1e-12)
+        np.testing.assert_allclose(np.stack(match.errors(rotations, offsets), 1),
+                                   np.array(one_by_one), atol=1e-12)
