@@ -15,6 +15,7 @@ from ..tree import FrameTree
 from ..values.timeconv import format_timestamp_iso
 from ..values.timeline import source_reference
 from ._files import read_tree
+from ._terminal_text import printable
 
 __all__ = ["add_parser", "describe", "describe_json", "run"]
 
@@ -91,25 +92,27 @@ def _timestamp(stamp: np.datetime64 | None) -> str | None:
 
 
 def describe(tree: FrameTree) -> str:
-    """A text table of the tree: one line per frame, children indented under parents."""
+    """A text table of the tree: one line per frame, children indented under parents; names
+    with characters that do not print show them escaped."""
     reference = "none" if tree.reference_time is None else str(tree.reference_time)
     header = (f"tree {tree.name or '(unnamed)'}: {len(tree)} frames, "
               f"{sum(tree.is_moving(f) for f in tree.frames[1:])} moving, "
               f"{len(tree.joints)} robot joints; reference time {reference}")
     rows = [("FRAME", "KIND", "TIME SPAN", "REFERENCE TIME")]
     for prefix, name in _walk(tree, tree.root, "", ""):
-        rows.append((prefix + name, *_frame_columns(tree, name)))
+        cells = (prefix + name, *_frame_columns(tree, name))
+        rows.append(tuple(printable(cell) for cell in cells))
     widths = [max(len(row[column]) for row in rows) for column in range(3)]
-    lines = [header]
+    lines = [printable(header)]
     for row in rows:
         cells = [cell.ljust(width) for cell, width in zip(row[:3], widths, strict=True)]
         lines.append("  ".join([*cells, row[3]]).rstrip())
     for subsystem in tree.subsystems:
         inside = "" if subsystem.parent is None else f", merged into {subsystem.parent}"
-        lines.append(f"subsystem {subsystem.name}: root {subsystem.root}, "
-                     f"{len(subsystem.members)} frames{inside}")
+        lines.append(printable(f"subsystem {subsystem.name}: root {subsystem.root}, "
+                               f"{len(subsystem.members)} frames{inside}"))
     if ROSBAG_METADATA_KEY in tree.metadata:
-        lines += _bag_lines(tree.metadata[ROSBAG_METADATA_KEY])
+        lines += map(printable, _bag_lines(tree.metadata[ROSBAG_METADATA_KEY]))
     return "\n".join(lines) + "\n"
 
 
