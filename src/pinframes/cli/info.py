@@ -98,10 +98,9 @@ def describe(tree: FrameTree) -> str:
     header = (f"tree {tree.name or '(unnamed)'}: {len(tree)} frames, "
               f"{sum(tree.is_moving(f) for f in tree.frames[1:])} moving, "
               f"{len(tree.joints)} robot joints; reference time {reference}")
-    rows = [("FRAME", "KIND", "TIME SPAN", "REFERENCE TIME")]
+    rows = [["FRAME", "KIND", "TIME SPAN", "REFERENCE TIME"]]
     for prefix, name in _walk(tree, tree.root, "", ""):
-        cells = (prefix + name, *_frame_columns(tree, name))
-        rows.append(tuple(printable(cell) for cell in cells))
+        rows.append([printable(cell) for cell in (prefix + name, *_frame_columns(tree, name))])
     widths = [max(len(row[column]) for row in rows) for column in range(3)]
     lines = [printable(header)]
     for row in rows:
