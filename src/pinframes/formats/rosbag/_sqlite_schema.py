@@ -26,8 +26,7 @@ def check_stored_values(database: Path, bag: Path) -> None:
     try:
         connection = sqlite3.connect(uri, uri=True)
     except sqlite3.Error as exc:
-        raise FileFormatError(f"cannot open the SQLite file {database.name}: {exc}",
-                              file=bag) from None
+        raise _corrupt(database, exc, bag) from None
     try:
         tables = connection.execute(
             "SELECT name, sql FROM sqlite_master WHERE type = 'table'").fetchall()
@@ -44,7 +43,11 @@ def check_stored_values(database: Path, bag: Path) -> None:
                         "size); rosbag2 stores its values", file=bag,
                         field=f"{table}.{column[0]}")
     except sqlite3.Error as exc:
-        raise FileFormatError(f"the SQLite file {database.name} is corrupt: {exc}",
-                              file=bag) from None
+        raise _corrupt(database, exc, bag) from None
     finally:
         connection.close()
+
+
+def _corrupt(database: Path, error: sqlite3.Error, bag: Path) -> FileFormatError:
+    return FileFormatError(f"cannot open it (truncated or corrupt bag?): {database.name}: "
+                           f"{error}", file=bag)
