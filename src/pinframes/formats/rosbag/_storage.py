@@ -4,7 +4,9 @@ Four kinds (SPEC 10): a ROS 1 ``.bag`` file, a ROS 2 bag folder (``metadata.yaml
 its ``.db3`` or ``.mcap`` files), and the two ROS 2 storage files on their own (an MCAP
 file, a SQLite ``.db3`` file). Files are told by their first bytes, never by their names.
 Whatever rosbags raises on a truncated or corrupt bag becomes a
-:class:`~pinframes.errors.FileFormatError` naming the bag.
+:class:`~pinframes.errors.FileFormatError` naming the bag. Compressed chunks, messages and
+files are inflated within ``max_decompressed_bytes`` (:mod:`._inflation`), and a ``.db3``
+file's schema is checked before rosbags reads a row (:mod:`._sqlite_schema`).
 """
 
 from __future__ import annotations
