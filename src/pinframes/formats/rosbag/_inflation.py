@@ -137,33 +137,21 @@ def bound_rosbags_chunks() -> None:
     from rosbags.rosbag1 import reader as ros1_reader
     from rosbags.rosbag2 import storage_mcap
 
-    for codec in ("bz2", "lz4"):
-        ros1_reader.decompressors[codec] = _bounded_ros1(codec, ros1_reader.decompressors[codec])
-    for codec in ("lz4", "zstd"):
-        storage_mcap.DECOMPRESSORS[codec] = _bounded_mcap(codec,
-                                                          storage_mcap.DECOMPRESSORS[codec])
+    for table, codecs in ((ros1_reader.decompressors, ("bz2", "lz4")),
+                          (storage_mcap.DECOMPRESSORS, ("lz4", "zstd"))):
+        for codec in codecs:
+            table[codec] = _bounded(codec, table[codec])
 
 
-def _bounded_ros1(codec: str, own: Callable[[bytes], bytes]) -> Callable[[bytes], bytes]:
+def _bounded(codec: str, own: Callable[..., bytes]) -> Callable[..., bytes]:
+    """rosbags' decompressor ``own`` (``(data)`` for ROS 1, ``(data, size)`` for MCAP),
+    drawing on the budget of the read in progress, if any."""
     if getattr(own, "pinframes_bounded", False):
         return own
 
-    def inflate(data: bytes) -> bytes:
+    def inflate(data: bytes, *declared_size: int) -> bytes:
         budget = _ACTIVE.get()
-        return own(data) if budget is None else budget.inflate(data, codec)
-
-    inflate.pinframes_bounded = True  # type: ignore[attr-defined]
-    return inflate
-
-
-def _bounded_mcap(codec: str, own: Callable[[bytes, int], bytes]
-                  ) -> Callable[[bytes, int], bytes]:
-    if getattr(own, "pinframes_bounded", False):
-        return own
-
-    def inflate(data: bytes, size: int) -> bytes:
-        budget = _ACTIVE.get()
-        return own(data, size) if budget is None else budget.inflate(data, codec)
+        return own(data, *declared_size) if budget is None else budget.inflate(data, codec)
 
     inflate.pinframes_bounded = True  # type: ignore[attr-defined]
     return inflate
