@@ -26,6 +26,7 @@ from __future__ import annotations
 import bz2
 import contextlib
 import contextvars
+import functools
 from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 from typing import Any
@@ -41,26 +42,24 @@ _ACTIVE: contextvars.ContextVar[InflationBudget | None] = contextvars.ContextVar
     "pinframes_bag_inflation", default=None)
 
 
-def _zstd_decompressor() -> Any:
+@functools.cache
+def _decompressor_class(codec: str) -> Callable[[], Any]:
+    """The streaming decompressor class of ``codec``: the modules rosbags inflates with."""
+    if codec == "bz2":
+        return bz2.BZ2Decompressor
+    if codec == "lz4":
+        from lz4.frame import LZ4FrameDecompressor  # type: ignore[import-untyped]
+
+        return LZ4FrameDecompressor  # type: ignore[no-any-return]
     try:
         from compression import zstd  # type: ignore[import-not-found]  # Python 3.14
     except ImportError:
         from backports import zstd  # type: ignore[import-not-found,no-redef]
-    return zstd.ZstdDecompressor()
+    return zstd.ZstdDecompressor  # type: ignore[no-any-return]
 
 
-def _lz4_decompressor() -> Any:
-    from lz4.frame import LZ4FrameDecompressor  # type: ignore[import-untyped]
-
-    return LZ4FrameDecompressor()
-
-
-_CODECS: dict[str, tuple[Callable[[], Any], bool]] = {
-    "bz2": (bz2.BZ2Decompressor, True),
-    "zstd": (_zstd_decompressor, True),
-    "lz4": (_lz4_decompressor, False),
-}
-"""Per codec: a new streaming decompressor, and whether further streams may follow one."""
+_STREAMS_FOLLOW = {"bz2": True, "zstd": True, "lz4": False}
+"""Per codec: whether further streams (frames) may follow one."""
 
 
 class InflationBudget:
@@ -105,11 +104,13 @@ class InflationBudget:
 
     def _pieces(self, blocks: Iterable[bytes], codec: str) -> Iterator[bytes]:
         """The inflated bytes of the compressed ``blocks``, counted as they come."""
-        new_decompressor, streams_follow = _CODECS[codec]
+        new_decompressor, streams_follow = _decompressor_class(codec), _STREAMS_FOLLOW[codec]
         decompressor = new_decompressor()
         fed = holding = False  # the decompressor has had input / still holds unread output
         for data in blocks:
             while data or holding:
+                if decompressor.eof:  # another stream (frame) follows the one that ended
+                    decompressor = new_decompressor()
                 piece = decompressor.decompress(data, min(PIECE_BYTES, self._left() + 1))
                 fed, data = True, b""
                 self.produced += len(piece)
@@ -120,8 +121,7 @@ class InflationBudget:
                 if decompressor.eof:
                     if not streams_follow:
                         return
-                    data = decompressor.unused_data
-                    decompressor, fed, holding = new_decompressor(), False, False
+                    data, fed, holding = decompressor.unused_data, False, False
                 else:
                     holding = not decompressor.needs_input
         if fed:
