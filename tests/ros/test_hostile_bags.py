@@ -58,7 +58,7 @@ except PinframesError as exc:
     outcome = f"{type(exc).__name__} {exc}"
 except BaseException as exc:
     outcome = f"NOT-A-PINFRAMES-ERROR {exc!r}"[:500]
-rise = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before
+rise = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before  # kB on Linux
 print(json.dumps({"outcome": outcome, "rise_bytes": rise * 1024}))
 """
 
