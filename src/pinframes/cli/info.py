@@ -37,7 +37,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Print the description of the tree."""
-    tree = read_tree(args.file, args.robot_description)
+    tree = read_tree(args.file, args)
     if args.format == "json":
         sys.stdout.write(json.dumps(describe_json(tree), indent=1) + "\n")
     else:

@@ -59,7 +59,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Solve, write the CSV, print the summary."""
-    tree = read_tree(args.file)
+    tree = read_tree(args.file, args)
     require_frames(tree, args.file, args.frame, args.target)
     times = requested_times(args, tree, args.frame, args.target)
     solution = tree.solve_joints(
