@@ -125,6 +125,15 @@ def test_without_the_xacro_package_the_error_names_it(monkeypatch):
         pinframes.read_urdf(MA2010_XACRO)
 
 
+def test_a_urdf_that_keeps_the_namespace_needs_no_xacro(tmp_path, monkeypatch):
+    monkeypatch.setitem(sys.modules, "xacro", None)
+    expanded = tmp_path / "expanded.urdf"  # as xacro writes them, the declaration kept
+    expanded.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                        '<link name="a"/><link name="b"/><joint name="j" type="fixed">'
+                        '<parent link="a"/><child link="b"/></joint></robot>')
+    assert pinframes.read_urdf(expanded).frames == ["a", "b"]
+
+
 def test_attach_urdf_and_package_dirs_are_remembered(tmp_path):
     tree = pinframes.FrameTree()
     tree.attach_urdf(MA2010_XACRO, "world", prefix="r/", package_dirs=[MOTOMAN])

@@ -50,6 +50,9 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     parser.add_argument("--exclude", nargs=2, action="append", default=[],
                         metavar=("A", "B"), help="do not check the pairs of these frames or "
                         "patterns, either order (repeatable; default: none)")
+    parser.add_argument("--no-srdf-exclude", dest="srdf_exclude", action="store_false",
+                        help="check the link pairs the robots' SRDFs disable too (default: "
+                        "leave them out)")
     parser.add_argument("--geometry", choices=GEOMETRY_KINDS, default="collision",
                         help="which URDF geometry of the links (default: collision)")
     add_time_arguments(parser)
@@ -65,7 +68,8 @@ def run(args: argparse.Namespace) -> int:
     tree = read_tree(args.file, args)
     a, b = frame_names(tree, args.a), frame_names(tree, args.b)
     options = {"geometry": args.geometry, "package_dirs": args.package_dir or [],
-               "exclude": [tuple(pair) for pair in args.exclude]}
+               "exclude": [tuple(pair) for pair in args.exclude],
+               "srdf_exclude": args.srdf_exclude}
     times = times_from_options(args, lambda: tree.clearance_times(a, b,
                                                                   geometry=args.geometry))
     result = _in_chunks(tree, a, b, times, args.time_ref, options)

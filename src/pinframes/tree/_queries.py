@@ -355,7 +355,7 @@ class TreeQueries(TreeStructure):
         if relative_to is not None:
             self._require(relative_to, "relative_to")
         near = [frame] + ([target] if isinstance(target, str) else [])
-        if isinstance(joints, str):
+        if isinstance(joints, str) and joints not in self.joints:  # one joint: a list, please
             joints = group_joints(self, joints, near)
         if isinstance(seed, str):
             seed = group_state_values(self, seed, near)

@@ -44,7 +44,7 @@ def parse_urdf(urdf: str | os.PathLike[str], *, strict: bool = False,
                srdf: str | os.PathLike[str] | None = None) -> RobotDescription:
     """Parse a URDF file path or XML string and check that it describes one tree of links.
 
-    A xacro file (the xacro namespace or ``<xacro:`` elements, whatever its name) is
+    A xacro file (told by :func:`~pinframes.formats.urdf.is_xacro`, whatever its name) is
     expanded first (:func:`~pinframes.formats.urdf.expand_xacro`, with ``xacro_args`` and
     ``$(find PKG)`` looked up in ``package_dirs``); ``package_dirs`` are also kept with
     every link's geometry (absolute), for its meshes. ``srdf`` (a file) is read against the

@@ -58,7 +58,7 @@ def read_srdf(path: str | os.PathLike[str], robot: RobotDescription) -> RobotSem
     semantics = reader.semantics()
     if reader.skipped:
         warn_at_caller(f"{source}: skipped what pinframes does not use or the robot "
-                       f"{robot.name!r} does not have: {'; '.join(reader.skipped)}",
+                       f"{robot.name!r} does not have: {'; '.join(dict.fromkeys(reader.skipped))}",
                        SrdfWarning)
     return semantics
 

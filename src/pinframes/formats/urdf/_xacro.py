@@ -1,7 +1,9 @@
 """xacro robot files (ROS's XML macros) expanded to URDF text with the ``xacro`` package.
 
-A file is xacro when it declares the xacro namespace or holds ``<xacro:`` elements, whatever
-its name. ``$(arg NAME)`` takes ``args`` (then the file's ``<xacro:arg default>``);
+A file is xacro when it holds ``<xacro:`` elements, or declares the xacro namespace and uses
+``${...}`` or ``$(...)``, whatever its name (a URDF that xacro wrote often keeps the namespace
+declaration: with nothing left to expand it is read as it is). ``$(arg NAME)`` takes
+``args`` (then the file's ``<xacro:arg default>``);
 ``$(find PKG)`` (and ``find()`` inside ``$(eval ...)``) is the package folder that
 :func:`~pinframes.kinematics.collision.mesh_files.find_package` finds in the given
 ``package_dirs``, then ``ROS_PACKAGE_PATH``, then the xacro file's ancestor folders, instead
@@ -29,13 +31,18 @@ from ...kinematics.collision.mesh_files import (
 
 __all__ = ["expand_xacro", "is_xacro"]
 
-_XACRO_MARK = re.compile(r"xmlns:xacro\s*=|<\s*xacro:")
+_XACRO_ELEMENT = re.compile(r"<\s*xacro:")
+_XACRO_NAMESPACE = re.compile(r"xmlns:xacro\s*=")
+_SUBSTITUTION = re.compile(r"\$[{(]")
 _LOCK = threading.Lock()  # the xacro package keeps its state in module globals
 
 
 def is_xacro(text: str) -> bool:
-    """Whether the XML ``text`` is a xacro file: the xacro namespace or a ``<xacro:`` element."""
-    return _XACRO_MARK.search(text) is not None
+    """Whether the XML ``text`` is a xacro file: a ``<xacro:`` element, or the xacro namespace
+    and a ``${...}`` or ``$(...)`` substitution."""
+    if _XACRO_ELEMENT.search(text):
+        return True
+    return bool(_XACRO_NAMESPACE.search(text) and _SUBSTITUTION.search(text))
 
 
 class _PackageNotFound(Exception):

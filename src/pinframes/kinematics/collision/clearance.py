@@ -129,7 +129,9 @@ def evaluate_clearance(
     pairs = _shape_pairs(shapes, set(frames_a), set(frames_b), skipped)
     if not len(pairs):
         raise GeometryError("a and b leave no pair of two different frames to check (a frame "
-                            "is never checked against itself; see also exclude)", field="b")
+                            "is never checked against itself; see also exclude, and the pairs "
+                            "an SRDF disables: srdf_exclude=False, --no-srdf-exclude)",
+                            field="b")
     offsets, reference = _timeline(tree, frames, times, time_ref)
     count = 1 if offsets is None else offsets.shape[0]
     frame_index = {frame: position for position, frame in enumerate(frames)}
