@@ -106,6 +106,17 @@ def test_model_names_resolve_through_package_dirs_or_gazebo_model_path(monkeypat
                                   expected)
 
 
+def test_the_page_finds_the_meshes_in_the_folders_given_when_read(monkeypatch):
+    from pinframes.view import load_geometry
+
+    monkeypatch.delenv("GAZEBO_MODEL_PATH", raising=False)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # a mesh not found would be a GeometryWarning
+        pieces = load_geometry(cell_tree(), collision=True)
+    meshes = [piece for piece in pieces if piece.source.startswith("model://")]
+    assert len(meshes) == 10  # MA2010: 7 links, D500: 3 links, one collision mesh each
+
+
 def test_groups_expand_as_moveit_defines_them():
     tree = cell_tree()
     by_group = {group: tree.solve_joints("torch", "workpiece", joints=group).joint_names
