@@ -90,6 +90,15 @@ def test_disabled_pairs_follow_a_prefix_and_stay_apart_for_two_copies(rng):
     assert len(excluded) == 2 * 12
 
 
+def test_a_grafted_cell_keeps_its_groups_and_pairs():
+    cell = pinframes.FrameTree()
+    cell.add("stand", "world", pinframes.Pose.from_xyz_rpy(2.0, 0, 0, 0, 0, 0.3))
+    cell.graft(cell_tree(), at="stand", prefix="p/")  # the root link becomes "stand"
+    solution = cell.solve_joints("p/torch", "p/workpiece", joints="cell", times=[0.0])
+    assert len(solution.joint_names) == 8  # robot and positioner, both below the root link
+    assert len(cell.clearance("p/*", "p/*").excluded) == 14
+
+
 def test_model_names_resolve_through_package_dirs_or_gazebo_model_path(monkeypatch):
     monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
     monkeypatch.delenv("GAZEBO_MODEL_PATH", raising=False)

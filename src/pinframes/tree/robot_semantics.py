@@ -2,8 +2,10 @@
 
 A robot read with an SRDF carries a :class:`~pinframes.values.robot_semantics.LinkSemantics`
 on each of its link frames. A robot is found as the frames that carry the same SRDF and hang
-together (a link's parent carries it too, unless the link is the robot's root), so two copies
-of one robot under different prefixes stay two robots, and renaming or grafting keeps them.
+together through their URDF parent links, so two copies of one robot under different
+prefixes stay two robots, and renaming or grafting keeps them (a graft mounts the root link
+on another tree's frame, which keeps no record: the frame the robot's links then hang from
+stands for it).
 Here the SRDF's link pairs become frame pairs (for ``clearance``), its groups tree joint
 names and its group states joint values by tree joint name (for ``solve_joints``).
 """
@@ -43,13 +45,37 @@ def semantic_robots(tree: TreeStructure) -> list[SemanticRobot]:
         own = _semantics(tree, frame)
         if own is None:
             continue
-        top, link = frame, own
-        while (parent := tree.parent(top)) is not None and (
-                above := _parent_link(tree, parent, link)) is not None:
-            top, link = parent, above
+        top = _robot_top(tree, frame, own)
         found.setdefault(top, (own.robot, {}))[1][own.link] = frame
+    for top, (semantics, frames) in found.items():
+        root = _root_link(semantics)
+        if root is not None and root not in frames and _semantics(tree, top) is None:
+            frames[root] = top  # the root link's frame lost its record: a graft's mount frame
     return [SemanticRobot(top, semantics, frames)
             for top, (semantics, frames) in found.items()]
+
+
+def _robot_top(tree: TreeStructure, frame: str, own: LinkSemantics) -> str:
+    """The highest frame of ``frame``'s robot: up through the URDF parent links that carry
+    the same SRDF, then one frame more when the last is a child of the robot's root link and
+    its parent carries nothing (the root link's frame of a grafted tree, which keeps no
+    record)."""
+    top, link = frame, own
+    while (parent := tree.parent(top)) is not None:
+        above = _parent_link(tree, parent, link)
+        if above is None:
+            if (link.robot.link_parents.get(link.link) == _root_link(link.robot)
+                    and _semantics(tree, parent) is None):
+                top = parent
+            break
+        top, link = parent, above
+    return top
+
+
+def _root_link(semantics: RobotSemantics) -> str | None:
+    """The robot's root link: the parent link that has no parent itself."""
+    return next((parent for parent in semantics.link_parents.values()
+                 if parent not in semantics.link_parents), None)
 
 
 def disabled_frame_pairs(tree: TreeStructure, frames: Iterable[str]
