@@ -106,6 +106,13 @@ def test_packages_come_from_package_dirs_then_ros_package_path(tmp_path, monkeyp
     assert len(pinframes.read_urdf(lone).joints) == 6
 
 
+def test_a_file_of_macros_only_says_so_and_not_that_joints_form_a_cycle():
+    with pytest.raises(FileFormatError, match="xacro macros only") as caught:
+        with pytest.warns(UserWarning, match="no name"):
+            pinframes.read(MA2010_XACRO.with_name("ma2010_macro.xacro"))
+    assert "cycle" not in str(caught.value)
+
+
 def test_a_missing_argument_is_named_with_how_to_give_it():
     with pytest.raises(FileFormatError, match="--xacro-arg"):
         pinframes.read_urdf(UR_XACRO)

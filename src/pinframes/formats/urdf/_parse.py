@@ -61,7 +61,9 @@ def parse_urdf(urdf: str | os.PathLike[str], *, strict: bool = False,
     """
     text, source = _read_source(urdf)
     folders = tuple(os.path.abspath(os.fspath(folder)) for folder in package_dirs)
+    macros_only = False
     if is_xacro(text):
+        macros_only = "xacro:macro" in text
         if source == "<urdf string>":
             raise FileFormatError("xacro text: give the xacro file's path, whose folder its "
                                   "includes are relative to", file=source, field="xacro")
@@ -86,6 +88,11 @@ def parse_urdf(urdf: str | os.PathLike[str], *, strict: bool = False,
         links, joints, extra = _elements(root, source)
     except RecursionError:
         raise FileFormatError("XML elements nested too deeply to keep", file=source) from None
+    if not links:
+        hint = (": it defines xacro macros only; read the xacro file that calls them"
+                if macros_only else "")
+        raise FileFormatError(f"no <link>: a robot has at least one{hint}", file=source,
+                              field="link")
     ordered, root_link = _check_tree(links, joints, source)
     ordered = _without_broken_mimics(ordered, source, strict)
     _check_mimics(ordered, source)
