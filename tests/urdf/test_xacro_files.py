@@ -132,6 +132,20 @@ def test_without_the_xacro_package_the_error_names_it(monkeypatch):
         pinframes.read_urdf(MA2010_XACRO)
 
 
+def test_what_xacro_prints_becomes_one_warning_naming_the_file(tmp_path, capfd):
+    (tmp_path / "offset.yaml").write_text("x: 0.5\n")
+    robot = tmp_path / "robot.xacro"
+    robot.write_text('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+                     '<xacro:property name="p" value="${load_yaml(\'offset.yaml\')}"/>'
+                     '<link name="a"/><link name="b"/><joint name="j" type="fixed">'
+                     '<parent link="a"/><child link="b"/><origin xyz="${p[\'x\']} 0 0"/>'
+                     '</joint></robot>')
+    with pytest.warns(UserWarning, match=r"robot\.xacro: xacro: .*load_yaml\(\) directly"):
+        tree = pinframes.read_urdf(robot)
+    assert capfd.readouterr().err == ""  # nothing printed past pinframes
+    np.testing.assert_allclose(tree.pose("b", "a").translation, [0.5, 0.0, 0.0])
+
+
 def test_a_urdf_that_keeps_the_namespace_needs_no_xacro(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "xacro", None)
     expanded = tmp_path / "expanded.urdf"  # as xacro writes them, the declaration kept

@@ -75,7 +75,7 @@ def _files_read(source: InputFile) -> list[Path]:
     return [joint_state_path(source.path)]
 
 
-URDF_FORMAT = FileFormat("urdf", "URDF", (".urdf",), read_urdf, write_urdf,
+URDF_FORMAT = FileFormat("urdf", "URDF", (".urdf", ".xacro"), read_urdf, write_urdf,
                          ("time", "freeze_joints"), head_test=is_urdf, looks_like="a URDF file",
                          files_read=_files_read)
 """The URDF format: XML whose root element is ``<robot>``, with the joint values beside it."""

@@ -14,15 +14,16 @@ YAML loads and expressions read what it names, so expand only files you trust.
 
 from __future__ import annotations
 
+import io
 import os
 import re
 import threading
 from collections.abc import Iterable, Iterator, Mapping
-from contextlib import contextmanager
+from contextlib import contextmanager, redirect_stderr
 from pathlib import Path
 from typing import Any
 
-from ...errors import FileFormatError, UnsupportedFeatureError
+from ...errors import FileFormatError, UnsupportedFeatureError, warn_at_caller
 from ...kinematics.collision.mesh_files import (
     PACKAGE_PATH_VARIABLE,
     find_package,
@@ -84,13 +85,22 @@ def expand_xacro(path: str | os.PathLike[str], *, args: Mapping[str, Any] | None
         return str(found)
 
     mappings = {str(name): _xacro_value(value) for name, value in (args or {}).items()}
-    with _LOCK, _finding_with(substitution_args, find):
+    said = io.StringIO()  # xacro prints its warnings: they become pinframes warnings
+    with _LOCK, _finding_with(substitution_args, find), redirect_stderr(said):
         try:
             document = xacro.process_file(str(start), mappings=mappings)
         except Exception as exc:  # xacro wraps everything in XacroException
             raise _located_error(exc, source) from None
+    for line in dict.fromkeys(said.getvalue().splitlines()):
+        if line.strip():
+            warn_at_caller(f"{source}: xacro: {_plain(line)}")
     text: str = document.toprettyxml(indent="  ")
     return text
+
+
+def _plain(line: str) -> str:
+    """A line xacro printed, without its terminal colour codes."""
+    return re.sub(r"\x1b\[[0-9;]*m", "", line).strip()
 
 
 @contextmanager
