@@ -146,6 +146,13 @@ def test_what_xacro_prints_becomes_one_warning_naming_the_file(tmp_path, capfd):
     np.testing.assert_allclose(tree.pose("b", "a").translation, [0.5, 0.0, 0.0])
 
 
+def test_xacro_text_is_never_expanded():
+    text = MA2010_XACRO.read_text()  # as a bag's /robot_description could hold it
+    with pytest.raises(FileFormatError, match="xacro text") as caught:
+        pinframes.FrameTree().attach_urdf(text, "world")
+    assert caught.value.field == "xacro"
+
+
 def test_a_urdf_that_keeps_the_namespace_needs_no_xacro(tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "xacro", None)
     expanded = tmp_path / "expanded.urdf"  # as xacro writes them, the declaration kept
