@@ -139,15 +139,19 @@ def test_groups_expand_as_moveit_defines_them():
 
 
 def test_a_group_state_seeds_the_solver_as_its_values_do():
-    tree = cell_tree()
     values = {"ma2010_joint_1_s": 0.1, "ma2010_joint_2_l": 0.35, "ma2010_joint_3_u": -0.2,
               "ma2010_joint_4_r": 0.0, "ma2010_joint_5_b": -0.9, "ma2010_joint_6_t": 0.0}
-    by_name = tree.solve_joints("torch", "workpiece", joints="ma2010", seed="weld_ready")
-    by_values = tree.solve_joints("torch", "workpiece", joints="ma2010", seed=values)
+    posed = cell_tree()  # the torch where the robot puts it 0.1 rad from the named state
+    posed.set_joint_trajectory([0.0], [[value + 0.1 for value in values.values()]],
+                               list(values))
+    target = posed.pose("torch", "world")
+    tree = cell_tree()
+    by_name = tree.solve_joints("torch", target, joints="ma2010", seed="weld_ready")
+    by_values = tree.solve_joints("torch", target, joints="ma2010", seed=values)
     np.testing.assert_array_equal(by_name.positions, by_values.positions)
     assert by_name.reached.all()
-    from_zero = tree.solve_joints("torch", "workpiece", joints="ma2010")
-    assert not np.allclose(from_zero.positions, by_name.positions)
+    np.testing.assert_allclose(by_name.positions[0], np.array(list(values.values())) + 0.1,
+                               atol=1e-5)
 
 
 def test_unknown_group_names_the_groups_there_are():
