@@ -5,6 +5,7 @@ groups and group states for ``solve_joints``, and the SRDFs other tools write.""
 from __future__ import annotations
 
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pinocchio as pin
@@ -113,6 +114,13 @@ def test_model_names_resolve_through_package_dirs_or_gazebo_model_path(monkeypat
     remembered = cell_tree()  # package_dirs given when read: not needed again
     np.testing.assert_array_equal(remembered.clearance("torch", "ma2010_base_link").distance,
                                   expected)
+    model = pin.buildModelFromUrdf(str(CELL_URDF))
+    reference = pin.buildGeomFromUrdf(model, str(CELL_URDF), pin.GeometryType.COLLISION,
+                                      package_dirs=[str(MOTOMAN)])
+    ours = remembered.to_pinocchio().geometry_model("collision")
+    assert (sorted(Path(o.meshPath).resolve() for o in ours.geometryObjects if o.meshPath)
+            == sorted(Path(o.meshPath).resolve() for o in reference.geometryObjects
+                      if o.meshPath))
 
 
 def test_the_page_finds_the_meshes_in_the_folders_given_when_read(monkeypatch):
