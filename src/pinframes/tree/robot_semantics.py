@@ -19,7 +19,8 @@ from ..errors import NameNotFoundError, near_misses
 from ..values.robot_semantics import SEMANTICS_METADATA_KEY, LinkSemantics, RobotSemantics
 from ._structure import TreeStructure
 
-__all__ = ["SemanticRobot", "disabled_frame_pairs", "group_joints", "group_state_values"]
+__all__ = ["SemanticRobot", "disabled_frame_pairs", "group_joints", "group_state_values",
+           "semantic_robots"]
 
 
 @dataclass(frozen=True)
@@ -48,8 +49,8 @@ def semantic_robots(tree: TreeStructure) -> list[SemanticRobot]:
         top = _robot_top(tree, frame, own)
         found.setdefault(top, (own.robot, {}))[1][own.link] = frame
     for top, (semantics, frames) in found.items():
-        root = _root_link(semantics)
-        if root is not None and root not in frames and _semantics(tree, top) is None:
+        root = semantics.root_link
+        if root not in frames and _semantics(tree, top) is None:
             frames[root] = top  # the root link's frame lost its record: a graft's mount frame
     return [SemanticRobot(top, semantics, frames)
             for top, (semantics, frames) in found.items()]
@@ -64,18 +65,12 @@ def _robot_top(tree: TreeStructure, frame: str, own: LinkSemantics) -> str:
     while (parent := tree.parent(top)) is not None:
         above = _parent_link(tree, parent, link)
         if above is None:
-            if (link.robot.link_parents.get(link.link) == _root_link(link.robot)
+            if (link.robot.link_parents.get(link.link) == link.robot.root_link
                     and _semantics(tree, parent) is None):
                 top = parent
             break
         top, link = parent, above
     return top
-
-
-def _root_link(semantics: RobotSemantics) -> str | None:
-    """The robot's root link: the parent link that has no parent itself."""
-    return next((parent for parent in semantics.link_parents.values()
-                 if parent not in semantics.link_parents), None)
 
 
 def disabled_frame_pairs(tree: TreeStructure, frames: Iterable[str]

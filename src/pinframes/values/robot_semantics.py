@@ -48,6 +48,8 @@ class RobotSemantics:
         URDF joint name -> its child link, how a joint is found among a tree's frames.
     link_parents : dict of str to str
         URDF link name -> its parent link (the root link has none).
+    root_link : str
+        The URDF's root link.
     """
 
     source: str
@@ -56,6 +58,7 @@ class RobotSemantics:
     disabled_pairs: frozenset[frozenset[str]] = field(default_factory=frozenset)
     joint_links: dict[str, str] = field(default_factory=dict)
     link_parents: dict[str, str] = field(default_factory=dict)
+    root_link: str = ""
 
     def disables(self, link_a: str, link_b: str) -> bool:
         """Whether the SRDF leaves the pair of links ``link_a``, ``link_b`` unchecked."""

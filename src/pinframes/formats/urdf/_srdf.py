@@ -90,7 +90,8 @@ class _Reader:
                 groups[name] = joints
         return RobotSemantics(self.source, groups, self._states(groups),
                               self._disabled_pairs(), dict(self.joint_child),
-                              {joint.child: joint.parent for joint in self.robot.joints})
+                              {joint.child: joint.parent for joint in self.robot.joints},
+                              self.robot.root_link)
 
     def _group(self, name: str, definitions: dict[str, ET.Element],
                within: tuple[str, ...]) -> tuple[str, ...] | None:
