@@ -33,11 +33,8 @@ SRDF_ELEMENTS = frozenset({
     "group", "group_state", "disable_collisions", "disable_default_collisions",
     "enable_collisions", "virtual_joint", "end_effector", "passive_joint",
     "link_sphere_approximation"})
-"""The top-level elements of MoveIt's SRDF."""
-
-_UNUSED = frozenset({"virtual_joint", "end_effector", "passive_joint",
-                     "link_sphere_approximation"})
-"""SRDF elements that bear on neither poses, groups nor clearance: skipped silently."""
+"""The top-level elements of MoveIt's SRDF (those that bear on neither poses, groups nor
+clearance, such as ``<virtual_joint>`` and ``<end_effector>``, are passed over silently)."""
 
 
 def looks_like_srdf(root: ET.Element) -> bool:
@@ -77,7 +74,7 @@ class _Reader:
 
     def semantics(self) -> RobotSemantics:
         elements = [child for child in self.root if isinstance(child.tag, str)]
-        other = sorted({child.tag for child in elements} - SRDF_ELEMENTS - _UNUSED)
+        other = sorted({child.tag for child in elements} - SRDF_ELEMENTS)
         if other:
             self.skipped.append("elements " + ", ".join(f"<{tag}>" for tag in other))
         definitions = {}

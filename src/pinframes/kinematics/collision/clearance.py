@@ -65,7 +65,7 @@ class Clearance:
     frames_a, frames_b : tuple of str
         The frames whose geometry was checked on each side.
     excluded : tuple of (str, str)
-        The pairs of frames left out (``exclude=``).
+        The pairs of frames left out: ``exclude=``, and those the robots' SRDFs disable.
     geometry : {"collision", "visual"}
         Which URDF geometry was used.
     """
