@@ -215,6 +215,18 @@ def test_other_tools_elements_are_skipped_with_one_warning(tmp_path):
     assert [set(pair) for pair in excluded] == [{"d500_link_1", "d500_link_2"}]
 
 
+def test_default_disabled_links_and_pairs_enabled_again(tmp_path):
+    srdf = tmp_path / "defaults.srdf"
+    srdf.write_text('<robot name="cell"><disable_default_collisions link="torch"/>'
+                    '<enable_collisions link1="ma2010_link_6_t" link2="torch"/></robot>')
+    tree = pinframes.read_urdf(CELL_URDF, srdf=srdf, package_dirs=[MOTOMAN])
+    excluded = {frozenset(pair) for pair in tree.clearance("*", "*").excluded}
+    others = {"ma2010_pedestal", "ma2010_base_link", "d500_base_link", "workpiece",
+              *(f"ma2010_link_{n}" for n in ("1_s", "2_l", "3_u", "4_r", "5_b")),
+              "d500_link_1", "d500_link_2"}  # every link with geometry but the flange
+    assert excluded == {frozenset(("torch", other)) for other in others}
+
+
 @pytest.mark.parametrize(("element", "field"), [
     ('<disable_collisions link1="d500_link_1"/>', "disable_collisions.link2"),
     ('<group_state name="s" group="g"><joint name="d500_joint_1" value="up"/></group_state>',
