@@ -215,6 +215,17 @@ def test_other_tools_elements_are_skipped_with_one_warning(tmp_path):
     assert [set(pair) for pair in excluded] == [{"d500_link_1", "d500_link_2"}]
 
 
+def test_a_chain_between_two_branches_goes_through_their_common_link(tmp_path):
+    srdf = tmp_path / "across.srdf"
+    srdf.write_text('<robot name="cell"><group name="across">'
+                    '<chain base_link="ma2010_link_3_u" tip_link="d500_link_2"/></group></robot>')
+    tree = pinframes.read_urdf(CELL_URDF, srdf=srdf)
+    solution = tree.solve_joints("torch_tip", "workpiece", joints="across", times=[0.0])
+    # up from link_3_u to the common root: joints 3, 2, 1; down to d500_link_2: its two
+    assert solution.joint_names == ("ma2010_joint_1_s", "ma2010_joint_2_l", "ma2010_joint_3_u",
+                                    "d500_joint_1", "d500_joint_2")
+
+
 def test_default_disabled_links_and_pairs_enabled_again(tmp_path):
     srdf = tmp_path / "defaults.srdf"
     srdf.write_text('<robot name="cell"><disable_default_collisions link="torch"/>'
