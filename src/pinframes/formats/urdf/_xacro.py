@@ -87,6 +87,7 @@ def expand_xacro(path: str | os.PathLike[str], *, args: Mapping[str, Any] | None
     mappings = {str(name): _xacro_value(value) for name, value in (args or {}).items()}
     said = io.StringIO()  # xacro prints its warnings: they become pinframes warnings
     with _LOCK, _finding_with(substitution_args, find), redirect_stderr(said):
+        xacro.all_includes.clear()  # xacro lists every file it reads there, never emptied
         try:
             document = xacro.process_file(str(start), mappings=mappings)
         except Exception as exc:  # xacro wraps everything in XacroException
