@@ -4,7 +4,7 @@ A file is xacro when it holds ``<xacro:`` elements, or declares the xacro namesp
 ``${...}`` or ``$(...)``, whatever its name (a URDF that xacro wrote often keeps the namespace
 declaration: with nothing left to expand it is read as it is). ``$(arg NAME)`` takes
 ``args`` (then the file's ``<xacro:arg default>``);
-``$(find PKG)`` (and ``find()`` inside ``$(eval ...)``) is the package folder that
+``$(find PKG)`` is the package folder that
 :func:`~pinframes.kinematics.collision.mesh_files.find_package` finds in the given
 ``package_dirs``, then ``ROS_PACKAGE_PATH``, then the xacro file's ancestor folders, instead
 of ROS 2's ament index that the ``xacro`` package asks. The expansion is the ``xacro``
@@ -106,14 +106,13 @@ def _plain(line: str) -> str:
 
 @contextmanager
 def _finding_with(substitution_args: Any, find: Any) -> Iterator[None]:
-    """xacro's ``$(find)`` and ``find()`` answered by ``find`` while inside."""
-    saved = substitution_args._eval_find, substitution_args._eval_dict["find"]
+    """xacro's ``$(find)`` answered by ``find`` while inside."""
+    saved = substitution_args._eval_find
     substitution_args._eval_find = find
-    substitution_args._eval_dict["find"] = find
     try:
         yield
     finally:
-        substitution_args._eval_find, substitution_args._eval_dict["find"] = saved
+        substitution_args._eval_find = saved
 
 
 def _xacro_value(value: Any) -> str:
