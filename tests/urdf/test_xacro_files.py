@@ -94,6 +94,9 @@ def test_a_xacro_is_told_by_its_content_whatever_its_name(tmp_path):
 
 
 def test_packages_come_from_package_dirs_then_ros_package_path(tmp_path, monkeypatch):
+    from xacro import substitution_args
+
+    own_find = substitution_args._eval_find  # xacro's, restored after every expansion
     lone = tmp_path / "ma2010.xacro"
     shutil.copy(MA2010_XACRO, lone)  # no package folder above it
     monkeypatch.delenv("ROS_PACKAGE_PATH", raising=False)
@@ -104,6 +107,7 @@ def test_packages_come_from_package_dirs_then_ros_package_path(tmp_path, monkeyp
     assert len(pinframes.read_urdf(lone, package_dirs=[MOTOMAN]).joints) == 6
     monkeypatch.setenv("ROS_PACKAGE_PATH", str(MOTOMAN))
     assert len(pinframes.read_urdf(lone).joints) == 6
+    assert substitution_args._eval_find is own_find
 
 
 def test_a_file_of_macros_only_says_so_and_not_that_joints_form_a_cycle():
