@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import csv
 import io
+import json
 import textwrap
 
 import numpy as np
@@ -22,6 +23,18 @@ def test_info_expands_a_xacro_with_its_arguments(run_cli):
     missing = run_cli("info", UR_XACRO)
     assert missing.returncode == 1
     assert "--xacro-arg" in missing.stderr
+
+
+def test_info_names_the_srdf_groups_and_states(run_cli):
+    finished = run_cli("info", CELL / "cell.urdf", "--srdf", CELL / "cell.srdf", "-f", "json")
+    assert finished.returncode == 0, finished.stderr
+    (robot,) = json.loads(finished.stdout)["srdf"]
+    assert robot["groups"]["wrist"] == ["ma2010_joint_4_r", "ma2010_joint_5_b",
+                                        "ma2010_joint_6_t"]  # as cell.srdf lists them
+    assert robot["group_states"] == {"weld_ready": "ma2010", "level": "d500"}
+    assert robot["disabled_pairs"] == 14
+    text = run_cli("info", CELL / "cell.urdf", "--srdf", CELL / "cell.srdf").stdout
+    assert "groups 'ma2010' (6 joints), 'd500' (2 joints), 'cell' (8 joints)" in text
 
 
 def test_a_malformed_xacro_argument_is_a_usage_error(run_cli):
