@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 from ..errors import NameNotFoundError, near_misses
 from ..values.robot_semantics import SEMANTICS_METADATA_KEY, LinkSemantics, RobotSemantics
-from ._structure import TreeStructure
+from ._structure import EditableTree
 
 __all__ = ["SemanticRobot", "disabled_frame_pairs", "group_joints", "group_state_values",
            "semantic_robots"]
@@ -32,14 +32,14 @@ class SemanticRobot:
     semantics: RobotSemantics
     frames: dict[str, str]
 
-    def joint(self, tree: TreeStructure, urdf_joint: str) -> str | None:
+    def joint(self, tree: EditableTree, urdf_joint: str) -> str | None:
         """The tree's name of the robot's URDF joint ``urdf_joint`` (None: not driven)."""
         frame = self.frames.get(self.semantics.joint_links.get(urdf_joint, ""))
         joint = None if frame is None else tree.joint_of(frame)
         return None if joint is None else joint.name
 
 
-def semantic_robots(tree: TreeStructure) -> list[SemanticRobot]:
+def semantic_robots(tree: EditableTree) -> list[SemanticRobot]:
     """Every robot of ``tree`` that was read with an SRDF."""
     found: dict[str, tuple[RobotSemantics, dict[str, str]]] = {}
     for frame in tree.frames:
@@ -56,7 +56,7 @@ def semantic_robots(tree: TreeStructure) -> list[SemanticRobot]:
             for top, (semantics, frames) in found.items()]
 
 
-def _robot_top(tree: TreeStructure, frame: str, own: LinkSemantics) -> str:
+def _robot_top(tree: EditableTree, frame: str, own: LinkSemantics) -> str:
     """The highest frame of ``frame``'s robot: up through the URDF parent links that carry
     the same SRDF, then one frame more when the last is a child of the robot's root link and
     its parent carries nothing (the root link's frame of a grafted tree, which keeps no
@@ -73,7 +73,7 @@ def _robot_top(tree: TreeStructure, frame: str, own: LinkSemantics) -> str:
     return top
 
 
-def disabled_frame_pairs(tree: TreeStructure, frames: Iterable[str]
+def disabled_frame_pairs(tree: EditableTree, frames: Iterable[str]
                          ) -> list[tuple[str, str]]:
     """The pairs among ``frames`` whose links' SRDF disables their collisions."""
     wanted = set(frames)
@@ -88,7 +88,7 @@ def disabled_frame_pairs(tree: TreeStructure, frames: Iterable[str]
     return pairs
 
 
-def group_joints(tree: TreeStructure, group: str, near: Iterable[str]) -> list[str]:
+def group_joints(tree: EditableTree, group: str, near: Iterable[str]) -> list[str]:
     """The tree joint names of SRDF group ``group`` (a :class:`NameNotFoundError` naming
     the groups there are when no robot has it). Of several robots that have it, the one
     holding a frame of ``near`` or one of their ancestors."""
@@ -97,7 +97,7 @@ def group_joints(tree: TreeStructure, group: str, near: Iterable[str]) -> list[s
             if (name := robot.joint(tree, joint)) is not None]
 
 
-def group_state_values(tree: TreeStructure, state: str, near: Iterable[str]
+def group_state_values(tree: EditableTree, state: str, near: Iterable[str]
                        ) -> dict[str, float]:
     """The joint values (tree joint names) of SRDF group state ``state``."""
     robot = _robot_with(tree, state, "states", near, "seed")
@@ -106,7 +106,7 @@ def group_state_values(tree: TreeStructure, state: str, near: Iterable[str]
             if (name := robot.joint(tree, joint)) is not None}
 
 
-def _robot_with(tree: TreeStructure, name: str, table: str, near: Iterable[str],
+def _robot_with(tree: EditableTree, name: str, table: str, near: Iterable[str],
                 field: str) -> SemanticRobot:
     robots = semantic_robots(tree)
     having = [robot for robot in robots if name in getattr(robot.semantics, table)]
@@ -128,7 +128,7 @@ def _robot_with(tree: TreeStructure, name: str, table: str, near: Iterable[str],
     return close[0]
 
 
-def _up(tree: TreeStructure, frame: str) -> list[str]:
+def _up(tree: EditableTree, frame: str) -> list[str]:
     chain = []
     current: str | None = frame
     while current is not None:
@@ -137,12 +137,12 @@ def _up(tree: TreeStructure, frame: str) -> list[str]:
     return chain
 
 
-def _semantics(tree: TreeStructure, frame: str) -> LinkSemantics | None:
+def _semantics(tree: EditableTree, frame: str) -> LinkSemantics | None:
     found = tree.frame_metadata(frame).get(SEMANTICS_METADATA_KEY)
     return found if isinstance(found, LinkSemantics) else None
 
 
-def _parent_link(tree: TreeStructure, frame: str, link: LinkSemantics
+def _parent_link(tree: EditableTree, frame: str, link: LinkSemantics
                  ) -> LinkSemantics | None:
     """What ``frame`` (the parent of ``link``'s frame) carries when it is the parent link of
     ``link`` in the same robot, else None."""

@@ -1,6 +1,8 @@
 """URDF in and out: robots as frames and joints of a :class:`~pinframes.FrameTree`, from
-URDF or xacro files, with their SRDF."""
+URDF or xacro files with their SRDF, and the URDF format of the registry (a URDF with its
+joint values beside it)."""
 
+from ._format import URDF_FORMAT, read_urdf
 from ._mount import DRIVEN_JOINT_TYPES, URDF_METADATA_KEY, mount_robot, mount_urdf
 from ._parse import is_urdf, parse_urdf
 from ._read_write import joint_state_path, read_robot, write_urdf
@@ -10,6 +12,7 @@ from ._xacro import expand_xacro, is_xacro
 
 __all__ = [
     "DRIVEN_JOINT_TYPES",
+    "URDF_FORMAT",
     "URDF_METADATA_KEY",
     "JointDescription",
     "RobotDescription",
@@ -22,5 +25,6 @@ __all__ = [
     "parse_urdf",
     "read_robot",
     "read_srdf",
+    "read_urdf",
     "write_urdf",
 ]
