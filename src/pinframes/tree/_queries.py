@@ -334,11 +334,13 @@ class TreeQueries(EditableTree):
         seed : mapping or sequence, optional
             Joint values (radians or metres) the first sample starts from, by name (may
             name some joints only) or one per solved joint, or the name of a group state of
-            a robot's SRDF (``"home"``). Default: the joints'
-            trajectories at the first time, else their rest values.
+            a robot's SRDF (``"home"``). Default: the joints' trajectories at the first
+            time, else their rest values, tried first among 16 fixed starts spread over the
+            joint ranges; the first whose solution reaches every sample of the first 4,096
+            is taken, else the one reaching the most.
         position_tolerance, orientation_tolerance : float
             A sample is reached when the tool's origin is within this many metres of the
-            target's and its rotation within this many radians.
+            target's and its rotation within this many radians (at least 1e-12).
         strict : bool
             Raise :class:`~pinframes.errors.TargetNotReachedError`, naming the first time
             not reached and its errors, instead of returning it as not reached.
@@ -348,7 +350,9 @@ class TreeQueries(EditableTree):
         JointSolution
             Per time, the joint values (within the URDF position limits; continuous joints
             unbounded), the errors and whether the target was reached. Each sample starts
-            from the one before, so the solution stays on one branch. A sample out of reach
+            from the one before, so the solution stays on one branch; with joints to spare
+            (7 axes, a free axis, a positioner) it is the smallest motion from the one
+            before, and a target that stands still gives joints that do. A sample out of reach
             holds the closest configuration found, and the solver finds its way back when
             the target comes back into reach. Apply it with ``set_joint_trajectory(
             sol.seconds, sol.positions, joint_names=sol.joint_names)``.
