@@ -1,18 +1,21 @@
 """``FrameTree.weld_process``: the welding process a torch produces along a seam, per sample.
 
-The terms are the welders' own (SPEC section 9). The seam frame sits at the weld point: x
-along the travel direction, z the work surface's normal pointing out of the material,
-y = z x x. The torch frame is the tool centre point; its z axis is the wire axis, from the
-torch toward the work. With ``a`` the torch z axis and ``p`` the torch origin, both in seam
-axes:
+The terms are the welders' own; docs/welding-process.md defines each. The seam frame sits
+at the weld point: x along the travel direction, z the work surface's normal pointing out
+of the material, y = z x x. The torch frame is the tool centre point; its z axis is the
+wire axis, from the torch toward the work. With ``a`` the torch z axis, ``p`` the torch
+origin and ``u`` the unit upward direction, all in seam axes:
 
 - travel angle = asin(a_x): positive pushing (the wire leans ahead), negative dragging;
 - work angle = atan2(-a_z, -a_y): across the seam, from the seam's +y axis to the torch axis
-  seen from the work; pi/2 is square to the surface;
+  seen from the work; pi/2 is square to the surface; NaN where the wire lies along x;
 - offset = p: along, across and normal to the seam, metres;
-- travel speed: the velocity of the torch origin relative to the workpiece, along seam x;
-- CTWD: from the contact tip's origin ``c`` (seam axes) along the wire axis to the plane
-  through the seam point normal to z, c_z / (-a_z).
+- weld point w = p + s a with s = -p_z / a_z: where the wire axis meets the seam's plane;
+- travel speed: the velocity of the weld point relative to the workpiece, along seam x;
+- CTWD: from the contact tip's origin ``c`` (seam axes) along the wire axis to the seam's
+  plane, c_z / (-a_z);
+- slope = atan2(u_x, hypot(u_y, u_z)), rotation = atan2(u_y, u_z) and the ISO 6947 welding
+  position they give (:func:`welding_positions`).
 
 None of them changes when the torch turns about its own axis.
 """
@@ -23,42 +26,66 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
-from ..errors import InvalidTimeError
+from ..errors import InvalidDataError, InvalidTimeError
+from ..values.numbers import float_array
+from ..values.timeconv import TimeAxis
 from ._description import TreeDescription
+from ._path import prepare_path
+from ._times import plan_timeline
 from .pose import evaluate_pose
 from .velocity import evaluate_velocity
 
-__all__ = ["WeldProcess", "evaluate_weld_process"]
+__all__ = ["ALONG_TRAVEL_RAD", "WeldProcess", "evaluate_weld_process", "welding_positions"]
 
 FloatArray = NDArray[np.float64]
+
+ALONG_TRAVEL_RAD = 1e-9
+"""A direction closer than this (radians) to the seam's x axis has no angle across the seam:
+the work angle of such a wire, the rotation of such an upward direction, are NaN."""
+
+_QUARTER = np.pi / 4
+_POSITION_BOUNDS = np.radians([22.5, 67.5, 112.5, 157.5])
+_FACE_POSITIONS = np.array(["PA", "PB", "PC", "PD", "PE"])
 
 
 @dataclass(frozen=True)
 class WeldProcess:
-    """The welding process of ``torch`` along ``seam``, per sample (SPEC section 9).
+    """The welding process of ``torch`` along ``seam``, per sample (docs/welding-process.md).
 
     Attributes
     ----------
     travel_speed : ndarray, shape (T,)
-        Speed of the torch origin relative to ``workpiece`` along the seam's x axis, m/s
-        (negative: backwards).
+        Speed of the weld point (where the wire axis meets the seam's x-y plane) relative to
+        ``workpiece`` along the seam's x axis, m/s (negative: backwards); NaN where the wire
+        does not point toward that plane.
     travel_angle : ndarray, shape (T,)
         asin(a_x), radians: positive push (the wire leans ahead along the travel direction),
         negative drag.
     work_angle : ndarray, shape (T,)
         atan2(-a_z, -a_y), radians: in the plane across the seam, from the seam's +y axis to
-        the torch axis seen from the work; pi/2 is square to the surface.
+        the torch axis seen from the work; pi/2 is square to the surface. NaN where the wire
+        lies along the travel direction (within :data:`ALONG_TRAVEL_RAD`).
     offset : ndarray, shape (T, 3)
         The torch origin in seam axes, metres: along, across and normal to the seam.
     ctwd : ndarray, shape (T,), or None
         Contact tip to work distance, metres, when a contact tip frame was given: along the
         wire axis from the contact tip's origin to the plane through the seam point normal
         to the seam's z axis. NaN where the wire does not point toward that plane (a_z >= 0).
+    slope : ndarray, shape (T,)
+        Angle of the travel direction above the horizontal, radians, positive uphill:
+        atan2(u_x, hypot(u_y, u_z)) with ``u`` the unit upward direction in seam axes.
+    rotation : ndarray, shape (T,)
+        atan2(u_y, u_z), radians: how far the seam's face (its z axis) is turned from looking
+        up, about the travel direction; 0 face up, +-pi face down. NaN where the travel
+        direction is vertical (within :data:`ALONG_TRAVEL_RAD`).
+    position : ndarray of str, shape (T,)
+        The ISO 6947 welding position of each sample, from ``slope`` and ``rotation``
+        (:func:`welding_positions`).
     times : ndarray of timedelta64[ns] or None
-        Sample times after :attr:`reference_time` (as ``pose()``); None for a static path
-        queried without times (then T is 1).
+        Sample times after :attr:`reference_time`; None when nothing that moves the torch or
+        the seam relative to the workpiece moves, queried without times (then T is 1).
     reference_time : numpy.datetime64 or None
         What :attr:`times` count from.
     torch, seam, workpiece : str
@@ -72,6 +99,9 @@ class WeldProcess:
     work_angle: FloatArray
     offset: FloatArray
     ctwd: FloatArray | None
+    slope: FloatArray
+    rotation: FloatArray
+    position: NDArray[np.str_]
     times: NDArray[np.timedelta64] | None
     reference_time: np.datetime64 | None
     torch: str
@@ -88,42 +118,76 @@ class WeldProcess:
         return int(self.travel_speed.shape[0])
 
 
+def welding_positions(slope: ArrayLike, rotation: ArrayLike) -> NDArray[np.str_]:
+    """ISO 6947 welding positions from the seam's ``slope`` and face ``rotation`` (radians).
+
+    "PF" (vertical up) where slope >= 45 degrees, "PG" (vertical down) where slope <= -45
+    degrees; otherwise by |rotation|: below 22.5 degrees "PA" (flat), 67.5 "PB"
+    (horizontal-vertical), 112.5 "PC" (horizontal), 157.5 "PD" (horizontal-overhead), else
+    "PE" (overhead).
+    """
+    slope_array = np.asarray(slope, dtype=float)
+    turned = np.abs(np.asarray(rotation, dtype=float))
+    face = _FACE_POSITIONS[np.searchsorted(_POSITION_BOUNDS, np.nan_to_num(turned),
+                                           side="right")]
+    return np.where(slope_array >= _QUARTER, "PF",
+                    np.where(slope_array <= -_QUARTER, "PG", face)).astype("<U2")
+
+
 def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: Any,
                           time_ref: Any, extrapolation: str, workpiece: str,
-                          contact_tip: str | None) -> WeldProcess:
+                          contact_tip: str | None, up: Any = None) -> WeldProcess:
     """``tree.weld_process(...)``; frame names already checked.
 
-    The times are those of ``pose(torch, relative_to=seam, times, time_ref)``; the velocity
-    and the contact tip are evaluated at exactly those times.
+    Without times, the samples are every keyframe and joint sample that moves the torch or
+    the seam relative to the workpiece (or the contact tip relative to the torch); every
+    quantity is evaluated at exactly those times. ``up`` is the upward direction in the
+    root's axes, default +z.
     """
+    upward = _unit_up(up)
+    if times is None and time_ref is None:
+        axis = _moving_times(tree, torch, seam, workpiece, contact_tip)
+        if axis is not None:
+            times, time_ref = axis.as_numpy(), axis.reference
     torch_in_seam = evaluate_pose(tree, torch, seam, times, time_ref, extrapolation)
+    count = len(torch_in_seam)
     rotation = np.reshape(torch_in_seam.rotation, (-1, 3, 3))
     origin = np.reshape(torch_in_seam.translation, (-1, 3))
     same_times, same_ref = torch_in_seam.times, torch_in_seam.reference_time
     if same_times is not None and same_ref is not None:
         same_times = same_ref + same_times
-    # in the torch's own axes (no second pose query), then turned into the seam's by the
-    # rotation of the torch in the seam: R_ts R_tw^T = R_sw^T
-    velocity = evaluate_velocity(tree, torch, workpiece, same_times, same_ref, extrapolation,
-                                 torch)
-    _require_same_count(len(velocity), origin.shape[0], torch, workpiece, seam)
-    along_seam = np.einsum("tj,tj->t", rotation[:, 0, :], velocity.linear)
+
+    def velocity_in_seam(frame: str, relative_to: str) -> tuple[FloatArray, FloatArray]:
+        velocity = evaluate_velocity(tree, frame, relative_to, same_times, same_ref,
+                                     extrapolation, seam)
+        _require_same_count(len(velocity), count, frame, relative_to)
+        return velocity.linear, velocity.angular
+
     wire = rotation[:, :, 2]  # the torch z axis in seam axes
+    speed = _weld_point_speed(origin, wire, velocity_in_seam(torch, seam),
+                              velocity_in_seam(seam, workpiece))
     ctwd = None
     if contact_tip is not None:
         tip_in_torch = np.reshape(evaluate_pose(tree, contact_tip, torch, same_times, same_ref,
                                                 extrapolation).translation, (-1, 3))
-        _require_same_count(tip_in_torch.shape[0], origin.shape[0], contact_tip, torch, seam)
+        _require_same_count(tip_in_torch.shape[0], count, contact_tip, torch)
         tip = np.einsum("tij,tj->ti", rotation, tip_in_torch) + origin
-        toward_work = -wire[:, 2]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            ctwd = np.where(toward_work > 0.0, tip[:, 2] / toward_work, np.nan)
+        ctwd = _along_wire_to_plane(tip[:, 2], wire[:, 2])
+    seam_in_root = np.reshape(evaluate_pose(tree, seam, tree.root, same_times, same_ref,
+                                            extrapolation).rotation, (-1, 3, 3))
+    _require_same_count(seam_in_root.shape[0], count, seam, tree.root)
+    up_in_seam = np.einsum("tji,j->ti", seam_in_root, upward)
+    slope = np.arctan2(up_in_seam[:, 0], np.hypot(up_in_seam[:, 1], up_in_seam[:, 2]))
+    face_rotation = _across_angle(up_in_seam[:, 1], up_in_seam[:, 2])
     return WeldProcess(
-        travel_speed=along_seam,
+        travel_speed=speed,
         travel_angle=np.arcsin(np.clip(wire[:, 0], -1.0, 1.0)),
-        work_angle=np.arctan2(-wire[:, 2], -wire[:, 1]),
+        work_angle=_across_angle(-wire[:, 2], -wire[:, 1]),
         offset=origin,
         ctwd=ctwd,
+        slope=slope,
+        rotation=face_rotation,
+        position=welding_positions(slope, face_rotation),
         times=torch_in_seam.times,
         reference_time=torch_in_seam.reference_time,
         torch=torch,
@@ -133,10 +197,75 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
     )
 
 
-def _require_same_count(count: int, expected: int, frame: str, other: str, seam: str) -> None:
-    """Without times, a static torch-to-seam path gives one sample: ``frame`` must not move
-    relative to ``other`` then, or the samples would not line up."""
+def _weld_point_speed(origin: FloatArray, wire: FloatArray,
+                      torch_in_seam: tuple[FloatArray, FloatArray],
+                      seam_in_workpiece: tuple[FloatArray, FloatArray]) -> FloatArray:
+    """Velocity along seam x (m/s) of the weld point ``w = p + s a`` (``s = -p_z / a_z``)
+    relative to the workpiece. All vectors in seam axes: the torch origin ``p``, the wire
+    ``a``, the torch's velocity relative to the seam and the seam's relative to the
+    workpiece (linear of the origin, angular).
+
+    ``w`` moves in the seam's plane by ``dw = dp + ds a + s da`` (``da = w_t x a``, ``ds``
+    from ``d(p_z + s a_z) = 0``); the seam carries the point by ``v_s + w_s x w``.
+    """
+    linear_t, angular_t = torch_in_seam
+    linear_s, angular_s = seam_in_workpiece
+    reach = _along_wire_to_plane(origin[:, 2], wire[:, 2])
+    turning = np.cross(angular_t, wire)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        reach_rate = -(linear_t[:, 2] + reach * turning[:, 2]) / wire[:, 2]
+    weld_point = origin + reach[:, None] * wire
+    in_plane = linear_t + reach_rate[:, None] * wire + reach[:, None] * turning
+    carried = linear_s + np.cross(angular_s, weld_point)
+    return in_plane[:, 0] + carried[:, 0]
+
+
+def _along_wire_to_plane(height: FloatArray, wire_z: FloatArray) -> FloatArray:
+    """Distance (m) along the wire from points ``height`` above the seam's plane to it; NaN
+    where the wire does not point toward the plane (a_z >= 0)."""
+    toward_work = -wire_z
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(toward_work > 0.0, height / toward_work, np.nan)
+
+
+def _across_angle(along_y: FloatArray, along_z: FloatArray) -> FloatArray:
+    """atan2 of a direction's y and z parts in seam axes; NaN where the direction lies
+    along the seam's x axis (its y-z part below sin :data:`ALONG_TRAVEL_RAD`)."""
+    return np.where(np.hypot(along_y, along_z) > np.sin(ALONG_TRAVEL_RAD),
+                    np.arctan2(along_y, along_z), np.nan)
+
+
+def _unit_up(up: Any) -> FloatArray:
+    """``up`` (a 3-vector in the root's axes, default +z) as a unit vector."""
+    if up is None:
+        return np.array([0.0, 0.0, 1.0])
+    vector = float_array(up, "up", InvalidDataError)
+    largest = float(np.max(np.abs(vector))) if vector.shape == (3,) else 0.0
+    if largest == 0.0:
+        raise InvalidDataError(f"expected a non-zero 3-vector in the root's axes, got "
+                               f"{vector.tolist()}", field="up")
+    scaled = vector / largest
+    return scaled / np.linalg.norm(scaled)
+
+
+def _moving_times(tree: TreeDescription, torch: str, seam: str, workpiece: str,
+                  contact_tip: str | None) -> TimeAxis | None:
+    """Every keyframe and joint sample time that moves the torch or the seam relative to the
+    workpiece, or the contact tip relative to the torch; None when none does."""
+    paths = [(torch, workpiece), (seam, workpiece)]
+    if contact_tip is not None:
+        paths.append((contact_tip, torch))
+    sources = {source.name: source for frame, other in paths
+               for source in prepare_path(tree, frame, other).sources}
+    timeline = plan_timeline(tree, list(sources.values()), None, None)
+    offsets = timeline.result_offsets
+    return None if offsets is None else TimeAxis(offsets, timeline.reference)
+
+
+def _require_same_count(count: int, expected: int, frame: str, other: str) -> None:
+    """Every query of one process runs at the same times: a mismatch is a bug in planning
+    them, named rather than broadcast."""
     if count != expected:
         raise InvalidTimeError(
-            f"{frame!r} moves relative to {other!r} while nothing moves between the torch and "
-            f"the seam {seam!r}: give times", field="times")
+            f"{frame!r} relative to {other!r} gave {count} samples where the process has "
+            f"{expected}: give times", field="times")
