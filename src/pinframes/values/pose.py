@@ -212,8 +212,9 @@ class Pose:
         """A pose moving along the polyline ``points`` (N, 3), metres (or a pint length):
         a seam frame. ``speed`` in m/s (or a pint speed).
 
-        Axes at each point: x the travel direction (central difference of the neighbours;
-        at the ends the one-sided difference of the same order, the parabola through the
+        Axes at each point: x the travel direction (the direction there of the parabola
+        through the point and its neighbours, parametrised by the length along the chords:
+        the three-point non-uniform difference; at the ends that of the parabola through the
         first or last three points), z the point's ``normals`` row ((N, 3), or one (3,)
         normal for all) made perpendicular to x, y = z x x. Give exactly one of ``speed`` (m/s: the
         first point at time 0, each next one after its distance along the polyline) and
@@ -223,8 +224,8 @@ class Pose:
 
         Raises :class:`~pinframes.errors.InvalidPoseError` naming the point (``points[3]``,
         ``normals[3]``, ``times[3]``): fewer than 2 points, a point repeating the one before
-        it, a curve turning back on itself, a normal parallel to the travel direction, times
-        that do not increase.
+        it, a curve turning back on itself (within 0.01 degrees of straight back), a normal
+        parallel to the travel direction, times that do not increase.
         """
         path = _as_float_array(metres(points, "points"), "points")
         rotation = curve_rotations(

@@ -429,6 +429,12 @@ class _Scene:
         if not np.linalg.norm(radial) > 0.0 or angle == 0.0:
             raise FileFormatError("the arc has no length: start on the axis or angle 0",
                                   file=self.path, frame=frame, field=field)
+        step = angle / (count - 1)
+        if abs(step) >= np.pi:
+            raise FileFormatError(
+                f"the arc turns by {np.degrees(step):g} degrees from point to point, half a "
+                "turn or more, so its points do not follow it (whole turns stand still): "
+                "give more points (count)", file=self.path, frame=frame, field=field)
         turns = matrix_from_axis_angle(axis, np.linspace(0.0, angle, count))
         points = centre + turns @ (start - centre)
         return points, turns @ (radial / np.linalg.norm(radial))
