@@ -1,5 +1,5 @@
 """The times of a query: requested times (a frame name, seconds, timestamps) put on one
-timeline by the reference-time rules (SPEC section 4, :mod:`pinframes.values.timeline`)
+timeline by the reference-time rules (docs/time-semantics.md, :mod:`pinframes.values.timeline`)
 with the tree's reference time, the ``extrapolation`` policy, and each source's shift from
 the timeline to its own time basis.
 """
@@ -38,7 +38,7 @@ def checked_timeline(
 def plan_timeline(
     tree: TreeDescription, sources: list[TimedSource], times: Any, time_ref: Any
 ) -> QueryTimeline:
-    """The evaluation times of a query on ``sources`` (SPEC section 4)."""
+    """The evaluation times of a query on ``sources`` (docs/time-semantics.md)."""
     return plan_query_timeline(sources, _requested_times(tree, times), time_ref,
                                tree.reference_time, tree.has_frame_references)
 

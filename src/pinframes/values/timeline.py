@@ -1,6 +1,6 @@
 """Which times a query is evaluated at, and which reference time its result carries.
 
-Implements the weldx ``CoordinateSystemManager.get_cs`` rules (SPEC section 4). All times
+Implements the weldx ``CoordinateSystemManager.get_cs`` rules (docs/time-semantics.md). All times
 here are int64 nanoseconds: *offsets* relative to a reference, or *absolute* nanoseconds
 since the epoch when any reference time is involved.
 """
@@ -22,7 +22,7 @@ __all__ = ["QueryTimeline", "TimedSource", "plan_query_timeline", "source_refere
 def source_reference(own: np.datetime64 | None, tree_reference: np.datetime64 | None
                      ) -> np.datetime64 | None:
     """What the times of a moving frame or a driven joint count from: its own reference
-    time, else its tree's (SPEC section 4); None when neither has one."""
+    time, else its tree's (docs/time-semantics.md); None when neither has one."""
     return own if own is not None else tree_reference
 
 
@@ -86,7 +86,7 @@ def plan_query_timeline(
     tree_reference: np.datetime64 | None,
     tree_has_frame_references: bool,
 ) -> QueryTimeline:
-    """Apply the reference-time table of SPEC section 4 to one query.
+    """Apply the reference-time table of docs/time-semantics.md to one query.
 
     Parameters
     ----------
