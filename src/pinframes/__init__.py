@@ -54,6 +54,7 @@ from .values.pose_stack import PoseStack
 from .values.spatial_data import SpatialData
 from .values.subsystem import Subsystem
 from .values.timeconv import TimeAxis
+from .values.weave import Weave
 
 __version__ = "0.1.0"
 
@@ -102,6 +103,7 @@ __all__ = [
     "TreeStructureError",
     "UnsupportedFeatureError",
     "Velocity",
+    "Weave",
     "WeldProcess",
     "WriteError",
     "__version__",

@@ -32,7 +32,7 @@ from ...values.rotations import matrix_from_axis_angle
 from ...values.timeconv import parse_timestamp
 from .._paths import regular_file_problem
 from .._registry import detect_format, files_read, read
-from ..limits import Limits, reader_with_limits
+from ..limits import Limits, current_limits, exceeded, reader_with_limits
 from ..reading import InputFile
 from ..trajectory_files import read_joint_trajectory
 from ..urdf import RobotDescription, mount_robot, parse_urdf
@@ -53,7 +53,7 @@ _TOP_KEYS = {SCENE_FORMAT_KEY, "name", "root", "reference_time", "layers", "fram
 _POSE_KEYS = {"xyz", "rpy", "quaternion"}
 _ENTRY_KEYS = {
     "layers": {"file", "mount", "prefix", "key"},
-    "frames": {"name", "parent", "keyframes", "curve", "reference_time"} | _POSE_KEYS,
+    "frames": {"name", "parent", "keyframes", "curve", "weave", "reference_time"} | _POSE_KEYS,
     "robots": {"name", "urdf", "parent", "prefix", "trajectory"} | _POSE_KEYS,
     "tools": {"name", "parent"} | _POSE_KEYS,
 }
@@ -63,6 +63,7 @@ _KEYFRAME_KEYS = {"time"} | _POSE_KEYS
 _CURVE_KEYS = {"points", "normals", "arc", "speed", "duration", "times"}
 _CURVE_TIMINGS = ("speed", "duration", "times")
 _ARC_KEYS = {"centre", "axis", "start", "angle", "count"}
+_WEAVE_KEYS = {"amplitude", "frequency", "pattern", "dwell", "times", "duration", "step"}
 
 
 @dataclass
@@ -240,7 +241,13 @@ class _Scene:
         if "keyframes" in item and "curve" in item:
             raise FileFormatError("give either keyframes or curve, not both", file=self.path,
                                   frame=name, field=f"{field}.curve")
-        if "curve" in item:
+        if "weave" in item:
+            if {"keyframes", "curve"} & set(item) or _POSE_KEYS & set(item):
+                raise FileFormatError("a weave frame takes its pose from the weave: no "
+                                      "keyframes, curve, xyz, rpy or quaternion",
+                                      file=self.path, frame=name, field=f"{field}.weave")
+            pose = self._weave(item, name, field)
+        elif "curve" in item:
             if _POSE_KEYS & set(item):
                 raise FileFormatError("a curve frame takes its pose from the curve: no xyz, "
                                       "rpy or quaternion", file=self.path, frame=name,
@@ -249,7 +256,7 @@ class _Scene:
         elif "keyframes" in item:
             pose = self._keyframes(item, static, name, field)
         elif "reference_time" in item:
-            raise FileFormatError("a reference_time needs keyframes or a curve",
+            raise FileFormatError("a reference_time needs keyframes, a curve or a weave",
                                   file=self.path, frame=name, field=f"{field}.reference_time")
         return _Entry(field, name, parent, f"{field}.parent",
                       lambda tree: tree.add(name, parent, pose))
@@ -405,6 +412,54 @@ class _Scene:
             inner = "" if exc.field is None else f".{exc.field}"
             raise FileFormatError(exc.message, file=self.path, frame=frame,
                                   field=where + inner) from None
+
+    def _weave(self, item: dict, frame: str, field: str) -> Pose:
+        """A frame weaving across its parent's y axis (``Pose.weave``), sampled at ``times``
+        or every ``step`` seconds from 0 through ``duration``."""
+        where = f"{field}.weave"
+        weave = item["weave"]
+        self._check_keys(weave, _WEAVE_KEYS, frame, where)
+        for key in ("amplitude", "frequency"):
+            if key not in weave:
+                raise FileFormatError("missing", file=self.path, frame=frame,
+                                      field=f"{where}.{key}")
+        if ("times" in weave) == ("duration" in weave or "step" in weave):
+            raise FileFormatError("give either times or duration (s) with step (s)",
+                                  file=self.path, frame=frame, field=where)
+        times = weave.get("times")
+        if times is None:
+            times = self._time_grid(weave, frame, where)
+        reference = None
+        if "reference_time" in item:
+            reference = self._timestamp(item["reference_time"], frame,
+                                        f"{field}.reference_time")
+        amplitude = self._positive(weave["amplitude"], frame, f"{where}.amplitude")
+        frequency = self._positive(weave["frequency"], frame, f"{where}.frequency")
+        try:
+            return Pose.weave(amplitude, frequency, times=times,
+                              pattern=weave.get("pattern", "triangle"),
+                              dwell=weave.get("dwell"), reference_time=reference)
+        except PinframesError as exc:
+            inner = "" if exc.field is None else f".{exc.field}"
+            raise FileFormatError(exc.message, file=self.path, frame=frame,
+                                  field=where + inner) from None
+
+    def _time_grid(self, weave: dict, frame: str, where: str) -> np.ndarray:
+        """Times (timedelta64[ns]) every ``step`` seconds from 0 through ``duration``."""
+        for key in ("duration", "step"):
+            if key not in weave:
+                raise FileFormatError("missing", file=self.path, frame=frame,
+                                      field=f"{where}.{key}")
+        duration_ns = round(self._positive(weave["duration"], frame, f"{where}.duration") * 1e9)
+        step_ns = round(self._positive(weave["step"], frame, f"{where}.step") * 1e9)
+        if step_ns == 0:
+            raise FileFormatError("the step is below a nanosecond", file=self.path,
+                                  frame=frame, field=f"{where}.step")
+        count = duration_ns // step_ns + 1
+        if count > current_limits().max_samples:
+            raise exceeded("max_samples", f"the weave has {count:,} samples",
+                           field=f"{where}.step", frame=frame).located(file=self.path)
+        return (step_ns * np.arange(count, dtype=np.int64)).astype("timedelta64[ns]")
 
     def _arc(self, arc: Any, frame: str, field: str) -> tuple[np.ndarray, np.ndarray]:
         """Points (count, 3) of a circular arc and their normals, away from its centre."""
