@@ -139,7 +139,8 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
                           contact_tip: str | None, up: Any = None) -> WeldProcess:
     """``tree.weld_process(...)``; frame names already checked.
 
-    Without times, the samples are every keyframe and joint sample that moves the torch or
+    Four queries at one set of times: the torch in the seam, the torch's and the seam's
+    velocity relative to the workpiece, the seam in the root. Without times, the samples are every keyframe and joint sample that moves the torch or
     the seam relative to the workpiece (or the contact tip relative to the torch); every
     quantity is evaluated at exactly those times. ``up`` is the upward direction in the
     root's axes, default +z.
@@ -157,15 +158,19 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
     if same_times is not None and same_ref is not None:
         same_times = same_ref + same_times
 
-    def velocity_in_seam(frame: str, relative_to: str) -> tuple[FloatArray, FloatArray]:
-        velocity = evaluate_velocity(tree, frame, relative_to, same_times, same_ref,
-                                     extrapolation, seam)
-        _require_same_count(len(velocity), count, frame, relative_to)
-        return velocity.linear, velocity.angular
+    def velocity(frame: str) -> tuple[FloatArray, FloatArray]:
+        """Of ``frame`` relative to the workpiece, in ``frame``'s own axes (no extra pose
+        query)."""
+        found = evaluate_velocity(tree, frame, workpiece, same_times, same_ref, extrapolation,
+                                  frame)
+        _require_same_count(len(found), count, frame, workpiece)
+        return found.linear, found.angular
 
+    # the torch's, turned into seam axes by the torch's rotation in the seam
+    torch_linear, torch_angular = (np.einsum("tij,tj->ti", rotation, vector)
+                                   for vector in velocity(torch))
     wire = rotation[:, :, 2]  # the torch z axis in seam axes
-    speed = _weld_point_speed(origin, wire, velocity_in_seam(torch, seam),
-                              velocity_in_seam(seam, workpiece))
+    speed = _weld_point_speed(origin, wire, (torch_linear, torch_angular), velocity(seam))
     ctwd = None
     if contact_tip is not None:
         tip_in_torch = np.reshape(evaluate_pose(tree, contact_tip, torch, same_times, same_ref,
@@ -198,26 +203,33 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
 
 
 def _weld_point_speed(origin: FloatArray, wire: FloatArray,
-                      torch_in_seam: tuple[FloatArray, FloatArray],
-                      seam_in_workpiece: tuple[FloatArray, FloatArray]) -> FloatArray:
+                      torch_rates: tuple[FloatArray, FloatArray],
+                      seam_rates: tuple[FloatArray, FloatArray]) -> FloatArray:
     """Velocity along seam x (m/s) of the weld point ``w = p + s a`` (``s = -p_z / a_z``)
-    relative to the workpiece. All vectors in seam axes: the torch origin ``p``, the wire
-    ``a``, the torch's velocity relative to the seam and the seam's relative to the
-    workpiece (linear of the origin, angular).
+    relative to the workpiece. All in seam axes: the torch origin ``p``, the wire ``a``, and
+    the torch's and the seam's velocities relative to the workpiece (linear of the origin,
+    angular).
 
-    ``w`` moves in the seam's plane by ``dw = dp + ds a + s da`` (``da = w_t x a``, ``ds``
-    from ``d(p_z + s a_z) = 0``); the seam carries the point by ``v_s + w_s x w``.
+    Relative to the seam (axes turning at ``W``, the seam's angular velocity), the torch
+    origin moves at ``dp = v_t - v_s - W x p`` and the wire turns at ``w_r = w_t - W``, so
+    ``da = w_r x a``; ``w`` stays in the seam's plane (``d(p_z + s a_z) = 0`` gives ``ds``)
+    and moves in it at ``dp + ds a + s da``; the seam carries it at ``v_s + W x w``. Only the
+    x and z rows are needed: written out, without ``np.cross``.
     """
-    linear_t, angular_t = torch_in_seam
-    linear_s, angular_s = seam_in_workpiece
-    reach = _along_wire_to_plane(origin[:, 2], wire[:, 2])
-    turning = np.cross(angular_t, wire)
+    (torch_linear, torch_angular), (seam_linear, seam_angular) = torch_rates, seam_rates
+    px, py, pz = origin.T
+    ax, ay, az = wire.T
+    wx, wy, wz = seam_angular.T
+    rx, ry, rz = (torch_angular - seam_angular).T
+    along = torch_linear[:, 0] - seam_linear[:, 0] - (wy * pz - wz * py)
+    rise = torch_linear[:, 2] - seam_linear[:, 2] - (wx * py - wy * px)
+    reach = _along_wire_to_plane(pz, az)
     with np.errstate(divide="ignore", invalid="ignore"):
-        reach_rate = -(linear_t[:, 2] + reach * turning[:, 2]) / wire[:, 2]
-    weld_point = origin + reach[:, None] * wire
-    in_plane = linear_t + reach_rate[:, None] * wire + reach[:, None] * turning
-    carried = linear_s + np.cross(angular_s, weld_point)
-    return in_plane[:, 0] + carried[:, 0]
+        reach_rate = -(rise + reach * (rx * ay - ry * ax)) / az
+    in_plane = along + reach_rate * ax + reach * (ry * az - rz * ay)
+    # W x w along x, with w_z = 0 on the plane
+    carried = seam_linear[:, 0] - wz * (py + reach * ay)
+    return in_plane + carried
 
 
 def _along_wire_to_plane(height: FloatArray, wire_z: FloatArray) -> FloatArray:
