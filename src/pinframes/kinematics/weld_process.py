@@ -140,10 +140,10 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
     """``tree.weld_process(...)``; frame names already checked.
 
     Four queries at one set of times: the torch in the seam, the torch's and the seam's
-    velocity relative to the workpiece, the seam in the root. Without times, the samples are every keyframe and joint sample that moves the torch or
-    the seam relative to the workpiece (or the contact tip relative to the torch); every
-    quantity is evaluated at exactly those times. ``up`` is the upward direction in the
-    root's axes, default +z.
+    velocity relative to the workpiece, the seam in the root. Without times, the samples are
+    every keyframe and joint sample that moves the torch or the seam relative to the
+    workpiece (or the contact tip relative to the torch). ``up`` is the upward direction in
+    the root's axes, default +z.
     """
     upward = _unit_up(up)
     if times is None and time_ref is None:
