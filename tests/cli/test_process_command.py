@@ -73,6 +73,10 @@ def test_up_turns_the_plate_overhead(run_cli, tmp_path):
     rows, positions = read_process(result.stdout)
     np.testing.assert_allclose(np.abs(rows[:, 8]), 180.0, atol=1e-12)
     assert positions == ["PE"] * 3 and "positions PE 3 of 3" in result.stderr
+    for up in (["0", "0", "0"], ["0", "nan", "1"]):
+        result = run_cli("process", plate_scene(tmp_path), "--torch", "torch", "--seam", "seam",
+                         "--up", *up)
+        assert result.returncode == 1 and "field '--up'" in result.stderr
 
 
 def test_grid_to_a_file_and_the_workpiece_option(run_cli, tmp_path):

@@ -13,6 +13,7 @@ import sys
 
 import numpy as np
 
+from ..errors import InvalidDataError
 from ..kinematics import WeldProcess
 from ..tree import FrameTree
 from ..values.timeconv import TimeAxis
@@ -64,7 +65,12 @@ def run(args: argparse.Namespace) -> int:
     """Evaluate, write the CSV, print the summary line."""
     tree = read_tree(args.file)
     require_frames(tree, args.file, args.torch, args.seam, args.workpiece, args.contact_tip)
-    process = _evaluate(tree, args)
+    try:
+        process = _evaluate(tree, args)
+    except InvalidDataError as exc:
+        if exc.field != "up":
+            raise
+        raise InvalidDataError(exc.message, field="--up") from None
     write_text(process_text(process), args.output)
     ranges = "; ".join(f"{name} {span}" for name, span in process_summary(process))
     print(f"pinframes: {args.torch} along {args.seam}: {len(process)} samples; {ranges}",
