@@ -141,6 +141,8 @@ def test_times_may_be_absolute_and_points_and_speed_pint_quantities():
         ([[0, 0, 0], [1, 0, 0]], [0, 0, 1], {"speed": True}, "speed", "positive"),
         ([[0, 0, 0], [1, 0, 0]], [0, 0, 1], {"speed": "1"}, "speed", "positive"),
         ([[0, 0, 0], [np.nan, 0, 0]], [0, 0, 1], {"speed": 1.0}, "points", "finite"),
+        ([[0, 0, 0], [1e308, 0, 0], [-1e308, 1, 0]], [0, 0, 1], {"times": [0, 1, 2]},
+         "points[2]", "overflows"),
         ([0, 0, 0], [0, 0, 1], {"speed": 1.0}, "points", "(N, 3)"),
     ],
 )

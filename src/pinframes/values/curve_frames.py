@@ -64,8 +64,14 @@ def curve_rotations(points: FloatArray, normals: FloatArray) -> FloatArray:
 
 def _travel_directions(points: FloatArray) -> FloatArray:
     """Unit travel directions (N, 3) along ``points`` (N, 3) with no repeated point."""
-    chords = np.diff(points, axis=0)
+    with np.errstate(over="ignore"):
+        chords = np.diff(points, axis=0)
     lengths = _lengths(chords)
+    overflowing = ~np.isfinite(lengths)
+    if np.any(overflowing):
+        index = int(np.argmax(overflowing)) + 1
+        raise InvalidPoseError(f"point {index} is too far from point {index - 1}: their "
+                               "distance overflows", field=f"points[{index}]")
     units = chords / lengths[:, None]
     if points.shape[0] == 2:
         return np.repeat(units, 2, axis=0)
