@@ -28,14 +28,12 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import InvalidDataError, InvalidTimeError
+from ..errors import InvalidDataError
 from ..values.numbers import float_array
-from ..values.timeconv import TimeAxis
 from ._description import TreeDescription
-from ._path import prepare_path
-from ._times import plan_timeline
-from .pose import evaluate_pose
-from .velocity import evaluate_velocity
+from ._plan import plan_query, prepare_path
+from .pose import planned_transforms
+from .velocity import planned_velocity
 
 __all__ = ["ALONG_TRAVEL_RAD", "WeldProcess", "evaluate_weld_process", "welding_positions"]
 
@@ -139,31 +137,28 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
                           contact_tip: str | None, up: Any = None) -> WeldProcess:
     """``tree.weld_process(...)``; frame names already checked.
 
-    Four queries at one set of times: the torch in the seam, the torch's and the seam's
-    velocity relative to the workpiece, the seam in the root. Without times, the samples are
-    every keyframe and joint sample that moves the torch or the seam relative to the
-    workpiece (or the contact tip relative to the torch). ``up`` is the upward direction in
-    the root's axes, default +z.
+    Four queries on one plan: the torch in the seam, the torch's and the seam's velocity
+    relative to the workpiece, the seam in the root. Without times, the samples are every
+    keyframe and joint sample that moves the torch or the seam relative to the workpiece,
+    the seam in the root (its welding position) or the contact tip relative to the torch.
+    ``up`` is the upward direction in the root's axes, default +z.
     """
     upward = _unit_up(up)
-    if times is None and time_ref is None:
-        axis = _moving_times(tree, torch, seam, workpiece, contact_tip)
-        if axis is not None:
-            times, time_ref = axis.as_numpy(), axis.reference
-    torch_in_seam = evaluate_pose(tree, torch, seam, times, time_ref, extrapolation)
-    count = len(torch_in_seam)
-    rotation = np.reshape(torch_in_seam.rotation, (-1, 3, 3))
-    origin = np.reshape(torch_in_seam.translation, (-1, 3))
-    same_times, same_ref = torch_in_seam.times, torch_in_seam.reference_time
-    if same_times is not None and same_ref is not None:
-        same_times = same_ref + same_times
+    paths = [(torch, workpiece), (seam, workpiece), (seam, tree.root)]
+    if contact_tip is not None:
+        paths.append((contact_tip, torch))
+    moving = {source.name: source for frame, other in paths
+              for source in prepare_path(tree, frame, other).sources}
+    # every path below moves only with these sources: planned on them, without times a
+    # path on which nothing moves has one sample, and otherwise every path has them all
+    plan = plan_query(tree, torch, seam, times, time_ref, extrapolation,
+                      sources=moving.values())
+    rotation, origin = planned_transforms(tree, plan)
 
     def velocity(frame: str) -> tuple[FloatArray, FloatArray]:
         """Of ``frame`` relative to the workpiece, in ``frame``'s own axes (no extra pose
         query)."""
-        found = evaluate_velocity(tree, frame, workpiece, same_times, same_ref, extrapolation,
-                                  frame)
-        _require_same_count(len(found), count, frame, workpiece)
+        found = planned_velocity(tree, plan.on(tree, frame, workpiece), frame)
         return found.linear, found.angular
 
     # the torch's, turned into seam axes by the torch's rotation in the seam
@@ -173,14 +168,10 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
     speed = _weld_point_speed(origin, wire, (torch_linear, torch_angular), velocity(seam))
     ctwd = None
     if contact_tip is not None:
-        tip_in_torch = np.reshape(evaluate_pose(tree, contact_tip, torch, same_times, same_ref,
-                                                extrapolation).translation, (-1, 3))
-        _require_same_count(tip_in_torch.shape[0], count, contact_tip, torch)
+        tip_in_torch = planned_transforms(tree, plan.on(tree, contact_tip, torch))[1]
         tip = np.einsum("tij,tj->ti", rotation, tip_in_torch) + origin
         ctwd = _along_wire_to_plane(tip[:, 2], wire[:, 2])
-    seam_in_root = np.reshape(evaluate_pose(tree, seam, tree.root, same_times, same_ref,
-                                            extrapolation).rotation, (-1, 3, 3))
-    _require_same_count(seam_in_root.shape[0], count, seam, tree.root)
+    seam_in_root = planned_transforms(tree, plan.on(tree, seam, tree.root))[0]
     up_in_seam = np.einsum("tji,j->ti", seam_in_root, upward)
     slope = np.arctan2(up_in_seam[:, 0], np.hypot(up_in_seam[:, 1], up_in_seam[:, 2]))
     face_rotation = _across_angle(up_in_seam[:, 1], up_in_seam[:, 2])
@@ -193,8 +184,8 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
         slope=slope,
         rotation=face_rotation,
         position=welding_positions(slope, face_rotation),
-        times=torch_in_seam.times,
-        reference_time=torch_in_seam.reference_time,
+        times=plan.result_times,
+        reference_time=plan.reference_time,
         torch=torch,
         seam=seam,
         workpiece=workpiece,
@@ -258,26 +249,3 @@ def _unit_up(up: Any) -> FloatArray:
                                f"{vector.tolist()}", field="up")
     scaled = vector / largest
     return scaled / np.linalg.norm(scaled)
-
-
-def _moving_times(tree: TreeDescription, torch: str, seam: str, workpiece: str,
-                  contact_tip: str | None) -> TimeAxis | None:
-    """Every keyframe and joint sample time that moves the torch or the seam relative to the
-    workpiece, or the contact tip relative to the torch; None when none does."""
-    paths = [(torch, workpiece), (seam, workpiece)]
-    if contact_tip is not None:
-        paths.append((contact_tip, torch))
-    sources = {source.name: source for frame, other in paths
-               for source in prepare_path(tree, frame, other).sources}
-    timeline = plan_timeline(tree, list(sources.values()), None, None)
-    offsets = timeline.result_offsets
-    return None if offsets is None else TimeAxis(offsets, timeline.reference)
-
-
-def _require_same_count(count: int, expected: int, frame: str, other: str) -> None:
-    """Every query of one process runs at the same times: a mismatch is a bug in planning
-    them, named rather than broadcast."""
-    if count != expected:
-        raise InvalidTimeError(
-            f"{frame!r} relative to {other!r} gave {count} samples where the process has "
-            f"{expected}: give times", field="times")

@@ -7,13 +7,14 @@ since the epoch when any reference time is involved.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import InvalidTimeError, ReferenceTimeError
+from ..errors import ExtrapolationError, InvalidTimeError, ReferenceTimeError
 from .timeconv import TimeAxis, parse_timestamp, shift_ns, timestamp_ns
 
 __all__ = ["QueryTimeline", "TimedSource", "plan_query_timeline", "source_reference"]
@@ -63,6 +64,31 @@ class QueryTimeline:
     evaluation_times: NDArray[np.int64] | None
     absolute: bool
     reference: np.datetime64 | None
+
+    def shifts(self, sources: Iterable[TimedSource]) -> dict[str, int]:
+        """Per source, what to subtract from a time of this timeline (ns) to land on the
+        source's own time basis."""
+        absolute = self.absolute
+        return {source.name: (timestamp_ns(source.reference)
+                              if absolute and source.reference is not None else 0)
+                for source in sources}
+
+    def require_within(self, sources: Iterable[TimedSource], times: NDArray[np.int64]
+                       ) -> None:
+        """An :class:`~pinframes.errors.ExtrapolationError` naming the source when
+        ``times`` (on this timeline) reach before a source's first sample or after its
+        last (``extrapolation='error'``)."""
+        first, last = times.min(), times.max()
+        for source in sources:
+            samples = source.on_basis(self.absolute)
+            early, late = samples[0] - first, last - samples[-1]
+            if early > 0 or late > 0:
+                sides = ([f"{early / 1e9:.9g} s before its first keyframe"] if early > 0
+                         else []) + ([f"{late / 1e9:.9g} s after its last keyframe"]
+                                     if late > 0 else [])
+                raise ExtrapolationError(
+                    f"requested times reach {' and '.join(sides)} (extrapolation='error')",
+                    frame=source.name, field="times")
 
     @property
     def result_offsets(self) -> NDArray[np.int64] | None:
