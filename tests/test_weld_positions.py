@@ -88,3 +88,16 @@ def test_positions_change_as_a_positioner_turns_the_seam():
                                atol=1e-12)
     assert process.position.tolist() == ["PA", "PA", "PB", "PB", "PC", "PC", "PD", "PD",
                                          "PE", "PE"]
+
+
+def test_without_times_a_turning_workpiece_samples_the_positions():
+    """The torch rides a seam fixed on a part that a positioner tilts: nothing moves on the
+    workpiece, but the seam's position does (PA, then PC at 90 degrees)."""
+    tree = FrameTree("world")
+    tree.add("part", "world", Pose(rotation=[rot_x(0.0), rot_x(np.pi / 2)], times=[0.0, 5.0]))
+    tree.add("seam", "part", Pose([0.0, 0.0, 0.1]))
+    tree.add("torch", "seam", Pose([0.0, 0.0, 0.01], rot_x(np.pi)))
+    process = tree.weld_process("torch", "seam")
+    np.testing.assert_allclose(process.seconds, [0.0, 5.0])
+    assert process.position.tolist() == ["PA", "PC"]
+    np.testing.assert_allclose(process.travel_speed, 0.0, atol=1e-15)

@@ -82,8 +82,9 @@ class WeldProcess:
         The ISO 6947 welding position of each sample, from ``slope`` and ``rotation``
         (:func:`welding_positions`).
     times : ndarray of timedelta64[ns] or None
-        Sample times after :attr:`reference_time`; None when nothing that moves the torch or
-        the seam relative to the workpiece moves, queried without times (then T is 1).
+        Sample times after :attr:`reference_time`; None when, queried without times, nothing
+        moves the torch or the seam relative to the workpiece or the seam in the root (then
+        T is 1).
     reference_time : numpy.datetime64 or None
         What :attr:`times` count from.
     torch, seam, workpiece : str

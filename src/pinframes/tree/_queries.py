@@ -254,7 +254,8 @@ class TreeQueries(TreeStructure):
         with the ISO 6947 welding position they give ("PA" .. "PG") and, when
         ``contact_tip`` names a frame, the contact tip to work distance (m). Without times,
         every keyframe and joint sample that moves the torch or the seam relative to the
-        workpiece; otherwise times as :meth:`pose` (arguments as there). The speed is
+        workpiece or the seam in the root; otherwise times as :meth:`pose` (arguments as
+        there). The speed is
         exact, from :meth:`velocity`. Turning the torch about its own axis changes none of
         these.
         """
