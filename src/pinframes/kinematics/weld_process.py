@@ -30,6 +30,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InvalidDataError
 from ..values.numbers import float_array
+from ..values.se3 import compose, inverse, samples_first, samples_last
 from ._description import TreeDescription
 from ._plan import plan_query, prepare_path
 from .pose import planned_transforms
@@ -138,10 +139,11 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
                           contact_tip: str | None, up: Any = None) -> WeldProcess:
     """``tree.weld_process(...)``; frame names already checked.
 
-    Four queries on one plan: the torch in the seam, the torch's and the seam's velocity
-    relative to the workpiece, the seam in the root. Without times, the samples are every
-    keyframe and joint sample that moves the torch or the seam relative to the workpiece,
-    the seam in the root (its welding position) or the contact tip relative to the torch.
+    Four queries on one plan: the seam and the torch in the root (the torch in the seam is
+    composed from them), the torch's and the seam's velocities relative to the workpiece.
+    Without times, the samples are every keyframe and joint sample that moves the torch or
+    the seam relative to the workpiece, the seam in the root (its welding position) or the
+    contact tip relative to the torch.
     ``up`` is the upward direction in the root's axes, default +z.
     """
     upward = _unit_up(up)
@@ -152,9 +154,15 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
               for source in prepare_path(tree, frame, other).sources}
     # every path below moves only with these sources: planned on them, without times a
     # path on which nothing moves has one sample, and otherwise every path has them all
-    plan = plan_query(tree, torch, seam, times, time_ref, extrapolation,
+    plan = plan_query(tree, seam, tree.root, times, time_ref, extrapolation,
                       sources=moving.values())
-    rotation, origin = planned_transforms(tree, plan)
+    # both ends in the root (the seam's is needed for the upward direction anyway), then
+    # the torch in the seam from them: as the model of that path would compose it, with
+    # the seam's moving things sampled once
+    seam_in_root, seam_at = planned_transforms(tree, plan)
+    torch_in_root, torch_at = planned_transforms(tree, plan.on(tree, torch, tree.root))
+    rotation, origin = samples_first(compose(inverse(samples_last((seam_in_root, seam_at))),
+                                             samples_last((torch_in_root, torch_at))))
 
     def velocity(frame: str) -> tuple[FloatArray, FloatArray]:
         """Of ``frame`` relative to the workpiece, in ``frame``'s own axes (no extra pose
@@ -172,7 +180,6 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
         tip_in_torch = planned_transforms(tree, plan.on(tree, contact_tip, torch))[1]
         tip = np.einsum("tij,tj->ti", rotation, tip_in_torch) + origin
         ctwd = _along_wire_to_plane(tip[:, 2], wire[:, 2])
-    seam_in_root = planned_transforms(tree, plan.on(tree, seam, tree.root))[0]
     up_in_seam = np.einsum("tji,j->ti", seam_in_root, upward)
     slope = np.arctan2(up_in_seam[:, 0], np.hypot(up_in_seam[:, 1], up_in_seam[:, 2]))
     face_rotation = _across_angle(up_in_seam[:, 1], up_in_seam[:, 2])
