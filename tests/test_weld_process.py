@@ -311,3 +311,21 @@ def test_work_angle_of_a_wire_along_the_travel_direction_is_nan(bench):
     nearly = bench.weld_process("nearly", "seam")
     # z = (cos 1e-6, -sin 1e-6, 0): seen from the work, straight along -y
     np.testing.assert_allclose(nearly.work_angle, [np.arctan2(0.0, np.sin(1e-6))], atol=1e-9)
+
+
+def test_a_cell_far_from_the_root_keeps_its_micrometres():
+    """Torch and seam under a cell 5,000 km from the root (map coordinates), the cell
+    turned on its side: the offset is exact, computed in the cell, and the position is that
+    of the turned seam (face sideways: PC)."""
+    tree = FrameTree("map")
+    tree.add("cell", "map", Pose([5.0e5, 5.0e6, 30.0], rot_x(np.pi / 2)))
+    tree.add("seam", "cell", Pose.along_curve([[0, 0, 0], [0.1, 0, 0]], [0, 0, 1],
+                                              times=[0.0, 10.0]))
+    offset = np.array([1e-6, -2e-6, 0.012])
+    tree.add("torch", "cell", Pose([[0, 0, 0], [0.1, 0, 0]], rot_x(np.pi),
+                                   times=[0.0, 10.0]))
+    tree.add("tip", "torch", Pose(offset * [1, -1, -1]))  # the torch's y and z turn over
+    process = tree.weld_process("tip", "seam")
+    # composed through the map's origin, the cell's 5e6 m left 7.6e-12 m of rounding
+    np.testing.assert_allclose(process.offset, [offset] * 2, atol=1e-15)
+    assert process.position.tolist() == ["PC", "PC"]

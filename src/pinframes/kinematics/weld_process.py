@@ -31,7 +31,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import InvalidDataError
 from ..values.numbers import float_array
 from ..values.se3 import compose, inverse, samples_first, samples_last
-from ._description import TreeDescription
+from ._description import TreeDescription, paths_to_common_ancestor
 from ._plan import plan_query, prepare_path
 from .pose import planned_transforms
 from .velocity import planned_velocity
@@ -139,8 +139,9 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
                           contact_tip: str | None, up: Any = None) -> WeldProcess:
     """``tree.weld_process(...)``; frame names already checked.
 
-    Four queries on one plan: the seam and the torch in the root (the torch in the seam is
-    composed from them), the torch's and the seam's velocities relative to the workpiece.
+    Five queries on one plan: the seam and the torch in their lowest common ancestor (the
+    torch in the seam is composed from them), the ancestor in the root, the torch's and the
+    seam's velocities relative to the workpiece.
     Without times, the samples are every keyframe and joint sample that moves the torch or
     the seam relative to the workpiece, the seam in the root (its welding position) or the
     contact tip relative to the torch.
@@ -154,15 +155,16 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
               for source in prepare_path(tree, frame, other).sources}
     # every path below moves only with these sources: planned on them, without times a
     # path on which nothing moves has one sample, and otherwise every path has them all
-    plan = plan_query(tree, seam, tree.root, times, time_ref, extrapolation,
+    # both ends in their lowest common ancestor, then the torch in the seam from them, as
+    # the model of that path composes it; the seam's moving things are sampled once for the
+    # process and for the upward direction (the ancestor's turn in the root, mostly none)
+    common = paths_to_common_ancestor(tree.parents, tree.depths, torch, seam)[0][-1]
+    plan = plan_query(tree, seam, common, times, time_ref, extrapolation,
                       sources=moving.values())
-    # both ends in the root (the seam's is needed for the upward direction anyway), then
-    # the torch in the seam from them: as the model of that path would compose it, with
-    # the seam's moving things sampled once
-    seam_in_root, seam_at = planned_transforms(tree, plan)
-    torch_in_root, torch_at = planned_transforms(tree, plan.on(tree, torch, tree.root))
-    rotation, origin = samples_first(compose(inverse(samples_last((seam_in_root, seam_at))),
-                                             samples_last((torch_in_root, torch_at))))
+    seam_in_common = planned_transforms(tree, plan)
+    torch_in_common = planned_transforms(tree, plan.on(tree, torch, common))
+    rotation, origin = samples_first(compose(inverse(samples_last(seam_in_common)),
+                                             samples_last(torch_in_common)))
 
     def velocity(frame: str) -> tuple[FloatArray, FloatArray]:
         """Of ``frame`` relative to the workpiece, in ``frame``'s own axes (no extra pose
@@ -180,7 +182,8 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
         tip_in_torch = planned_transforms(tree, plan.on(tree, contact_tip, torch))[1]
         tip = np.einsum("tij,tj->ti", rotation, tip_in_torch) + origin
         ctwd = _along_wire_to_plane(tip[:, 2], wire[:, 2])
-    up_in_seam = np.einsum("tji,j->ti", seam_in_root, upward)
+    up_in_common = upward @ planned_transforms(tree, plan.on(tree, common, tree.root))[0]
+    up_in_seam = np.einsum("tji,tj->ti", seam_in_common[0], up_in_common)
     slope = np.arctan2(up_in_seam[:, 0], np.hypot(up_in_seam[:, 1], up_in_seam[:, 2]))
     face_rotation = _across_angle(up_in_seam[:, 1], up_in_seam[:, 2])
     return WeldProcess(
