@@ -140,21 +140,20 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
     """``tree.weld_process(...)``; frame names already checked.
 
     Five queries on one plan: the seam and the torch in their lowest common ancestor (the
-    torch in the seam is composed from them), the ancestor in the root, the torch's and the
-    seam's velocities relative to the workpiece.
-    Without times, the samples are every keyframe and joint sample that moves the torch or
-    the seam relative to the workpiece, the seam in the root (its welding position) or the
-    contact tip relative to the torch.
+    torch in the seam is composed from them), the ancestor in the root, and the torch's and
+    the seam's velocities relative to the workpiece. Without times, the samples are every
+    keyframe and joint sample that moves the torch or the seam relative to the workpiece,
+    the seam in the root (its welding position) or the contact tip relative to the torch.
     ``up`` is the upward direction in the root's axes, default +z.
     """
     upward = _unit_up(up)
+    # every path below moves only with these sources: planned on them, without times a
+    # path on which nothing moves has one sample, and otherwise every path has them all
     paths = [(torch, workpiece), (seam, workpiece), (seam, tree.root)]
     if contact_tip is not None:
         paths.append((contact_tip, torch))
     moving = {source.name: source for frame, other in paths
               for source in prepare_path(tree, frame, other).sources}
-    # every path below moves only with these sources: planned on them, without times a
-    # path on which nothing moves has one sample, and otherwise every path has them all
     # both ends in their lowest common ancestor, then the torch in the seam from them, as
     # the model of that path composes it; the seam's moving things are sampled once for the
     # process and for the upward direction (the ancestor's turn in the root, mostly none)
