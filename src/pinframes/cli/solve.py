@@ -67,9 +67,12 @@ def run(args: argparse.Namespace) -> int:
         time_ref=args.time_ref, joints=args.joints,
         free_axis=args.free_axis, position_tolerance=args.position_tolerance,
         orientation_tolerance=args.orientation_tolerance, strict=args.strict)
-    moments = solution.absolute_times
-    write_text(joint_trajectory_csv(solution.seconds if moments is None else moments,
-                                    solution.positions, csv_joint_names(tree, solution)),
+    # timestamps when the solution has a reference time, else seconds (it has a time per sample)
+    moments: np.ndarray | None = solution.absolute_times
+    if moments is None:
+        moments = solution.seconds
+    assert moments is not None
+    write_text(joint_trajectory_csv(moments, solution.positions, csv_joint_names(tree, solution)),
                args.output)
     print(f"pinframes: {summary(tree, solution)}", file=sys.stderr)
     return 0

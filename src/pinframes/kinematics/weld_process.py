@@ -31,6 +31,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import InvalidDataError
 from ..values.numbers import float_array
 from ..values.se3 import compose, inverse, samples_first, samples_last
+from ..values.timed import Timed
 from ._description import TreeDescription, paths_to_common_ancestor
 from ._plan import plan_query, prepare_path
 from .pose import planned_transforms
@@ -50,7 +51,7 @@ _FACE_POSITIONS = np.array(["PA", "PB", "PC", "PD", "PE"])
 
 
 @dataclass(frozen=True)
-class WeldProcess:
+class WeldProcess(Timed):
     """The welding process of ``torch`` along ``seam``, per sample (docs/welding-process.md).
 
     Attributes
@@ -108,11 +109,6 @@ class WeldProcess:
     seam: str
     workpiece: str
     contact_tip: str | None
-
-    @property
-    def seconds(self) -> FloatArray | None:
-        """Sample times as float seconds after :attr:`reference_time`; None if static."""
-        return None if self.times is None else self.times.astype(np.int64) / 1e9
 
     def __len__(self) -> int:
         return int(self.travel_speed.shape[0])
