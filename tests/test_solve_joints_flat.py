@@ -112,6 +112,10 @@ def test_a_girth_seam_is_kept_flat_over_half_a_turn_with_the_torch_on_it(cell):
         assert np.degrees(np.arccos(min(1.0, torch.rotation[:, 2].dot(into_the_weld)))) <= 1e-4
     # the positioner did the turning: its turn covers the half turn of the seam
     assert abs(abs(positions[-1, 7] - positions[0, 7]) - np.pi) < 0.05
+    # and the welders' view of the solved motion agrees: flat at every sample
+    driven = tree.copy()
+    driven.set_joint_trajectory(solution.seconds, positions, joint_names=solution.joint_names)
+    assert set(driven.weld_process("tool0", "seam").position) == {"PA"}
 
 
 def test_without_flat_the_same_solve_lets_the_seam_turn_away_from_up(cell):
