@@ -132,7 +132,8 @@ def detect_format(
 ) -> str:
     """The format of ``path``: a tree file that exists is told by its content, whatever its
     name (the formats' ``head_test`` and ``document_test``); a file to be written (if
-    ``writing``) and other kinds of files by the suffix.
+    ``writing``) and other kinds of files by the suffix; a tree to be written to a name
+    without a suffix, or to a folder, goes to the format that writes folders (ROS 2 bags).
 
     Formats that share a suffix (``.yaml``: scene or frames.yaml) are told apart by their
     ``document_test`` (``write_name_test`` for a file to be written). ``among`` restricts
@@ -147,6 +148,11 @@ def detect_format(
         return _folder_format(source.path, allowed)
     if kind == TREE and not writing and source.path.is_file():
         return _format_by_content(source, allowed)
+    if kind == TREE and writing and (not suffix or source.path.is_dir()):
+        folder_writers = [entry.name for entry in allowed
+                          if entry.folder_test is not None and entry.write is not None]
+        if folder_writers:  # a folder to be written (a ROS 2 bag)
+            return folder_writers[0]
     candidates = [entry for entry in allowed if suffix in entry.suffixes]
     if not candidates:
         suffixes = list(dict.fromkeys(s for entry in allowed for s in entry.suffixes))

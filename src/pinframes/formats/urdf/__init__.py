@@ -2,7 +2,7 @@
 
 from ._mount import DRIVEN_JOINT_TYPES, URDF_METADATA_KEY, mount_robot, mount_urdf
 from ._parse import JointDescription, RobotDescription, is_urdf, parse_urdf
-from ._read_write import joint_state_path, read_robot, write_urdf
+from ._read_write import joint_state_path, read_robot, robot_links, robot_urdf, write_urdf
 
 __all__ = [
     "DRIVEN_JOINT_TYPES",
@@ -15,5 +15,7 @@ __all__ = [
     "mount_urdf",
     "parse_urdf",
     "read_robot",
+    "robot_links",
+    "robot_urdf",
     "write_urdf",
 ]

@@ -1,0 +1,152 @@
+"""``write_rosbag``: a tree recorded as a ROS system publishes it, in a ROS 1 bag, an MCAP
+file or a ROS 2 bag folder, written with rosbags' writers (see :mod:`._tree_topics` for
+which part goes on which topic, :mod:`._bag_writer` for the kinds of bags).
+
+Stamps: the tree's reference time plus the times (else the earliest reference time of its
+moving frames; a tree without any counts from 0, i.e. 1970-01-01). ``/tf_static`` and the
+robot descriptions are written once, at the first stamp; ``/tf`` holds one ``TFMessage``
+per time with every moving frame, and each robot's joint states one ``JointState`` per time
+with each of its driven joints (its rest value where it has no samples).
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ...errors import InvalidTimeError
+from ...tree import FrameTree
+from ...values.timeconv import TimeAxis, parse_time_axis, parse_timestamp, timestamp_ns
+from .._writable import check_writable_tree, refuse_attached_data
+from . import _outgoing as outgoing
+from ._bag_writer import TF_TYPE, BagWriter, check_stamps
+from ._tree_topics import TreeTopics, tf_name, tree_topics
+
+__all__ = ["write_rosbag"]
+
+JOINT_STATE_TYPE = "sensor_msgs/msg/JointState"
+STRING_TYPE = "std_msgs/msg/String"
+
+
+def write_rosbag(tree: FrameTree, path: str | os.PathLike[str], *, times: Any = None,
+                 time_ref: Any = None) -> None:
+    """Write ``tree`` as a ROS bag, atomically: ``name.bag`` (ROS 1), ``name.mcap`` (one
+    MCAP file), ``name.db3`` (one ROS 2 SQLite file), or any other name (a ROS 2 bag folder
+    with MCAP storage).
+
+    Parameters
+    ----------
+    tree : FrameTree
+    path : path
+    times : None or times
+        When to take the moving frames and joints (relative times count from ``time_ref``,
+        else from the tree's reference time). None: every keyframe and joint sample of the
+        tree (``tree.time_union()``); a tree in which nothing moves: one time.
+    time_ref : None or timestamp
+        What relative ``times`` count from.
+
+    Reading the bag back (:func:`pinframes.read`) gives the same poses at the written
+    times: static frames on ``/tf_static``, moving ones on ``/tf``, robots from their
+    descriptions and joint states. Data attached to frames cannot go into a bag (an
+    :class:`~pinframes.errors.UnsupportedFeatureError`); subsystems are not written.
+    """
+    check_writable_tree(tree, path)
+    refuse_attached_data(tree, path, "a ROS bag")
+    topics = tree_topics(tree)
+    stamps, query = _stamps(tree, times, time_ref)
+    translations, quaternions = _moving_poses(tree, topics.moving, query, stamps.shape[0])
+    joints = [name for robot in topics.robots for name in robot.joints]
+    values = _joint_values(tree, joints, query, stamps.shape[0])
+    with BagWriter(path) as bag:
+        check_stamps(int(stamps[0]), int(stamps[-1]), bag.ros_version, "the tree")
+        _write(bag, tree, topics, stamps, translations, quaternions, dict(zip(joints, values,
+                                                                             strict=True)))
+
+
+def _write(bag: BagWriter, tree: FrameTree, topics: TreeTopics, stamps: NDArray[np.int64],
+           translations: NDArray[np.float64], quaternions: NDArray[np.float64],
+           values: dict[str, NDArray[np.float64]]) -> None:
+    first = int(stamps[0])
+    if topics.static:
+        bag.topic("/tf_static", TF_TYPE, latched=True)
+        static = [tree.local_pose(frame) for frame in topics.static]
+        message = next(outgoing.transforms(
+            bag.types, [tf_name(str(tree.parent(frame))) for frame in topics.static],
+            [tf_name(frame) for frame in topics.static], stamps[:1],
+            np.array([pose.translation for pose in static])[:, None],
+            np.array([pose.quaternion for pose in static])[:, None]))
+        bag.write("/tf_static", first, message)
+    for robot in topics.robots:
+        bag.topic(robot.description_topic, STRING_TYPE, latched=True)
+        bag.write(robot.description_topic, first, outgoing.text(bag.types, robot.description))
+        if robot.joints:
+            bag.topic(robot.joint_states_topic, JOINT_STATE_TYPE)
+    moving = outgoing.transforms(
+        bag.types, [tf_name(str(tree.parent(frame))) for frame in topics.moving],
+        [tf_name(frame) for frame in topics.moving], stamps, translations, quaternions)
+    if topics.moving:
+        bag.topic("/tf", TF_TYPE)
+    for index, stamp in enumerate(stamps.tolist()):
+        if topics.moving:
+            bag.write("/tf", stamp, next(moving))
+        for robot in topics.robots:
+            if robot.joints:
+                bag.write(robot.joint_states_topic, stamp, outgoing.joint_state(
+                    bag.types, stamp, robot.joints,
+                    [float(values[name][index]) for name in robot.joints]))
+
+
+def _stamps(tree: FrameTree, times: Any, time_ref: Any
+            ) -> tuple[NDArray[np.int64], NDArray[Any] | None]:
+    """The stamps (ns since the epoch) and the times to query the tree at (None: nothing
+    moves and no times were given)."""
+    union = tree.time_union()
+    basis = tree.reference_time if tree.reference_time is not None else (
+        None if union is None else union.reference)
+    if times is None:
+        if union is None:
+            return np.array([0 if basis is None else timestamp_ns(basis)], np.int64), None
+        axis = union
+    else:
+        axis = parse_time_axis(times)
+        if not axis.is_absolute:
+            anchor = parse_timestamp(time_ref, field="time_ref") if time_ref is not None \
+                else basis
+            axis = TimeAxis(axis.offsets, anchor)
+    if axis.offsets.shape[0] == 0:
+        raise InvalidTimeError("no times given", field="times")
+    if np.any(np.diff(axis.offsets) <= 0):
+        raise InvalidTimeError("times must be strictly increasing", field="times")
+    start = 0 if axis.reference is None else timestamp_ns(axis.reference)
+    return axis.offsets + start, axis.as_numpy()
+
+
+def _moving_poses(tree: FrameTree, frames: tuple[str, ...], query: NDArray[Any] | None,
+                  count: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Translations (F, T, 3) and quaternions (F, T, 4) of the moving ``frames`` in their
+    parents at the ``count`` times of ``query``."""
+    if not frames:
+        return np.empty((0, count, 3)), np.empty((0, count, 4))
+    stack = tree.poses(frames, None, times=query)
+    translations, quaternions = stack.translation, stack.quaternion
+    if translations.ndim == 2:  # nothing moved: one static pose each
+        translations, quaternions = translations[:, None], quaternions[:, None]
+    return translations, quaternions
+
+
+def _joint_values(tree: FrameTree, joints: list[str], query: NDArray[Any] | None,
+                  count: int) -> list[NDArray[np.float64]]:
+    """The values of ``joints`` at the ``count`` times of ``query``: sampled as the tree
+    samples them, or the rest value of a joint without samples."""
+    sampled = tree.resampled(query) if query is not None and joints else None
+    values = []
+    for name in joints:
+        trajectory = None if sampled is None else sampled.joint_trajectory(name)
+        if trajectory is None:
+            values.append(np.full(count, tree.joints[name].rest_value))
+        else:
+            values.append(np.asarray(trajectory.values, np.float64))
+    return values
