@@ -34,6 +34,7 @@ from .formats.limits import Limits
 from .formats.pose_files import write_poses
 from .formats.rosbag import read_rosbag
 from .formats.scene import read_scene, write_scene
+from .formats.trajectory_writer import write_joint_trajectory
 from .formats.urdf import write_urdf
 from .formats.urdf_files import read_urdf
 from .kinematics import (
@@ -113,6 +114,7 @@ __all__ = [
     "read_urdf",
     "write",
     "write_frames_yaml",
+    "write_joint_trajectory",
     "write_poses",
     "write_scene",
     "write_urdf",
