@@ -153,18 +153,19 @@ class BagWriter:
                                   None if error is None else error.__traceback__)
 
 
-def check_stamps(first_ns: int, last_ns: int, ros_version: int, what: str) -> None:
+def check_stamps(first_ns: int, last_ns: int, ros1: bool, what: str) -> None:
     """Refuse stamps a bag cannot hold: before the epoch (a tree without a reference time
     whose times are negative), or past what a ROS time holds."""
     if first_ns < 0:
         raise InvalidTimeError(
             f"{what} starts before 1970-01-01 (a stamp of {first_ns / 1e9:g} s): bags hold "
-            "stamps from the epoch on; give the tree a reference time, or write later times",
+            "stamps from the epoch on; give the tree a reference time (time_ref=, --time-ref), "
+            "or write later times",
             field="times")
-    limit = (2**32 - 1) * 1_000_000_000 if ros_version == 1 else MAX_STAMP_NS
+    limit = (2**32 - 1) * 1_000_000_000 if ros1 else MAX_STAMP_NS
     if last_ns > limit:
-        raise InvalidTimeError(f"{what} ends after the last time a ROS "
-                               f"{ros_version} stamp holds", field="times")
+        raise InvalidTimeError(f"{what} ends after the last time a ROS {1 if ros1 else 2} "
+                               "stamp holds", field="times")
 
 
 @cache

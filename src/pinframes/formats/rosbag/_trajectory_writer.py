@@ -16,8 +16,11 @@ import os
 import numpy as np
 from numpy.typing import NDArray
 
+from ...errors import PinframesError
+from .._paths import path_argument
 from . import _outgoing as outgoing
-from ._bag_writer import BagWriter, check_stamps
+from ._bag_writer import BagWriter, check_stamps, output_kind
+from ._storage import ROS1
 
 __all__ = ["JOINT_TRAJECTORY_TOPIC", "write_trajectory_bag"]
 
@@ -32,8 +35,12 @@ def write_trajectory_bag(times: NDArray[np.datetime64] | NDArray[np.timedelta64]
     strictly increasing ``times``: ``datetime64[ns]`` or ``timedelta64[ns]``) to the bag
     ``path`` (its kind told by the name, as :func:`write_rosbag` does), atomically."""
     stamps = np.asarray(times).astype(np.int64)
+    try:
+        check_stamps(int(stamps[0]), int(stamps[-1]), output_kind(path) == ROS1,
+                     "the trajectory")
+    except PinframesError as exc:
+        raise exc.located(file=path_argument(path)) from None
     with BagWriter(path) as bag:
-        check_stamps(int(stamps[0]), int(stamps[-1]), bag.ros_version, "the trajectory")
         bag.topic(JOINT_TRAJECTORY_TOPIC, "trajectory_msgs/msg/JointTrajectory")
         bag.topic(JOINT_STATES_TOPIC, "sensor_msgs/msg/JointState")
         bag.write(JOINT_TRAJECTORY_TOPIC, int(stamps[0]), outgoing.joint_trajectory(

@@ -3,7 +3,8 @@ file or a ROS 2 bag folder, written with rosbags' writers (see :mod:`._tree_topi
 which part goes on which topic, :mod:`._bag_writer` for the kinds of bags).
 
 Stamps: the tree's reference time plus the times (else the earliest reference time of its
-moving frames; a tree without any counts from 0, i.e. 1970-01-01). ``/tf_static`` and the
+moving frames; a tree without any counts from ``time_ref`` when given, else from 0, i.e.
+1970-01-01; bags hold no stamp before that). ``/tf_static`` and the
 robot descriptions are written once, at the first stamp; ``/tf`` holds one ``TFMessage``
 per time with every moving frame, and each robot's joint states one ``JointState`` per time
 with each of its driven joints (its rest value where it has no samples).
@@ -17,12 +18,14 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ...errors import InvalidTimeError
+from ...errors import InvalidTimeError, PinframesError
 from ...tree import FrameTree
 from ...values.timeconv import TimeAxis, parse_time_axis, parse_timestamp, timestamp_ns
+from .._paths import path_argument
 from .._writable import check_writable_tree, refuse_attached_data
 from . import _outgoing as outgoing
-from ._bag_writer import TF_TYPE, BagWriter, check_stamps
+from ._bag_writer import TF_TYPE, BagWriter, check_stamps, output_kind
+from ._storage import ROS1
 from ._tree_topics import TreeTopics, tf_name, tree_topics
 
 __all__ = ["write_rosbag"]
@@ -46,7 +49,8 @@ def write_rosbag(tree: FrameTree, path: str | os.PathLike[str], *, times: Any = 
         else from the tree's reference time). None: every keyframe and joint sample of the
         tree (``tree.time_union()``); a tree in which nothing moves: one time.
     time_ref : None or timestamp
-        What relative ``times`` count from.
+        What relative ``times`` count from; for a tree without any reference time, also
+        where its own times start on the bag's clock (else at 1970-01-01).
 
     Reading the bag back (:func:`pinframes.read`) gives the same poses at the written
     times: static frames on ``/tf_static``, moving ones on ``/tf``, robots from their
@@ -60,8 +64,11 @@ def write_rosbag(tree: FrameTree, path: str | os.PathLike[str], *, times: Any = 
     translations, quaternions = _moving_poses(tree, topics.moving, query, stamps.shape[0])
     joints = [name for robot in topics.robots for name in robot.joints]
     values = _joint_values(tree, joints, query, stamps.shape[0])
+    try:
+        check_stamps(int(stamps[0]), int(stamps[-1]), output_kind(path) == ROS1, "the tree")
+    except PinframesError as exc:
+        raise exc.located(file=path_argument(path)) from None
     with BagWriter(path) as bag:
-        check_stamps(int(stamps[0]), int(stamps[-1]), bag.ros_version, "the tree")
         _write(bag, tree, topics, stamps, translations, quaternions, dict(zip(joints, values,
                                                                              strict=True)))
 
@@ -106,22 +113,30 @@ def _stamps(tree: FrameTree, times: Any, time_ref: Any
     union = tree.time_union()
     basis = tree.reference_time if tree.reference_time is not None else (
         None if union is None else union.reference)
+    anchor = None if time_ref is None else parse_timestamp(time_ref, field="time_ref")
     if times is None:
+        start = basis if basis is not None else anchor
+        start_ns = 0 if start is None else timestamp_ns(start)
         if union is None:
-            return np.array([0 if basis is None else timestamp_ns(basis)], np.int64), None
-        axis = union
-    else:
-        axis = parse_time_axis(times)
-        if not axis.is_absolute:
-            anchor = parse_timestamp(time_ref, field="time_ref") if time_ref is not None \
-                else basis
-            axis = TimeAxis(axis.offsets, anchor)
-    if axis.offsets.shape[0] == 0:
+            return np.array([start_ns], np.int64), None
+        return _checked(union.offsets) + start_ns, union.as_numpy()
+    axis = parse_time_axis(times)
+    if axis.is_absolute:
+        assert axis.reference is not None
+        return _checked(axis.offsets) + timestamp_ns(axis.reference), axis.as_numpy()
+    start = anchor if anchor is not None else basis
+    query = TimeAxis(axis.offsets, anchor if anchor is not None and basis is not None
+                     else None)
+    return (_checked(axis.offsets) + (0 if start is None else timestamp_ns(start)),
+            query.as_numpy())
+
+
+def _checked(offsets: NDArray[np.int64]) -> NDArray[np.int64]:
+    if offsets.shape[0] == 0:
         raise InvalidTimeError("no times given", field="times")
-    if np.any(np.diff(axis.offsets) <= 0):
+    if np.any(np.diff(offsets) <= 0):
         raise InvalidTimeError("times must be strictly increasing", field="times")
-    start = 0 if axis.reference is None else timestamp_ns(axis.reference)
-    return axis.offsets + start, axis.as_numpy()
+    return offsets
 
 
 def _moving_poses(tree: FrameTree, frames: tuple[str, ...], query: NDArray[Any] | None,
