@@ -24,7 +24,7 @@ from ..values.numbers import float_array
 from ..values.timeconv import parse_time_axis
 from ._paths import path_argument
 from .atomic import atomic_write
-from .rosbag._trajectory_writer import write_trajectory_bag
+from .rosbag import write_trajectory_bag
 from .trajectory_files import joint_trajectory_csv
 from .urdf import URDF_METADATA_KEY
 

@@ -17,10 +17,11 @@ from .._registry import FileFormat
 from ..reading import InputFile
 from ._reader import ROSBAG_METADATA_KEY, read_rosbag
 from ._storage import BAG_KINDS, METADATA_FILE, bag_files, bag_kind, bag_kind_of_head
+from ._trajectory_writer import write_trajectory_bag
 from ._writer import write_rosbag
 
 __all__ = ["BAG_KINDS", "ROSBAG_FORMAT", "ROSBAG_METADATA_KEY", "bag_files", "bag_kind",
-           "bag_kind_of_head", "read_rosbag", "write_rosbag"]
+           "bag_kind_of_head", "read_rosbag", "write_rosbag", "write_trajectory_bag"]
 
 
 def _is_bag_file(source: InputFile) -> bool:
