@@ -353,3 +353,11 @@ def test_a_folder_that_is_no_bag_is_not_replaced(tmp_path):
     pinframes.write(_turntables(None), tmp_path / "bag")  # a bag folder is replaced whole
     assert sorted(os.listdir(tmp_path / "bag")) == ["bag.mcap", "metadata.yaml"]
     assert pinframes.read(tmp_path / "bag").reference_time == np.datetime64(0, "ns")
+
+
+@pytest.mark.parametrize("times", [[1.0, 0.5], [], "soon"])
+def test_bad_times_are_refused_naming_the_bag_and_the_field(tmp_path, times):
+    with pytest.raises(pinframes.InvalidTimeError) as caught:
+        pinframes.write(_turntables(REFERENCE), tmp_path / "t.mcap", times=times)
+    assert caught.value.field == "times" and "t.mcap" in str(caught.value)
+    assert not list(tmp_path.iterdir())

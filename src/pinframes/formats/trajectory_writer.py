@@ -17,7 +17,13 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ArgumentTypeError, FileFormatError, InvalidDataError, InvalidTimeError
+from ..errors import (
+    ArgumentTypeError,
+    FileFormatError,
+    InvalidDataError,
+    InvalidTimeError,
+    PinframesError,
+)
 from ..kinematics import JointSolution
 from ..tree import FrameTree
 from ..values.numbers import float_array
@@ -58,8 +64,11 @@ def write_joint_trajectory(
         The tree a solution was solved in: its joints are then named as their URDF names
         them (without the tree's prefix), when they belong to one robot.
     """
-    times, positions, names = _samples(trajectory, tree)
     file = Path(path_argument(path))
+    try:
+        times, positions, names = _samples(trajectory, tree)
+    except PinframesError as exc:
+        raise exc.located(file=file) from None
     suffix = file.suffix.lower()
     if suffix == ".csv":
         seconds = times if times.dtype.kind == "M" else times.astype(np.int64) / 1e9

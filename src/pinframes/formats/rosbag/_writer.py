@@ -59,13 +59,14 @@ def write_rosbag(tree: FrameTree, path: str | os.PathLike[str], *, times: Any = 
     """
     check_writable_tree(tree, path)
     refuse_attached_data(tree, path, "a ROS bag")
-    topics = tree_topics(tree)
-    stamps, query = _stamps(tree, times, time_ref)
-    translations, quaternions = _moving_poses(tree, topics.moving, query, stamps.shape[0])
-    joints = [name for robot in topics.robots for name in robot.joints]
-    values = _joint_values(tree, joints, query, stamps.shape[0])
-    try:
+    try:  # everything that can be refused is, before the bag is opened
+        topics = tree_topics(tree)
+        stamps, query = _stamps(tree, times, time_ref)
         check_stamps(int(stamps[0]), int(stamps[-1]), output_kind(path) == ROS1, "the tree")
+        translations, quaternions = _moving_poses(tree, topics.moving, query,
+                                                  stamps.shape[0])
+        joints = [name for robot in topics.robots for name in robot.joints]
+        values = _joint_values(tree, joints, query, stamps.shape[0])
     except PinframesError as exc:
         raise exc.located(file=path_argument(path)) from None
     with BagWriter(path) as bag:
