@@ -6,6 +6,7 @@ with ``pinframes.read``."""
 from __future__ import annotations
 
 import os
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -73,8 +74,11 @@ def _check_transforms_against_pose(tree: FrameTree, records: list[dict]) -> int:
 
 def _check_round_trip(tree: FrameTree, path: Path, stamps_ns: np.ndarray) -> FrameTree:
     """``pinframes.read`` of the bag gives every frame's pose in the root at the stamps
-    (1e-9 m), and the same frames."""
-    back = pinframes.read(path)
+    (1e-9 m), and the same frames; the robots' links on tf agree with their descriptions
+    (no warning)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", pinframes.BagWarning)
+        back = pinframes.read(path)
     assert sorted(back.frames) == sorted(tree.frames)
     assert back.root == tree.root
     instants = np.asarray(stamps_ns, np.int64).astype("datetime64[ns]")
@@ -108,12 +112,16 @@ def test_every_cell_message_decodes_and_matches_pose(cell, cell_bags, reader):
     records = decode(cell_bags["run.mcap"], reader)
     motion = np.loadtxt(MOTION, delimiter=",", skiprows=1)
     stamps = np.round(motion[:, 0] * 1e9).astype(np.int64)
-    assert [row["stamp_ns"] for row in records["/tf"][::2]] == stamps.tolist()
-    assert _check_transforms_against_pose(cell, records["/tf"]) == 2 * len(stamps)
+    moving = ["positioner", "seam_point", *(f"robot/link_{i}" for i in range(1, 7))]
+    assert [row["stamp_ns"] for row in records["/tf"][::8]] == stamps.tolist()
+    assert sorted({row["child"] for row in records["/tf"]}) == sorted(moving)
+    # every transform, the robot's links as robot_state_publisher would publish them
+    assert _check_transforms_against_pose(cell, records["/tf"]) == 8 * len(stamps)
     static = records["/tf_static"]
     assert {row["child"] for row in static} == {
         "robot_base", "positioner_base", "fixtures", "robot/base_link", "workpiece",
-        "faceplate", "torch", "torch_tcp", "weld_seam", "pipe", "torch_target"}
+        "faceplate", "torch", "torch_tcp", "weld_seam", "pipe", "torch_target",
+        "robot/flange"}
     _check_transforms_against_pose(cell, static)
     # five robots, one robot_state_publisher each: namespaced by their URDF names
     descriptions = {topic.removesuffix("/robot_description"): rows[0]["text"]
@@ -270,9 +278,11 @@ def test_several_robots_are_namespaced_and_read_back(tmp_path):
             "/pinframes_welding_robot_2/robot_description",
             "/pinframes_welding_robot/joint_states",
             "/pinframes_welding_robot_2/joint_states"} <= set(records)
-    assert {row["child"] for row in records["/tf"]} == {"carriage"}
+    links = {f"{side}/link_{i}" for side in ("left", "right") for i in range(1, 7)}
+    assert {row["child"] for row in records["/tf"]} == {"carriage"} | links
     assert {row["child"] for row in records["/tf_static"]} == {
-        "left/base_link", "right/base_link", "camera"}
+        "left/base_link", "right/base_link", "camera", "left/flange", "right/flange"}
+    _check_transforms_against_pose(tree, records["/tf"] + records["/tf_static"])
     right = records["/pinframes_welding_robot_2/joint_states"]
     assert right[0]["names"] == [f"right/joint_{i}" for i in range(1, 7)]
     start = int(REFERENCE.astype(np.int64))
@@ -284,7 +294,7 @@ def test_a_robot_alone_uses_the_plain_topics(tmp_path):
     tree.set_joint_trajectory([0.0, 1.0], [[0.0] * 6, [0.2] * 6])
     pinframes.write(tree, tmp_path / "one.bag")
     records = decode(tmp_path / "one.bag", "rosbags")
-    assert sorted(records) == ["/joint_states", "/robot_description"]
+    assert sorted(records) == ["/joint_states", "/robot_description", "/tf", "/tf_static"]
     assert records["/joint_states"][1]["positions"] == [0.2] * 6
     _check_round_trip(tree, tmp_path / "one.bag", np.array([0, 10**9]))
 

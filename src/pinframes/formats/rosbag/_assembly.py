@@ -3,9 +3,10 @@
 Each robot (URDF) is mounted at the frame named as its root link: where tf gives that frame
 a parent, the robot hangs there at the pose tf gives it; otherwise the root link is the
 tree's root. tf frames of the robots' other links are what ``robot_state_publisher``
-republished from the same joint states: they are left out (one warning), the URDFs and the
-joint states place those links. Frames of tf below a link (a camera on the flange) hang on
-that link. The result must have one root and no cycle.
+republished from the same joint states: they are left out (one warning when they differ
+from what the description gives), the URDFs and the joint states place those links. Frames
+of tf below a link (a camera on the flange) hang on that link. The result must have one root
+and no cycle.
 """
 
 from __future__ import annotations
@@ -18,11 +19,16 @@ import numpy as np
 from ...errors import BagWarning, TreeStructureError, warn_at_caller
 from ...tree import FrameTree
 from ...values.pose import Pose
+from ...values.rotations import matrix_from_quaternion
 from ..urdf import DRIVEN_JOINT_TYPES, RobotDescription, mount_robot
 from ._joint_states import JointSamples
 from ._tf_tracks import FrameTrack
 
 __all__ = ["assemble_tree", "reference_stamp"]
+
+REPUBLISHED_TOLERANCE = 1e-9
+"""Below this (metres, and rotation-matrix entries) a link's tf transform agrees with the
+description's."""
 
 
 def reference_stamp(tracks: dict[str, FrameTrack], joints: dict[str, JointSamples]
@@ -41,13 +47,6 @@ def assemble_tree(name: str, tracks: dict[str, FrameTrack], robots: list[RobotDe
     links = {link for robot in robots for link in robot.links}
     by_root = {robot.root_link: robot for robot in robots}
     republished = [child for child in tracks if child in links and child not in by_root]
-    if republished:
-        shown = ", ".join(repr(link) for link in republished[:5])
-        warn_at_caller(
-            f"{file}: ignored the tf transforms of {len(republished)} links the robot "
-            f"description has (robot_state_publisher republishes them; the URDF and the "
-            f"joint states place them): {shown}" + (" ..." if len(republished) > 5 else ""),
-            BagWarning)
     parent_of = {child: track.parent for child, track in tracks.items()
                  if child not in links or child in by_root}
     for robot in robots:
@@ -70,7 +69,41 @@ def assemble_tree(name: str, tracks: dict[str, FrameTrack], robots: list[RobotDe
     for joint, samples in joints.items():
         tree.set_joint_trajectory(samples.stamps_ns.astype("datetime64[ns]"),
                                   samples.positions[:, None], [joint])
+    _warn_republished(tree, [tracks[child] for child in republished], file)
     return tree
+
+
+def _warn_republished(tree: FrameTree, republished: list[FrameTrack], file: Path) -> None:
+    """One warning when tf transforms of robot links (what ``robot_state_publisher``
+    republished) differ from what the URDF and the joint states give: those are ignored,
+    the tree places the links. Transforms that agree (to 1e-9 m, and rotation matrices to
+    1e-9) lose nothing and need no word."""
+    differ, largest = [], 0.0
+    for track in republished:
+        parent = tree.parent(track.child)
+        if track.parent != parent:
+            differ.append(track.child)
+            continue
+        if tree.reference_time is None:
+            pose = tree.pose(track.child, parent)
+            translations, rotations = pose.translation[None], pose.rotation[None]
+        else:
+            pose = tree.pose(track.child, parent,
+                             times=track.stamps_ns.astype("datetime64[ns]"))
+            translations, rotations = pose.translation, pose.rotation
+        gap = max(float(np.abs(translations - track.translations).max()),
+                  float(np.abs(rotations - matrix_from_quaternion(track.quaternions)).max()))
+        if gap > REPUBLISHED_TOLERANCE:
+            differ.append(track.child)
+            largest = max(largest, gap)
+    if differ:
+        shown = ", ".join(repr(link) for link in differ[:5])
+        warn_at_caller(
+            f"{file}: ignored the tf transforms of {len(differ)} links the robot description "
+            f"has, which differ from what the URDF and the joint states give (by up to "
+            f"{largest:.3g} m or in rotation-matrix entries, or in their parent); the URDF "
+            f"and the joint states place them: {shown}" + (" ..." if len(differ) > 5 else ""),
+            BagWarning)
 
 
 def _single_root(parent_of: dict[str, str], root_links: set[str], file: Path) -> str:

@@ -2,16 +2,17 @@
 
 - Robots attached from URDF files (``FrameTree.attach_urdf``, a scene's ``robots``): their
   URDF on a description topic and their driven joints (mimic joints follow the URDF) on a
-  joint states topic; their links other than the root are *not* on tf, they come from the
-  description, as ``robot_state_publisher`` publishes them on replay. One robot uses
-  ``/robot_description`` and ``/joint_states``; several robots are namespaced, one
-  ``robot_state_publisher`` each, as multi-robot ROS systems run them:
-  ``/<name>/robot_description`` and ``/<name>/joint_states``, ``<name>`` the URDF's robot
-  name (characters other than letters, digits and ``_`` replaced by ``_``, ``_2``... added
-  where two robots share a name).
-- Every other frame (a robot's root link included) is on tf in its parent: on
-  ``/tf_static`` when it never moves there, on ``/tf`` otherwise (a keyframed frame, or a
-  joint not from a URDF).
+  joint states topic. Their links are on tf as ``robot_state_publisher`` publishes them from
+  the description and the joint states: fixed joints on ``/tf_static``, the others on
+  ``/tf`` at every time (so that a viewer without a ``robot_state_publisher``, Foxglove,
+  sees the whole cell). One robot uses ``/robot_description`` and ``/joint_states``;
+  several robots are namespaced, one ``robot_state_publisher`` each, as multi-robot ROS
+  systems run them: ``/<name>/robot_description`` and ``/<name>/joint_states``, ``<name>``
+  the URDF's robot name (characters other than letters, digits and ``_`` replaced by
+  ``_``, ``_2``... added where two robots share a name).
+- Every frame is on tf in its parent: on ``/tf_static`` when it never moves there, on
+  ``/tf`` otherwise (a keyframed frame, a link of a joint that is not fixed, or a joint
+  not from a URDF).
 - Frame ids follow tf2: a leading ``/`` is dropped.
 """
 
@@ -57,15 +58,13 @@ def tree_topics(tree: FrameTree) -> TreeTopics:
     roots = [root for root in tree.metadata.get(URDF_METADATA_KEY, {}) if root in tree]
     namespaces = _namespaces(tree, roots)
     robots: list[RobotTopics] = []
-    described: set[str] = set()
     for root, namespace in zip(roots, namespaces, strict=True):
         links = robot_links(tree, root)
-        described.update(link for link in links if link != root)
         joints = tuple(joint.name for link in links
                        if (joint := tree.joint_of(link)) is not None and joint.is_actuated)
         robots.append(RobotTopics(root, f"{namespace}/{DESCRIPTION}",
                                   f"{namespace}/{JOINT_STATES}", robot_urdf(tree, root), joints))
-    on_tf = [frame for frame in tree.frames[1:] if frame not in described]
+    on_tf = tree.frames[1:]
     _check_tf_names(tree)
     static = tuple(frame for frame in on_tf
                    if not tree.is_moving(frame) and tree.joint_of(frame) is None)
