@@ -289,6 +289,20 @@ def test_several_robots_are_namespaced_and_read_back(tmp_path):
     _check_round_trip(tree, tmp_path / "two.mcap", start + (times * 1e9).astype(np.int64))
 
 
+def test_a_namespaced_copy_of_the_robot_is_not_mounted_twice(tmp_path):
+    """A recording with the same URDF on /robot_description and /arm/robot_description
+    (written by rosbags itself): one robot, one warning naming the second topic."""
+    from ros.bag_writing import STRING, Message, string, write_bag
+
+    text = ROBOT.read_text()
+    bag = write_bag(tmp_path / "copy", "mcap", [
+        Message("/robot_description", STRING, 0, string(2, text)),
+        Message("/arm/robot_description", STRING, 0, string(2, text))])
+    with pytest.warns(pinframes.BagWarning, match="/arm/robot_description"):
+        tree = pinframes.read(bag)
+    assert sorted(tree.joints) == [f"joint_{i}" for i in range(1, 7)]
+
+
 def test_a_robot_alone_uses_the_plain_topics(tmp_path):
     tree = pinframes.read_urdf(ROBOT)
     tree.set_joint_trajectory([0.0, 1.0], [[0.0] * 6, [0.2] * 6])

@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import ArgumentTypeError, FileFormatError, PinframesError
+from ...errors import ArgumentTypeError, BagWarning, FileFormatError, PinframesError, warn_at_caller
 from ...tree import FrameTree
 from ..limits import Limits, current_limits, exceeded, using_limits
 from ..urdf import RobotDescription, parse_urdf
@@ -118,8 +118,14 @@ def _read(bag: OpenBag, robot_description: str | os.PathLike[str] | None,
                                if message[0] != description_topic):
         namespaced = _robot(bag, None, [message for message in descriptions
                                         if message[0] == topic])
-        if namespaced is not None:
-            robots.append(namespaced)
+        if namespaced is None:
+            continue
+        if any(link in known.links for known in robots for link in namespaced.links):
+            warn_at_caller(f"{bag.path}: the robot description on {topic} names links "
+                           "another description has (the same robot twice?); not used",
+                           BagWarning)
+            continue
+        robots.append(namespaced)
     if not tracks and not robots:
         raise FileFormatError(
             f"no tf messages on {', '.join(tf_topics) or 'no topic'} and no robot "
