@@ -152,6 +152,22 @@ def _check_description_against_pose(tree: FrameTree, urdf: str, states: list[dic
             np.testing.assert_allclose(placement.rotation, pose.rotation[0], atol=1e-9)
 
 
+def test_mesh_names_in_the_descriptions_are_absolute_and_found(cell, cell_bags):
+    """A description is text without a folder: the cell's meshes (relative to their URDF
+    files) are written as file:// URIs, so the read-back cell measures the same clearance
+    between the torch and pipe meshes."""
+    records = decode(cell_bags["run.mcap"], "mcap")
+    torch_urdf = records["/torch/robot_description"][0]["text"]
+    mesh = ROOT / "models" / "welding_cell" / "geometry" / "meshes" / "torch.stl"
+    assert f'filename="{mesh.resolve().as_uri()}"' in torch_urdf
+    back = pinframes.read(cell_bags["run.mcap"])
+    seconds = np.array([0.0, 7.5])
+    written = back.clearance("torch", "pipe", geometry="visual",
+                             times=(seconds * 1e9).astype("datetime64[ns]"))
+    original = cell.clearance("torch", "pipe", geometry="visual", times=seconds)
+    np.testing.assert_allclose(written.distance, original.distance, atol=1e-9)
+
+
 def test_mcap_holds_ros2msg_schemas_and_cdr_messages(cell_bags):
     from mcap.reader import make_reader
 

@@ -12,6 +12,7 @@ import numpy as np
 from ...errors import UnsupportedFeatureError
 from ...kinematics import Snapshot
 from ...tree import FrameTree
+from ...values.geometry import GEOMETRY_METADATA_KEY, FrameGeometry
 from ...values.joint import Joint, mimic_chain
 from ...values.rotations import rpy_from_matrix
 from .._snapshot import moving_parts, one_instant
@@ -91,8 +92,10 @@ def robot_urdf(tree: FrameTree, root_link: str) -> str:
     """The URDF text of one robot of ``tree``, as the tree holds it: the links of
     :func:`robot_links` under the tree's names (prefix included), their joints with their
     names, types, axes, limits and mimics, and what its file held besides (materials, link
-    contents). Joint values are not part of it. A link that moves in its parent without a
-    joint is an :class:`~pinframes.errors.UnsupportedFeatureError` (a URDF cannot hold it).
+    contents). Joint values are not part of it. A text has no folder: mesh names relative
+    to the robot's file become absolute ``file://`` URIs (``package://`` names stay). A link
+    that moves in its parent without a joint is an
+    :class:`~pinframes.errors.UnsupportedFeatureError` (a URDF cannot hold it).
     """
     kept = tree.metadata.get(URDF_METADATA_KEY, {}).get(root_link, {})
     robot = ET.Element("robot", name=kept.get("name") or root_link)
@@ -101,7 +104,9 @@ def robot_urdf(tree: FrameTree, root_link: str) -> str:
     used = set(tree.joints)
     at_rest = Snapshot(None, {})
     for frame in robot_links(tree, root_link):
-        robot.append(_link(tree, frame))
+        link = _link(tree, frame)
+        _absolute_mesh_names(link, tree.frame_metadata(frame).get(GEOMETRY_METADATA_KEY))
+        robot.append(link)
         if frame == root_link:
             continue
         if tree.is_moving(frame):
@@ -110,6 +115,17 @@ def robot_urdf(tree: FrameTree, root_link: str) -> str:
                 "without a joint, which a URDF cannot hold", frame=frame, field="pose")
         robot.append(_joint(tree, frame, at_rest, False, used))
     return _xml_text(robot)
+
+
+def _absolute_mesh_names(link: ET.Element, geometry: FrameGeometry | None) -> None:
+    """Mesh names of ``link`` relative to its URDF file, as ``file://`` URIs."""
+    source = None if geometry is None else geometry.urdf
+    if not source or not os.path.isabs(source):  # a URDF given as text: nothing to resolve
+        return
+    for mesh in link.iter("mesh"):
+        name = mesh.get("filename", "")
+        if name and "://" not in name and not os.path.isabs(name):
+            mesh.set("filename", (Path(source).parent / name).resolve().as_uri())
 
 
 def _xml_text(robot: ET.Element) -> str:
