@@ -244,8 +244,9 @@ def write(tree: Any, path: str | os.PathLike[str], format: str | None = None,
     """Write ``tree`` to ``path`` in ``format`` (default: told from the name), atomically.
 
     ``options`` go to the format's writer: ``time=`` for the formats that store one pose
-    per frame, ``schema=`` for ASDF. An option the format does not take is a
-    :class:`FileFormatError`.
+    per frame, ``schema=`` for ASDF, ``times=`` and ``time_ref=`` for ROS bags (``.mcap``,
+    ``.bag``, ``.db3``, or a name without a suffix: a ROS 2 bag folder). An option the
+    format does not take is a :class:`FileFormatError`.
     """
     _check_path(path)
     entry = file_format(format) if format is not None else file_format(
