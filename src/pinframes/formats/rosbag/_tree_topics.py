@@ -13,7 +13,7 @@
 - Every frame is on tf in its parent: on ``/tf_static`` when it never moves there, on
   ``/tf`` otherwise (a keyframed frame, a link of a joint that is not fixed, or a joint
   not from a URDF).
-- Frame ids follow tf2: a leading ``/`` is dropped.
+- Frame ids are the tree's names; tf2 drops a leading ``/``, so such names are refused.
 """
 
 from __future__ import annotations
@@ -21,11 +21,11 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-from ...errors import TreeStructureError
+from ...errors import UnsupportedFeatureError
 from ...tree import FrameTree
 from ..urdf import URDF_METADATA_KEY, robot_links, robot_urdf
 
-__all__ = ["RobotTopics", "TreeTopics", "tf_name", "tree_topics"]
+__all__ = ["RobotTopics", "TreeTopics", "tree_topics"]
 
 DESCRIPTION = "robot_description"
 JOINT_STATES = "joint_states"
@@ -72,24 +72,14 @@ def tree_topics(tree: FrameTree) -> TreeTopics:
     return TreeTopics(static, moving, tuple(robots))
 
 
-def tf_name(frame: str) -> str:
-    """A frame's id on tf: its name without a leading ``/``."""
-    return frame[1:] if frame.startswith("/") else frame
-
-
 def _check_tf_names(tree: FrameTree) -> None:
-    """Two frames whose names differ only by a leading ``/`` would be one frame on tf."""
-    seen: dict[str, str] = {}
+    """tf2 drops a leading ``/`` of a frame id: such a name would read back as another
+    frame, so it is refused (a writer writes what its reader reads back unchanged)."""
     for frame in tree.frames:
-        name = tf_name(frame)
-        if not name:
-            raise TreeStructureError("the frame '/' has no name on tf (tf2 drops a leading "
-                                     "'/')", frame=frame, field="name")
-        if name in seen:
-            raise TreeStructureError(
-                f"the frames {seen[name]!r} and {frame!r} are one frame on tf (tf2 drops a "
-                "leading '/'): rename one", frame=frame, field="name")
-        seen[name] = frame
+        if frame.startswith("/"):
+            raise UnsupportedFeatureError(
+                "tf2 drops the leading '/' of a frame id, so this frame would read back as "
+                f"{frame.lstrip('/')!r}: rename it", frame=frame, field="name")
 
 
 def _namespaces(tree: FrameTree, roots: list[str]) -> list[str]:

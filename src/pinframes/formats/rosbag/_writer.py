@@ -26,7 +26,7 @@ from .._writable import check_writable_tree, refuse_attached_data
 from . import _outgoing as outgoing
 from ._bag_writer import TF_TYPE, BagWriter, check_stamps, output_kind
 from ._storage import ROS1
-from ._tree_topics import TreeTopics, tf_name, tree_topics
+from ._tree_topics import TreeTopics, tree_topics
 
 __all__ = ["write_rosbag"]
 
@@ -82,8 +82,7 @@ def _write(bag: BagWriter, tree: FrameTree, topics: TreeTopics, stamps: NDArray[
         bag.topic("/tf_static", TF_TYPE, latched=True)
         static = [tree.local_pose(frame) for frame in topics.static]
         message = next(outgoing.transforms(
-            bag.types, [tf_name(str(tree.parent(frame))) for frame in topics.static],
-            [tf_name(frame) for frame in topics.static], stamps[:1],
+            bag.types, _parents(tree, topics.static), topics.static, stamps[:1],
             np.array([pose.translation for pose in static])[:, None],
             np.array([pose.quaternion for pose in static])[:, None]))
         bag.write("/tf_static", first, message)
@@ -92,9 +91,8 @@ def _write(bag: BagWriter, tree: FrameTree, topics: TreeTopics, stamps: NDArray[
         bag.write(robot.description_topic, first, outgoing.text(bag.types, robot.description))
         if robot.joints:
             bag.topic(robot.joint_states_topic, JOINT_STATE_TYPE)
-    moving = outgoing.transforms(
-        bag.types, [tf_name(str(tree.parent(frame))) for frame in topics.moving],
-        [tf_name(frame) for frame in topics.moving], stamps, translations, quaternions)
+    moving = outgoing.transforms(bag.types, _parents(tree, topics.moving), topics.moving,
+                                 stamps, translations, quaternions)
     if topics.moving:
         bag.topic("/tf", TF_TYPE)
     for index, stamp in enumerate(stamps.tolist()):
@@ -105,6 +103,10 @@ def _write(bag: BagWriter, tree: FrameTree, topics: TreeTopics, stamps: NDArray[
                 bag.write(robot.joint_states_topic, stamp, outgoing.joint_state(
                     bag.types, stamp, robot.joints,
                     [float(values[name][index]) for name in robot.joints]))
+
+
+def _parents(tree: FrameTree, frames: tuple[str, ...]) -> list[str]:
+    return [str(tree.parent(frame)) for frame in frames]
 
 
 def _stamps(tree: FrameTree, times: Any, time_ref: Any
