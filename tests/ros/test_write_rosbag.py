@@ -410,3 +410,19 @@ def test_the_bundled_recording_rewritten_as_ros1_reads_back_the_same(tmp_path):
     union = recording.time_union()
     _check_round_trip(recording, tmp_path / "again.bag",
                       union.offsets + int(union.reference.astype(np.int64)))
+
+
+def test_what_a_killed_writer_left_is_removed_by_the_next_write(tmp_path):
+    """A writer killed mid-write leaves its scratch folder and temporary file (named with
+    its process id); the next write in that folder removes them, as for every format."""
+    import subprocess
+    import sys
+
+    finished = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"],
+                              capture_output=True, text=True, check=True)
+    dead = int(finished.stdout)
+    (tmp_path / f".pinframes-{dead}-0a1b2c-scratch.tmp" / "bag").mkdir(parents=True)
+    (tmp_path / f".pinframes-{dead}-0a1b2c-scratch.tmp" / "bag" / "bag.mcap").write_bytes(b"x")
+    (tmp_path / f".pinframes-{dead}-3d4e5f.tmp").write_bytes(b"half a bag")
+    pinframes.write(_turntables(REFERENCE), tmp_path / "t.mcap")
+    assert sorted(os.listdir(tmp_path)) == ["t.mcap"]

@@ -14,7 +14,7 @@ from typing import IO
 from ..errors import PinframesError, WriteError
 from ._paths import path_argument
 
-__all__ = ["atomic_path", "atomic_write", "remove_stale_temporaries"]
+__all__ = ["atomic_path", "atomic_write", "remove_stale_temporaries", "temporary_name"]
 
 _TEMPORARY_PREFIX = ".pinframes-"
 _TEMPORARY_SUFFIX = ".tmp"
@@ -77,12 +77,11 @@ def atomic_path(path: str | os.PathLike[str], *, folder: bool = False) -> Iterat
     else:
         _check_target(target, parent, file)
     remove_stale_temporaries(parent)
-    temporary = parent / (f"{_TEMPORARY_PREFIX}{os.getpid()}-{secrets.token_hex(6)}"
-                          f"{_TEMPORARY_SUFFIX}")
+    temporary = parent / temporary_name()
     try:
         yield temporary
         if folder and target.is_dir():
-            aside = temporary.with_name(temporary.name + "-old")
+            aside = parent / temporary_name()
             os.replace(target, aside)
             os.replace(temporary, target)
             shutil.rmtree(aside, ignore_errors=True)
@@ -93,6 +92,14 @@ def atomic_path(path: str | os.PathLike[str], *, folder: bool = False) -> Iterat
         if isinstance(exc, OSError) and not isinstance(exc, PinframesError):
             raise WriteError(f"cannot write: {exc.strerror or exc}", file=file) from exc
         raise
+
+
+def temporary_name(suffix: str = "") -> str:
+    """A fresh name for a temporary file or folder of this process: one that
+    :func:`remove_stale_temporaries` deletes once the process no longer runs (``suffix``
+    goes before the ending, for names whose ending a library insists on)."""
+    return (f"{_TEMPORARY_PREFIX}{os.getpid()}-{secrets.token_hex(6)}{suffix}"
+            f"{_TEMPORARY_SUFFIX}")
 
 
 def _remove(path: Path) -> None:
@@ -134,8 +141,8 @@ def _check_target(target: Path, folder: Path, file: str) -> None:
 
 
 def remove_stale_temporaries(folder: Path) -> None:
-    """Delete temporary files in ``folder`` that writers killed before their rename left
-    behind: files of our naming whose process no longer runs."""
+    """Delete temporary files (and folders) in ``folder`` that writers killed before their
+    rename left behind: those of our naming whose process no longer runs."""
     try:
         entries = [entry.name for entry in os.scandir(folder)
                    if entry.name.startswith(_TEMPORARY_PREFIX)
@@ -145,8 +152,7 @@ def remove_stale_temporaries(folder: Path) -> None:
     for name in entries:
         pid = name[len(_TEMPORARY_PREFIX):].split("-", 1)[0]
         if pid.isdigit() and not _running(int(pid)):
-            with contextlib.suppress(OSError):
-                os.unlink(folder / name)
+            _remove(folder / name)
 
 
 def _running(pid: int) -> bool:

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import contextlib
 import os
-import tempfile
+import shutil
 from functools import cache
 from pathlib import Path
 from types import TracebackType
@@ -25,7 +25,7 @@ from typing import Any, Literal
 
 from ...errors import InvalidTimeError, UnsupportedFeatureError
 from .._paths import path_argument
-from ..atomic import atomic_path
+from ..atomic import atomic_path, temporary_name
 from ._storage import FOLDER, MCAP, ROS1, SQLITE3
 
 __all__ = ["BagWriter", "check_stamps", "output_kind", "typestore"]
@@ -67,7 +67,7 @@ class BagWriter:
         self._connections: dict[str, Any] = {}
         self._writer: Any = None
         self._atomic: Any = None
-        self._scratch: tempfile.TemporaryDirectory[str] | None = None
+        self._scratch: Path | None = None
 
     def __enter__(self) -> BagWriter:
         from rosbags.rosbag1 import Writer as Ros1Writer
@@ -81,8 +81,9 @@ class BagWriter:
             if self.kind == ROS1:
                 self._writer = Ros1Writer(temporary)
             else:  # written in a scratch folder, then moved out (the folder or its file)
-                self._scratch = tempfile.TemporaryDirectory(prefix=".pinframes-",
-                                                            dir=temporary.parent)
+                scratch = temporary.parent / temporary_name("-scratch")
+                scratch.mkdir()
+                self._scratch = scratch
                 plugin = StoragePlugin.SQLITE3 if self.kind == SQLITE3 else StoragePlugin.MCAP
                 self._writer = Ros2Writer(self._scratch_bag(), version=_ROS2_VERSION,
                                           storage_plugin=plugin)
@@ -122,10 +123,11 @@ class BagWriter:
                  traceback: TracebackType | None) -> None:
         self._finish(error)
 
-    def _scratch_bag(self, scratch: tempfile.TemporaryDirectory[str] | None = None) -> Path:
+    def _scratch_bag(self, scratch: Path | None = None) -> Path:
         """The bag folder rosbags writes in the scratch folder: named as the bag to be
         written (its storage file takes that name), or ``bag`` for a storage file."""
-        folder = Path((scratch or self._scratch).name)  # type: ignore[union-attr]
+        folder = scratch or self._scratch
+        assert folder is not None
         return folder / (self.path.name if self.kind == FOLDER else "bag")
 
     def _finish(self, error: BaseException | None) -> None:
@@ -148,7 +150,7 @@ class BagWriter:
             raise
         finally:
             if scratch is not None:
-                scratch.cleanup()
+                shutil.rmtree(scratch, ignore_errors=True)
             self._atomic.__exit__(None if error is None else type(error), error,
                                   None if error is None else error.__traceback__)
 
