@@ -126,6 +126,10 @@ def test_every_cell_message_decodes_and_matches_pose(cell, cell_bags, reader):
                     for topic, rows in records.items() if topic.endswith("/robot_description")}
     assert sorted(descriptions) == ["/faceplate", "/fixtures", "/pinframes_welding_robot",
                                     "/pipe", "/torch"]
+    for namespace, text in descriptions.items():  # each parses in Pinocchio, tree names
+        model = pin.buildModelFromXML(text)
+        links = {frame.name for frame in model.frames if frame.type == pin.FrameType.BODY}
+        assert links <= set(cell.frames), namespace
     states = records["/pinframes_welding_robot/joint_states"]
     assert [row["stamp_ns"] for row in states] == stamps.tolist()
     assert np.array_equal([row["positions"] for row in states], motion[:, 1:])
