@@ -4,10 +4,11 @@ which part goes on which topic, :mod:`._bag_writer` for the kinds of bags).
 
 Stamps: the tree's reference time plus the times (else the earliest reference time of its
 moving frames; a tree without any counts from ``time_ref`` when given, else from 0, i.e.
-1970-01-01; bags hold no stamp before that). ``/tf_static`` and the
-robot descriptions are written once, at the first stamp; ``/tf`` holds one ``TFMessage``
-per time with every moving frame, and each robot's joint states one ``JointState`` per time
-with each of its driven joints (its rest value where it has no samples).
+1970-01-01; bags hold no stamp before that). ``/tf_static`` and the robot descriptions are
+written once, at the first stamp; ``/tf`` holds one ``TFMessage`` per time with every
+moving frame (robot links on joints that are not fixed included), and each robot's joint
+states one ``JointState`` per time with each of its driven joints (its rest value where it
+has no samples).
 """
 
 from __future__ import annotations
@@ -52,10 +53,12 @@ def write_rosbag(tree: FrameTree, path: str | os.PathLike[str], *, times: Any = 
         What relative ``times`` count from; for a tree without any reference time, also
         where its own times start on the bag's clock (else at 1970-01-01).
 
-    Reading the bag back (:func:`pinframes.read`) gives the same poses at the written
-    times: static frames on ``/tf_static``, moving ones on ``/tf``, robots from their
-    descriptions and joint states. Data attached to frames cannot go into a bag (an
-    :class:`~pinframes.errors.UnsupportedFeatureError`); subsystems are not written.
+    Static frames go on ``/tf_static``, moving ones on ``/tf``, robots' URDFs and joint
+    values on their description and joint-state topics (their links on tf as
+    ``robot_state_publisher`` publishes them). Reading the bag back
+    (:func:`pinframes.read`) gives the same poses at the written times. Data attached to
+    frames cannot go into a bag, nor a frame name with a leading ``/`` (tf2 drops it): both
+    are an :class:`~pinframes.errors.UnsupportedFeatureError`. Subsystems are not written.
     """
     check_writable_tree(tree, path)
     refuse_attached_data(tree, path, "a ROS bag")
