@@ -179,6 +179,15 @@ def test_mcap_holds_ros2msg_schemas_and_cdr_messages(cell_bags):
     assert {schema.name for schema in summary.schemas.values()} == {
         "tf2_msgs/msg/TFMessage", "std_msgs/msg/String", "sensor_msgs/msg/JointState"}
     assert {channel.message_encoding for channel in summary.channels.values()} == {"cdr"}
+    # read as a stream, record by record, as a viewer loading it does: the ros2 profile, a
+    # well-formed file from header to footer
+    from mcap.records import Footer, Header
+    from mcap.stream_reader import StreamReader
+
+    with open(cell_bags["run.mcap"], "rb") as handle:
+        records = list(StreamReader(handle, validate_crcs=True).records)
+    assert isinstance(records[0], Header) and records[0].profile == "ros2"
+    assert isinstance(records[-1], Footer)
     folder_mcap = mcap_file(cell_bags["run_folder"])
     assert folder_mcap.name == "run_folder.mcap"  # named after the folder, as ros2 bag does
 
