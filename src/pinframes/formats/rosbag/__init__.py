@@ -7,7 +7,8 @@ bytes decoded in bulk), ``_messages`` (the types read; JointState and String thr
 rosbags), ``_tf_tracks`` (tf2's rules: one track per frame), ``_joint_states`` (samples per
 joint), ``_assembly`` (tracks, robot and joints into a tree), ``_reader`` (``read_rosbag``).
 Writing: ``_bag_writer`` (the kind of bag a name asks for, written atomically),
-``_outgoing`` (messages built from arrays), ``_tree_topics`` (which part of a tree goes on
+``_outgoing`` (messages built from arrays), ``_tf_encoding`` (``/tf`` messages encoded
+in bulk), ``_tree_topics`` (which part of a tree goes on
 which topic), ``_writer`` (``write_rosbag``), ``_trajectory_writer`` (a joint trajectory as
 a ``JointTrajectory`` and joint states).
 """

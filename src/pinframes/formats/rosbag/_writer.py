@@ -27,6 +27,7 @@ from .._writable import check_writable_tree, refuse_attached_data
 from . import _outgoing as outgoing
 from ._bag_writer import TF_TYPE, BagWriter, check_stamps, output_kind
 from ._storage import ROS1
+from ._tf_encoding import encode_tf_messages
 from ._tree_topics import TreeTopics, tree_topics
 
 __all__ = ["write_rosbag"]
@@ -94,18 +95,30 @@ def _write(bag: BagWriter, tree: FrameTree, topics: TreeTopics, stamps: NDArray[
         bag.write(robot.description_topic, first, outgoing.text(bag.types, robot.description))
         if robot.joints:
             bag.topic(robot.joint_states_topic, JOINT_STATE_TYPE)
-    moving = outgoing.transforms(bag.types, _parents(tree, topics.moving), topics.moving,
-                                 stamps, translations, quaternions)
-    if topics.moving:
-        bag.topic("/tf", TF_TYPE)
+    moving = _moving_messages(bag, tree, topics.moving, stamps, translations, quaternions)
     for index, stamp in enumerate(stamps.tolist()):
-        if topics.moving:
-            bag.write("/tf", stamp, next(moving))
+        if moving is not None:
+            bag.write_raw("/tf", stamp, moving[index].data)
         for robot in topics.robots:
             if robot.joints:
                 bag.write(robot.joint_states_topic, stamp, outgoing.joint_state(
                     bag.types, stamp, robot.joints,
                     [float(values[name][index]) for name in robot.joints]))
+
+
+def _moving_messages(bag: BagWriter, tree: FrameTree, frames: tuple[str, ...],
+                     stamps: NDArray[np.int64], translations: NDArray[np.float64],
+                     quaternions: NDArray[np.float64]) -> NDArray[np.uint8] | None:
+    """The ``/tf`` messages, serialised: the first by rosbags, the others in bulk from it
+    (:mod:`._tf_encoding`); None without moving frames."""
+    if not frames:
+        return None
+    bag.topic("/tf", TF_TYPE)
+    parents = _parents(tree, frames)
+    first = next(outgoing.transforms(bag.types, parents, frames, stamps[:1],
+                                     translations[:, :1], quaternions[:, :1]))
+    return encode_tf_messages(bag.serialise(first, TF_TYPE), bag.ros_version, parents, frames,
+                              stamps, translations, quaternions)
 
 
 def _parents(tree: FrameTree, frames: tuple[str, ...]) -> list[str]:
