@@ -35,8 +35,7 @@ from .formats.pose_files import write_poses
 from .formats.rosbag import read_rosbag
 from .formats.scene import read_scene, write_scene
 from .formats.trajectory_writer import write_joint_trajectory
-from .formats.urdf import write_urdf
-from .formats.urdf_files import read_urdf
+from .formats.urdf import read_urdf, write_urdf
 from .kinematics import (
     Clearance,
     FrameJacobian,
@@ -52,6 +51,7 @@ from .values.joint import Joint, Mimic
 from .values.joint_trajectory import JointTrack, JointTrajectory
 from .values.pose import Pose
 from .values.pose_stack import PoseStack
+from .values.shapes import Box, Cylinder, Mesh, Sphere
 from .values.spatial_data import SpatialData
 from .values.subsystem import Subsystem
 from .values.timeconv import TimeAxis
@@ -61,8 +61,10 @@ __version__ = "0.1.0"
 __all__ = [
     "ArgumentTypeError",
     "BagWarning",
+    "Box",
     "BrokenMimicWarning",
     "Clearance",
+    "Cylinder",
     "DataNotFoundError",
     "ExtrapolationError",
     "FileFormatError",
@@ -86,6 +88,7 @@ __all__ = [
     "JointTrajectory",
     "JointWithoutSamplesWarning",
     "Limits",
+    "Mesh",
     "Mimic",
     "NameNotFoundError",
     "PinframesError",
@@ -97,6 +100,7 @@ __all__ = [
     "Shape",
     "Snapshot",
     "SpatialData",
+    "Sphere",
     "Subsystem",
     "TargetNotReachedError",
     "TimeAxis",

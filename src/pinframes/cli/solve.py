@@ -71,10 +71,12 @@ def run(args: argparse.Namespace) -> int:
         orientation_tolerance=args.orientation_tolerance, strict=args.strict)
     if args.output is not None:
         write_joint_trajectory(solution, args.output, tree=tree)
-    else:
-        moments = solution.absolute_times
-        write_text(joint_trajectory_csv(solution.seconds if moments is None else moments,
-                                        solution.positions,
+    else:  # timestamps when the solution has a reference time, else seconds
+        moments: np.ndarray | None = solution.absolute_times
+        if moments is None:
+            moments = solution.seconds
+        assert moments is not None  # a solution has a time per sample
+        write_text(joint_trajectory_csv(moments, solution.positions,
                                         urdf_joint_names(tree, solution.joint_names)), None)
     print(f"pinframes: {summary(tree, solution)}", file=sys.stderr)
     return 0

@@ -14,7 +14,11 @@ from ..values.geometry import FrameGeometry
 from ._description import TreeDescription
 from ._model import compile_model
 from ._plan import plan_query
-from ._sampling import path_samplers, sample_configurations, warn_joints_without_samples
+from ._sampling import (
+    path_samplers,
+    sample_configurations,
+    warn_joints_without_samples,
+)
 from .collision.coal_objects import ShapeLoader
 
 __all__ = ["PinocchioTree"]
@@ -54,13 +58,16 @@ class PinocchioTree:
 
     def geometry_model(self, kind: str = "collision",
                        package_dirs: Iterable[str | os.PathLike[str]] = ()) -> pin.GeometryModel:
-        """The URDF links' ``kind`` geometry as a ``pinocchio.GeometryModel`` on this model.
+        """The frames' ``kind`` geometry as a ``pinocchio.GeometryModel`` on this model.
 
         One ``GeometryObject`` per ``<collision>`` (or ``<visual>``) element of every link
-        that has any, named ``FRAME_INDEX`` (``robot/link_2_0``), hanging on the link's frame
-        (``parentFrame``, ``parentJoint`` and the placement in that joint), with the coal
-        object ``pinocchio.buildGeomFromUrdf`` would build (meshes found as
-        ``FrameTree.clearance`` finds them, in ``package_dirs`` first). No collision pairs
+        that has any, and per shape given by ``FrameTree.add_geometry``, named
+        ``FRAME_INDEX`` (``robot/link_2_0``), hanging on its frame (``parentFrame``,
+        ``parentJoint`` and the placement in that joint), with the coal object
+        ``FrameTree.clearance`` measures: ``pinocchio.buildGeomFromUrdf``'s for primitives
+        and STL, OBJ, PLY meshes; COLLADA meshes in the unit their file gives (Pinocchio's
+        loader leaves it out). Meshes are found as the clearance finds them, in
+        ``package_dirs`` first. No collision pairs
         are set: ``addAllCollisionPairs()`` or ``addCollisionPair`` choose them. A mesh
         that is missing or unreadable is a :class:`~pinframes.errors.GeometryError`.
         """
@@ -90,7 +97,7 @@ class PinocchioTree:
         moving thing's keyframe times (one configuration if nothing moves).
         """
         tree, compiled = self._tree, self._compiled
-        samplers, sources = path_samplers(tree, compiled)
+        samplers, sources, resting = path_samplers(tree, compiled)
         plan = plan_query(tree, tree.root, tree.root, times, time_ref, "clamp", sources)
-        warn_joints_without_samples(tree, samplers)
+        warn_joints_without_samples(tree, resting)
         return sample_configurations(compiled, samplers, plan.sample_times, plan.shifts)

@@ -20,6 +20,7 @@ from .._writable import check_writable_tree, refuse_attached_data
 from ..atomic import atomic_write
 from ..limits import Limits
 from ..trajectory_files import joint_trajectory_csv
+from ._geometry import shape_elements
 from ._mount import URDF_METADATA_KEY, mount_robot
 from ._parse import parse_urdf
 
@@ -57,7 +58,9 @@ def write_urdf(tree: FrameTree, path: str | os.PathLike[str], time: Any = None, 
     ``read_joint_trajectory`` reads it back), whenever a joint is driven. With
     ``freeze_joints`` every robot joint becomes a fixed joint at its value then instead,
     and no joint-state file is written. Link contents (visuals, inertials, ``package://``
-    URIs) and unread joint elements are written back as they were read. Data attached to
+    URIs) and unread joint elements are written back as they were read; a frame that is no
+    URDF link gets the shapes ``add_geometry`` gave it as ``<collision>`` and ``<visual>``
+    elements (shapes added to a URDF link are not written). Data attached to
     frames cannot go into a URDF: such a tree is an ``UnsupportedFeatureError`` naming it.
     """
     check_writable_tree(tree, path)
@@ -156,10 +159,16 @@ def _write_joint_state(tree: FrameTree, instant: Snapshot, urdf_path: str | os.P
 
 
 def _link(tree: FrameTree, frame: str) -> ET.Element:
+    """A URDF link's elements as read; a frame that is no link gets its shapes (those of
+    ``add_geometry``) as ``<collision>`` and ``<visual>`` elements."""
     link = ET.Element("link", name=frame)
-    kept = tree.frame_metadata(frame).get(URDF_METADATA_KEY, {})
+    metadata = tree.frame_metadata(frame)
+    kept = metadata.get(URDF_METADATA_KEY, {})
     for text in kept.get("link_xml", ()):
         link.append(ET.fromstring(text))
+    recorded = metadata.get(GEOMETRY_METADATA_KEY)
+    if "link_xml" not in kept and isinstance(recorded, FrameGeometry):
+        link.extend(shape_elements(recorded, frame))
     return link
 
 

@@ -8,13 +8,15 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ...values.timed import Timed
+
 __all__ = ["JointSolution"]
 
 FloatArray = NDArray[np.float64]
 
 
 @dataclass(frozen=True)
-class JointSolution:
+class JointSolution(Timed):
     """Joint values that put a tool frame on its target, sample by sample.
 
     Apply it with ``tree.set_joint_trajectory(sol.seconds, sol.positions,
@@ -50,18 +52,6 @@ class JointSolution:
     position_error: FloatArray
     orientation_error: FloatArray
     reached: NDArray[np.bool_]
-
-    @property
-    def seconds(self) -> FloatArray:
-        """:attr:`times` in seconds (float)."""
-        return self.times.astype(np.int64) / 1e9
-
-    @property
-    def absolute_times(self) -> NDArray[np.datetime64] | None:
-        """``reference_time + times``, or None without a reference time."""
-        if self.reference_time is None:
-            return None
-        return (self.reference_time + self.times).astype("datetime64[ns]")
 
     @property
     def all_reached(self) -> bool:
