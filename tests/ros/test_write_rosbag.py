@@ -168,6 +168,13 @@ def test_mesh_names_in_the_descriptions_are_absolute_and_found(cell, cell_bags):
                              times=(seconds * 1e9).astype("datetime64[ns]"))
     original = cell.clearance("torch", "pipe", geometry="visual", times=seconds)
     np.testing.assert_allclose(written.distance, original.distance, atol=1e-9)
+    # the shapes of frames that are no URDF link (the scene's geometry entries) go out as
+    # one-link robots and come back as such
+    assert "<box" in records["/fixtures/robot_description"][0]["text"]
+    written = back.clearance("robot/link_1", "fixtures",
+                             times=(seconds * 1e9).astype("datetime64[ns]"))
+    original = cell.clearance("robot/link_1", "fixtures", times=seconds)
+    np.testing.assert_allclose(written.distance, original.distance, atol=1e-9)
 
 
 def test_mcap_holds_ros2msg_schemas_and_cdr_messages(cell_bags):

@@ -10,6 +10,9 @@
   systems run them: ``/<name>/robot_description`` and ``/<name>/joint_states``, ``<name>``
   the URDF's robot name (characters other than letters, digits and ``_`` replaced by
   ``_``, ``_2``... added where two robots share a name).
+- A frame that is no URDF link but has shapes recorded on it (``FrameTree.add_geometry``, a
+  scene's geometry entries) goes out as a robot of one link, named after the frame, so that
+  viewers draw its shapes.
 - Every frame is on tf in its parent: on ``/tf_static`` when it never moves there, on
   ``/tf`` otherwise (a keyframed frame, a link of a joint that is not fixed, or a joint
   not from a URDF).
@@ -23,7 +26,8 @@ from dataclasses import dataclass
 
 from ...errors import UnsupportedFeatureError
 from ...tree import FrameTree
-from ..urdf import URDF_METADATA_KEY, robot_links, robot_urdf
+from ...values.geometry import GEOMETRY_METADATA_KEY, FrameGeometry
+from ..urdf import URDF_METADATA_KEY, robot_links, robot_urdf, shapes_urdf
 
 __all__ = ["RobotTopics", "TreeTopics", "tree_topics"]
 
@@ -55,21 +59,27 @@ class TreeTopics:
 
 def tree_topics(tree: FrameTree) -> TreeTopics:
     """What of ``tree`` goes on which topic (see the module docstring)."""
-    roots = [root for root in tree.metadata.get(URDF_METADATA_KEY, {}) if root in tree]
-    namespaces = _namespaces(tree, roots)
-    robots: list[RobotTopics] = []
-    for root, namespace in zip(roots, namespaces, strict=True):
-        links = robot_links(tree, root)
-        joints = tuple(joint.name for link in links
+    robots = tree.metadata.get(URDF_METADATA_KEY, {})
+    roots = [root for root in robots if root in tree]
+    members = {link for root in roots for link in robot_links(tree, root)}
+    shaped = [frame for frame in tree.frames if frame not in members
+              and isinstance(tree.frame_metadata(frame).get(GEOMETRY_METADATA_KEY),
+                             FrameGeometry)]
+    names = [str(robots[root].get("name") or root) for root in roots] + shaped
+    descriptions = [robot_urdf(tree, root) for root in roots]
+    descriptions += [shapes_urdf(tree, frame) for frame in shaped]
+    topics = []
+    for root, namespace, description in zip([*roots, *shaped], _namespaces(names),
+                                            descriptions, strict=True):
+        joints = tuple(joint.name for link in robot_links(tree, root)
                        if (joint := tree.joint_of(link)) is not None and joint.is_actuated)
-        robots.append(RobotTopics(root, f"{namespace}/{DESCRIPTION}",
-                                  f"{namespace}/{JOINT_STATES}", robot_urdf(tree, root), joints))
-    on_tf = tree.frames[1:]
+        topics.append(RobotTopics(root, f"{namespace}/{DESCRIPTION}",
+                                  f"{namespace}/{JOINT_STATES}", description, joints))
     _check_tf_names(tree)
-    static = tuple(frame for frame in on_tf
+    static = tuple(frame for frame in tree.frames[1:]
                    if not tree.is_moving(frame) and tree.joint_of(frame) is None)
-    moving = tuple(frame for frame in on_tf if frame not in set(static))
-    return TreeTopics(static, moving, tuple(robots))
+    moving = tuple(frame for frame in tree.frames[1:] if frame not in set(static))
+    return TreeTopics(static, moving, tuple(topics))
 
 
 def _check_tf_names(tree: FrameTree) -> None:
@@ -82,15 +92,14 @@ def _check_tf_names(tree: FrameTree) -> None:
                 f"{frame.lstrip('/')!r}: rename it", frame=frame, field="name")
 
 
-def _namespaces(tree: FrameTree, roots: list[str]) -> list[str]:
-    """``""`` for a single robot, else ``/<robot name>`` per robot, each once."""
-    if len(roots) <= 1:
-        return [""] * len(roots)
-    robots = tree.metadata[URDF_METADATA_KEY]
+def _namespaces(names: list[str]) -> list[str]:
+    """``""`` for a single robot, else ``/<name>`` per robot, each once."""
+    if len(names) <= 1:
+        return [""] * len(names)
     taken: set[str] = set()
     namespaces = []
-    for root in roots:
-        base = re.sub(r"[^A-Za-z0-9_]", "_", str(robots[root].get("name") or root))
+    for robot in names:
+        base = re.sub(r"[^A-Za-z0-9_]", "_", robot)
         base = base if base[:1].isalpha() else f"robot_{base}"
         name, number = base, 1
         while name in taken:

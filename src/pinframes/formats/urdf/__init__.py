@@ -4,7 +4,14 @@ the URDF format of the registry (a URDF with its joint values beside it)."""
 from ._format import URDF_FORMAT, read_urdf
 from ._mount import DRIVEN_JOINT_TYPES, URDF_METADATA_KEY, mount_robot, mount_urdf
 from ._parse import JointDescription, RobotDescription, is_urdf, parse_urdf
-from ._read_write import joint_state_path, read_robot, robot_links, robot_urdf, write_urdf
+from ._read_write import (
+    joint_state_path,
+    read_robot,
+    robot_links,
+    robot_urdf,
+    shapes_urdf,
+    write_urdf,
+)
 
 __all__ = [
     "DRIVEN_JOINT_TYPES",
@@ -21,5 +28,6 @@ __all__ = [
     "read_urdf",
     "robot_links",
     "robot_urdf",
+    "shapes_urdf",
     "write_urdf",
 ]

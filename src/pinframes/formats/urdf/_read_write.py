@@ -24,7 +24,8 @@ from ._geometry import shape_elements
 from ._mount import URDF_METADATA_KEY, mount_robot
 from ._parse import parse_urdf
 
-__all__ = ["joint_state_path", "read_robot", "robot_links", "robot_urdf", "write_urdf"]
+__all__ = ["joint_state_path", "read_robot", "robot_links", "robot_urdf", "shapes_urdf",
+           "write_urdf"]
 
 
 def read_robot(path: str | os.PathLike[str], *, strict: bool = False,
@@ -117,6 +118,17 @@ def robot_urdf(tree: FrameTree, root_link: str) -> str:
                 f"a link of the robot {kept.get('name') or root_link!r} moves in its parent "
                 "without a joint, which a URDF cannot hold", frame=frame, field="pose")
         robot.append(_joint(tree, frame, at_rest, False, used))
+    return _xml_text(robot)
+
+
+def shapes_urdf(tree: FrameTree, frame: str) -> str:
+    """The URDF text of one link: ``frame`` with the shapes recorded on it
+    (``FrameTree.add_geometry``, a scene's geometry entries), as ``<collision>`` and
+    ``<visual>`` elements; for a frame that is no URDF link."""
+    robot = ET.Element("robot", name=frame)
+    link = _link(tree, frame)
+    _absolute_mesh_names(link, tree.frame_metadata(frame).get(GEOMETRY_METADATA_KEY))
+    robot.append(link)
     return _xml_text(robot)
 
 
