@@ -50,7 +50,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Read, then write."""
-    tree = read_tree(args.input, args.robot_description)
+    tree = read_tree(args.input, args)
     times = times_from_options(args, tree.time_union)
     write_tree(tree, args.output, args.to, schema=args.schema, time=args.time,
                freeze_joints=args.freeze_joints, slash_replacement=args.slash_replacement,

@@ -12,9 +12,11 @@ import numpy as np
 
 from ..formats.rosbag import ROSBAG_METADATA_KEY
 from ..tree import FrameTree
+from ..tree.robot_semantics import semantic_robots
 from ..values.timeconv import format_timestamp_iso
 from ..values.timeline import source_reference
 from ._files import read_tree
+from ._terminal_text import printable
 
 __all__ = ["add_parser", "describe", "describe_json", "run"]
 
@@ -26,7 +28,8 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         description="Print the tree of frames in FILE with each frame's kind (static, "
         "moving, robot joint), the time span of its keyframes or joint samples (seconds "
         "after its reference time) and that reference time, then the subsystems (weldx) "
-        "merged into the tree; for a ROS bag, its topics (used and ignored), the time span "
+        "merged into the tree, the joint groups and group states of robots read with an "
+        "SRDF; for a ROS bag, its topics (used and ignored), the time span "
         "of the stamps used and the joint states no joint took.")
     parser.add_argument("file", metavar="FILE", help="scene, frames.yaml, ASDF or URDF file, "
                         "or a ROS bag (.bag, .mcap, .db3 or a ROS 2 bag folder)")
@@ -37,7 +40,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Print the description of the tree."""
-    tree = read_tree(args.file, args.robot_description)
+    tree = read_tree(args.file, args)
     if args.format == "json":
         sys.stdout.write(json.dumps(describe_json(tree), indent=1) + "\n")
     else:
@@ -81,9 +84,25 @@ def describe_json(tree: FrameTree) -> dict[str, Any]:
         "subsystems": [{"name": s.name, "root": s.root, "members": list(s.members),
                         "parent": s.parent} for s in tree.subsystems],
     }
+    robots = _srdf_robots(tree)
+    if robots:
+        described["srdf"] = robots
     if ROSBAG_METADATA_KEY in tree.metadata:
         described["rosbag"] = tree.metadata[ROSBAG_METADATA_KEY]
     return described
+
+
+def _srdf_robots(tree: FrameTree) -> list[dict[str, Any]]:
+    """Per robot read with an SRDF: its top frame, the file, each group's joints (tree
+    names), the group states and the number of link pairs never checked."""
+    return [{"frame": robot.top, "file": robot.semantics.source,
+             "groups": {group: [name for joint in joints
+                                if (name := robot.joint(tree, joint)) is not None]
+                        for group, joints in robot.semantics.groups.items()},
+             "group_states": {state: value.group
+                              for state, value in robot.semantics.states.items()},
+             "disabled_pairs": len(robot.semantics.disabled_pairs)}
+            for robot in semantic_robots(tree)]
 
 
 def _timestamp(stamp: np.datetime64 | None) -> str | None:
@@ -91,25 +110,32 @@ def _timestamp(stamp: np.datetime64 | None) -> str | None:
 
 
 def describe(tree: FrameTree) -> str:
-    """A text table of the tree: one line per frame, children indented under parents."""
+    """A text table of the tree: one line per frame, children indented under parents; names
+    with characters that do not print show them escaped."""
     reference = "none" if tree.reference_time is None else str(tree.reference_time)
     header = (f"tree {tree.name or '(unnamed)'}: {len(tree)} frames, "
               f"{sum(tree.is_moving(f) for f in tree.frames[1:])} moving, "
               f"{len(tree.joints)} robot joints; reference time {reference}")
-    rows = [("FRAME", "KIND", "TIME SPAN", "REFERENCE TIME")]
+    rows = [["FRAME", "KIND", "TIME SPAN", "REFERENCE TIME"]]
     for prefix, name in _walk(tree, tree.root, "", ""):
-        rows.append((prefix + name, *_frame_columns(tree, name)))
+        rows.append([printable(cell) for cell in (prefix + name, *_frame_columns(tree, name))])
     widths = [max(len(row[column]) for row in rows) for column in range(3)]
-    lines = [header]
+    lines = [printable(header)]
     for row in rows:
         cells = [cell.ljust(width) for cell, width in zip(row[:3], widths, strict=True)]
         lines.append("  ".join([*cells, row[3]]).rstrip())
     for subsystem in tree.subsystems:
         inside = "" if subsystem.parent is None else f", merged into {subsystem.parent}"
-        lines.append(f"subsystem {subsystem.name}: root {subsystem.root}, "
-                     f"{len(subsystem.members)} frames{inside}")
+        lines.append(printable(f"subsystem {subsystem.name}: root {subsystem.root}, "
+                               f"{len(subsystem.members)} frames{inside}"))
+    for robot in _srdf_robots(tree):
+        groups = ", ".join(f"{name!r} ({len(joints)} joints)"
+                           for name, joints in robot["groups"].items()) or "none"
+        states = ", ".join(map(repr, robot["group_states"])) or "none"
+        lines.append(printable(f"srdf of {robot['frame']!r}: groups {groups}; group states "
+                               f"{states}; {robot['disabled_pairs']} link pairs never checked"))
     if ROSBAG_METADATA_KEY in tree.metadata:
-        lines += _bag_lines(tree.metadata[ROSBAG_METADATA_KEY])
+        lines += map(printable, _bag_lines(tree.metadata[ROSBAG_METADATA_KEY]))
     return "\n".join(lines) + "\n"
 
 

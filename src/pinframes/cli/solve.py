@@ -41,9 +41,10 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         "torch: z); only the position and that axis must match (default: the "
                         "whole pose)")
     parser.add_argument("--joints", nargs="+", metavar="J",
-                        help="the joints to solve for, as the tree names them (default: every "
-                        "robot joint between the tool and the lowest common ancestor of the "
-                        "two frames); may name a positioner's joints to solve both together")
+                        help="the joints to solve for, as the tree names them, or one joint "
+                        "group of a robot's SRDF (default: every robot joint between the tool "
+                        "and the lowest common ancestor of the two frames); may name a "
+                        "positioner's joints to solve both together")
     parser.add_argument("--position-tolerance", type=float, default=1e-6, metavar="M",
                         help="metres (default: 1e-6)")
     parser.add_argument("--orientation-tolerance", type=float, default=1e-6, metavar="RAD",
@@ -61,12 +62,12 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Solve, write the CSV, print the summary."""
-    tree = read_tree(args.file)
+    tree = read_tree(args.file, args)
     require_frames(tree, args.file, args.frame, args.target)
     times = requested_times(args, tree, args.frame, args.target)
     solution = tree.solve_joints(
         args.frame, args.target, times=None if times is None else times.as_numpy(),
-        time_ref=args.time_ref, joints=args.joints,
+        time_ref=args.time_ref, joints=_joints_or_group(tree, args.joints),
         free_axis=args.free_axis, position_tolerance=args.position_tolerance,
         orientation_tolerance=args.orientation_tolerance, strict=args.strict)
     if args.output is not None:
@@ -80,6 +81,14 @@ def run(args: argparse.Namespace) -> int:
                                         urdf_joint_names(tree, solution.joint_names)), None)
     print(f"pinframes: {summary(tree, solution)}", file=sys.stderr)
     return 0
+
+
+def _joints_or_group(tree: FrameTree, joints: list[str] | None) -> list[str] | str | None:
+    """``--joints``: joint names, or the name of an SRDF group when it is one name that no
+    joint has."""
+    if joints is not None and len(joints) == 1 and joints[0] not in tree.joints:
+        return joints[0]
+    return joints
 
 
 def summary(tree: FrameTree, solution: JointSolution) -> str:

@@ -2,7 +2,9 @@
 rosbags and tf2's semantics (docs/ros-bags.md), and written with rosbags' writers
 (docs/ros-bags-out.md).
 
-Reading: ``_storage`` (which kind of bag, its raw messages), ``_tf_messages`` (TFMessage
+Reading: ``_storage`` (which kind of bag, its raw messages), ``_inflation`` (compressed
+parts inflated within ``max_decompressed_bytes``), ``_sqlite_schema`` (a ``.db3`` whose
+values SQLite would compute on reading refused), ``_tf_messages`` (TFMessage
 bytes decoded in bulk), ``_messages`` (the types read; JointState and String through
 rosbags), ``_tf_tracks`` (tf2's rules: one track per frame), ``_joint_states`` (samples per
 joint), ``_assembly`` (tracks, robot and joints into a tree), ``_reader`` (``read_rosbag``).
