@@ -56,6 +56,7 @@ from .values.shapes import Box, Cylinder, Mesh, Sphere
 from .values.spatial_data import SpatialData
 from .values.subsystem import Subsystem
 from .values.timeconv import TimeAxis
+from .values.weave import Weave
 
 __version__ = "0.1.0"
 
@@ -109,6 +110,7 @@ __all__ = [
     "TreeStructureError",
     "UnsupportedFeatureError",
     "Velocity",
+    "Weave",
     "WeldProcess",
     "WriteError",
     "__version__",
