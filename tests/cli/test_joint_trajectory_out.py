@@ -65,8 +65,8 @@ def scene(tmp_path: Path) -> Path:
 def test_solution_csv_and_npz_read_back_exactly(scene, tmp_path):
     tree = pinframes.read_scene(scene)
     solution = tree.solve_joints("arm/tool", "target", times=TIMES)
-    assert solution.all_reached
-    np.testing.assert_allclose(solution.positions, np.column_stack([Q1, Q2]), atol=1e-6)
+    assert solution.all_reached  # within 1e-6 m and rad: joint values within a few 1e-6 rad
+    np.testing.assert_allclose(solution.positions, np.column_stack([Q1, Q2]), atol=1e-5)
     for name in ("q.csv", "q.npz"):
         pinframes.write_joint_trajectory(solution, tmp_path / name, tree=tree)
         times, positions, names = pinframes.read_joint_trajectory(tmp_path / name)
