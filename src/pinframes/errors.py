@@ -37,6 +37,7 @@ __all__ = [
     "JointError",
     "JointLimitWarning",
     "JointNotFoundError",
+    "JointSpeedError",
     "JointWithoutSamplesWarning",
     "ManifestWarning",
     "NameNotFoundError",
@@ -164,6 +165,11 @@ class JointNotFoundError(NameNotFoundError, JointError):
     """A robot joint name that the tree does not hold: a :class:`NameNotFoundError` (a
     ``KeyError``) like every missed lookup, and still a :class:`JointError` (a
     ``ValueError``), which unknown joint names raised before."""
+
+
+class JointSpeedError(JointError):
+    """A joint that ``solve_joints(..., strict=True)`` moves faster than its URDF velocity
+    limit allows (the message names the time, the speed and its ratio to the limit)."""
 
 
 class DataNotFoundError(NameNotFoundError):

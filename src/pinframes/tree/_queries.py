@@ -333,7 +333,10 @@ class TreeQueries(TreeStructure):
             target's and its rotation within this many radians.
         strict : bool
             Raise :class:`~pinframes.errors.TargetNotReachedError`, naming the first time
-            not reached and its errors, instead of returning it as not reached.
+            not reached and its errors, instead of returning it as not reached; and
+            :class:`~pinframes.errors.JointSpeedError`, naming the joint, the time and the
+            ratio, where a joint moves faster than its URDF velocity limit (a mimic joint
+            that moves: its own limit).
 
         Returns
         -------
@@ -342,7 +345,8 @@ class TreeQueries(TreeStructure):
             unbounded), the errors and whether the target was reached. Each sample starts
             from the one before, so the solution stays on one branch. A sample out of reach
             holds the closest configuration found, and the solver finds its way back when
-            the target comes back into reach. Apply it with ``set_joint_trajectory(
+            the target comes back into reach. Its ``velocities`` and ``speed_ratio`` say
+            whether the robot can keep up. Apply it with ``set_joint_trajectory(
             sol.seconds, sol.positions, joint_names=sol.joint_names)``.
         """
         self._require(frame, "frame")

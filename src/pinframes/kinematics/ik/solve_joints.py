@@ -40,6 +40,7 @@ from ._newton_tracking import (
 from ._solved_joints import SolvedJoints, solved_joints
 from ._tool_error import AXES, AxisError, PoseError
 from .joint_solution import JointSolution
+from .joint_speeds import require_within_speed, velocity_limits
 
 __all__ = ["evaluate_solve_joints"]
 
@@ -99,12 +100,16 @@ def evaluate_solve_joints(
         parts.append(tracked)
         if strict and not tracked.reached.all():
             _raise_unreached(parts, offsets, timeline.reference, tolerances, frame)
-    return JointSolution(
+    solution = JointSolution(
         solved.names, np.concatenate([part.positions for part in parts]),
         offsets.astype("timedelta64[ns]"), timeline.reference,
         np.concatenate([part.position_error for part in parts]),
         np.concatenate([part.orientation_error for part in parts]),
-        np.concatenate([part.reached for part in parts]))
+        np.concatenate([part.reached for part in parts]),
+        *velocity_limits(solved.names, tree.joints_by_name))
+    if strict:
+        require_within_speed(solution, tree.joints_by_name, frame)
+    return solution
 
 
 def _solved_joints(tree: TreeDescription, model: CompiledModel, joints: Any, frame: str,
