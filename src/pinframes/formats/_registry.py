@@ -86,6 +86,10 @@ class FileFormat:
         For a format whose ``read`` also takes a folder (a ROS 2 bag):
         ``folder_test(path) -> bool``, whether the folder at ``path`` is one. None: the
         format reads files only.
+    near_miss : callable or None
+        ``near_miss(source) -> str or None``: for a text file no format claims, what it is
+        when it is almost in this format and what it lacks (a scene without its
+        ``pinframes_scene`` line), for the message that refuses it.
     """
 
     name: str
@@ -102,6 +106,7 @@ class FileFormat:
     files_read: Callable[[InputFile], list[Path]] | None = None
     kind: str = TREE
     folder_test: Callable[[Path], bool] | None = None
+    near_miss: Callable[[InputFile], str | None] | None = None
 
 
 _FORMATS: dict[tuple[str, str], FileFormat] = {}
@@ -185,6 +190,10 @@ def _format_by_content(source: InputFile, allowed: list[FileFormat]) -> str:
     for entry in allowed:
         if entry.document_test is not None and entry.document_test(source):
             return entry.name
+    for entry in allowed:
+        near = None if entry.near_miss is None else entry.near_miss(source)
+        if near is not None:
+            raise _not_a_tree(source, near, allowed)
     reasons = " nor ".join(f"a {entry.title} ({entry.unrecognised})" for entry in allowed
                            if entry.unrecognised)
     raise _not_a_tree(source, f"YAML or text, but neither {reasons}" if reasons else "text",

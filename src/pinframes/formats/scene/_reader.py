@@ -38,7 +38,7 @@ from ..trajectory_files import read_joint_trajectory
 from ..urdf import RobotDescription, mount_robot, parse_urdf
 
 __all__ = ["SCENE_FORMAT_KEY", "SCENE_FORMAT_VERSION", "is_scene", "read_scene",
-           "scene_files_read"]
+           "scene_files_read", "scene_without_key"]
 
 SCENE_FORMAT_KEY = "pinframes_scene"
 """The top-level key that marks a scene file; its value is the format version."""
@@ -104,6 +104,20 @@ def is_scene(source: InputFile) -> bool:
     key (the content test of the scene format)."""
     content = source.yaml()
     return isinstance(content, dict) and SCENE_FORMAT_KEY in content
+
+
+def scene_without_key(source: InputFile) -> str | None:
+    """What ``source`` is when it is a scene but for its :data:`SCENE_FORMAT_KEY` line: a
+    YAML mapping of scene keys only, with robots, tools, layers or a list of frames."""
+    content = source.yaml()
+    if not isinstance(content, dict) or SCENE_FORMAT_KEY in content or not content or (
+            not set(content) <= _TOP_KEYS):
+        return None
+    if not (isinstance(content.get("frames"), list)
+            or any(key in content for key in ("robots", "tools", "layers"))):
+        return None
+    return (f"a pinframes scene without its first line '{SCENE_FORMAT_KEY}: "
+            f"{SCENE_FORMAT_VERSION}' (add that line and it reads as a scene)")
 
 
 def scene_files_read(source: InputFile) -> list[Path]:
