@@ -31,7 +31,7 @@ from ...values.pose import Pose
 from ...values.rotations import matrix_from_axis_angle
 from ...values.timeconv import parse_timestamp
 from .._paths import regular_file_problem
-from .._registry import detect_format, files_read, read
+from .._registry import detect_format, files_read, read, require_format
 from ..limits import Limits, reader_with_limits
 from ..reading import InputFile
 from ..trajectory_files import read_joint_trajectory
@@ -149,6 +149,7 @@ class _Scene:
         path = source.path
         self.path = path
         self._read: dict[tuple[str, Path, str], Any] = {}
+        require_format(source, "scene")
         content = source.yaml()
         if not isinstance(content, dict) or SCENE_FORMAT_KEY not in content:
             raise FileFormatError(f"not a pinframes scene: the file must start with "
