@@ -26,6 +26,7 @@ from .errors import (
     ReferenceTimeError,
     TargetNotReachedError,
     TreeStructureError,
+    UnitWarning,
     UnsupportedFeatureError,
     WriteError,
 )
@@ -102,6 +103,7 @@ __all__ = [
     "TargetNotReachedError",
     "TimeAxis",
     "TreeStructureError",
+    "UnitWarning",
     "UnsupportedFeatureError",
     "Velocity",
     "WeldProcess",

@@ -46,6 +46,7 @@ __all__ = [
     "ReferenceTimeError",
     "TargetNotReachedError",
     "TreeStructureError",
+    "UnitWarning",
     "UnsupportedFeatureError",
     "WriteError",
     "joint_not_found",
@@ -271,6 +272,12 @@ class GeometryWarning(UserWarning):
 class JointWithoutSamplesWarning(UserWarning):
     """Robot joints evaluated without samples: they hold their rest value
     (:attr:`pinframes.Joint.rest_value`). Issued once until the tree changes."""
+
+
+class UnitWarning(UserWarning):
+    """Numbers of a file that are implausible in pinframes' units (metres, radians): a
+    position hundreds of metres away, an angle over a full turn. The message names the frame,
+    the field and the likely unit (millimetres, degrees)."""
 
 
 class ManifestWarning(UserWarning):

@@ -36,6 +36,7 @@ from ..limits import Limits, reader_with_limits
 from ..reading import InputFile
 from ..trajectory_files import read_joint_trajectory
 from ..urdf import RobotDescription, mount_robot, parse_urdf
+from ._unit_check import UnitCheck
 
 __all__ = ["SCENE_FORMAT_KEY", "SCENE_FORMAT_VERSION", "is_scene", "read_scene",
            "scene_files_read", "scene_without_key"]
@@ -161,6 +162,7 @@ class _Scene:
                 f"{SCENE_FORMAT_VERSION}", file=path, field=SCENE_FORMAT_KEY)
         self._check_keys(content, _TOP_KEYS, None, "")
         self.content = content
+        self._units = UnitCheck(path)
         self.root = self._name(content.get("root", "world"), None, "root")
 
     # -- building --------------------------------------------------------------------------
@@ -185,6 +187,7 @@ class _Scene:
             for entry in ready:
                 self._apply(entry, tree)
             pending = [entry for entry in pending if entry not in ready]
+        self._units.warn()
         return tree
 
     def _apply(self, entry: _Entry, tree: FrameTree) -> None:
@@ -329,12 +332,14 @@ class _Scene:
                     ) -> tuple[np.ndarray | None, np.ndarray]:
         """Rotation (a (3, 3) matrix, or None) and translation (3,) metres."""
         translation = self._numbers(item.get("xyz", (0.0, 0.0, 0.0)), 3, frame, f"{field}.xyz")
+        self._units.lengths(translation, frame, f"{field}.xyz")
         if "rpy" in item and "quaternion" in item:
             raise FileFormatError("give either rpy or quaternion, not both", file=self.path,
                                   frame=frame, field=f"{field}.rpy")
         rotation = None
         if "rpy" in item:
             rpy = self._numbers(item["rpy"], 3, frame, f"{field}.rpy")
+            self._units.angles(rpy, frame, f"{field}.rpy")
             rotation = Pose.from_xyz_rpy(0.0, 0.0, 0.0, *rpy).rotation
         elif "quaternion" in item:
             quaternion = self._numbers(item["quaternion"], 4, frame, f"{field}.quaternion")
@@ -386,6 +391,7 @@ class _Scene:
                                   frame=frame, field=where)
         if "points" in curve:
             points = self._vectors(curve["points"], frame, f"{where}.points")
+            self._units.lengths(points, frame, f"{where}.points")
             if "normals" not in curve:
                 raise FileFormatError("missing", file=self.path, frame=frame,
                                       field=f"{where}.normals")
@@ -431,6 +437,7 @@ class _Scene:
         centre = self._numbers(arc["centre"], 3, frame, f"{field}.centre")
         axis = self._numbers(arc["axis"], 3, frame, f"{field}.axis")
         start = self._numbers(arc["start"], 3, frame, f"{field}.start")
+        self._units.lengths(np.stack([centre, start]), frame, field)
         angle = self._number(arc["angle"], frame, f"{field}.angle")
         count = arc["count"]
         if isinstance(count, bool) or not isinstance(count, int) or count < 2:
