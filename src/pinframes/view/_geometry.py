@@ -88,7 +88,8 @@ def load_geometry(
     """
     kind = "collision" if collision else "visual"
     search_dirs = package_search_dirs(package_dirs)
-    scenes: dict[str, Any] = {}  # mesh file -> its trimesh scene, None when unreadable
+    scenes: dict[str, Any] = {}  # mesh file -> its trimesh scene, None when unreadable or
+    # not found (key: the name and the places searched)
     pieces: list[LinkGeometry] = []
     for frame in tree.frames:
         recorded = tree.frame_metadata(frame).get(GEOMETRY_METADATA_KEY)
@@ -128,8 +129,11 @@ def _triangles(shape: Shape, recorded: FrameGeometry, mesh_files: MeshFiles,
     assert shape.mesh is not None  # a mesh always names its file
     path = mesh_files.find(shape.mesh)
     if path is None:
-        looked = ", ".join(map(str, mesh_files.candidates(shape.mesh)[:4]))
-        _warn(recorded, f"mesh {shape.mesh!r} not found (looked in {looked}); {HOW_TO_SEARCH}")
+        missing = f"not found: {shape.mesh} in {mesh_files.candidates(shape.mesh)}"
+        if missing not in scenes:  # one warning per mesh and search, not one per link
+            scenes[missing] = None
+            _warn(recorded, f"mesh {shape.mesh!r} not found ({mesh_files.looked_in(shape.mesh)}"
+                  f"); {HOW_TO_SEARCH}")
         return []
     key = str(path)
     if key not in scenes:
