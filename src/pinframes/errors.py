@@ -25,6 +25,7 @@ __all__ = [
     "BrokenMimicWarning",
     "DataNotFoundError",
     "ExtrapolationError",
+    "ExtrapolationWarning",
     "FileFormatError",
     "FrameExistsError",
     "FrameNotFoundError",
@@ -272,6 +273,11 @@ class GeometryWarning(UserWarning):
 class JointWithoutSamplesWarning(UserWarning):
     """Robot joints evaluated without samples: they hold their rest value
     (:attr:`pinframes.Joint.rest_value`). Issued once until the tree changes."""
+
+
+class ExtrapolationWarning(UserWarning):
+    """Times outside the samples of a moving frame or joint, where it holds its first or
+    last pose (the command line's ``--extrapolation clamp``)."""
 
 
 class UnitWarning(UserWarning):

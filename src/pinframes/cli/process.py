@@ -15,6 +15,7 @@ import numpy as np
 from ..kinematics import WeldProcess
 from ..tree import FrameTree
 from ._evaluate import add_time_arguments, in_chunks, requested_times, terminal_stderr
+from ._extrapolation import add_extrapolation_argument, check_extrapolation
 from ._files import read_tree, require_frames
 from ._output import write_text
 
@@ -47,6 +48,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     parser.add_argument("--contact-tip", metavar="FRAME",
                         help="the contact tip frame: adds the column ctwd_m (default: none)")
     add_time_arguments(parser)
+    add_extrapolation_argument(parser)
     parser.add_argument("-o", "--output", metavar="OUT",
                         help="write the CSV to this file (default: standard output)")
     parser.set_defaults(run=run)
@@ -73,6 +75,7 @@ def _evaluate(tree: FrameTree, args: argparse.Namespace) -> WeldProcess:
                                  workpiece=args.workpiece, contact_tip=args.contact_tip)
 
     times = requested_times(args, tree, args.torch, args.seam)
+    check_extrapolation(args, tree, [(args.torch, args.seam)], times, args.time_ref)
     time_ref = args.time_ref
     if times is None:
         times = tree.sample_times(args.torch, args.seam)
