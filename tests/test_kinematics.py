@@ -300,8 +300,9 @@ def test_static_paths_and_joints_off_the_path_have_zero_columns():
     jacobian = tree.jacobian("fixture", "world", times=[0.0, 1.0])
     assert jacobian.matrix.shape == (2, 6, 6) and not jacobian.matrix.any()
     # a robot without trajectory still has its Jacobian (at joint values 0)
-    column = tree.jacobian("a/flange", "world", joints=["a/joint_1"]).matrix[0, :, 0]
-    flange = tree.pose("a/flange", "world").translation
+    with pytest.warns(UserWarning, match="no samples"):
+        column = tree.jacobian("a/flange", "world", joints=["a/joint_1"]).matrix[0, :, 0]
+        flange = tree.pose("a/flange", "world").translation
     np.testing.assert_allclose(column, [-flange[1], flange[0], 0, 0, 0, 1], atol=1e-15)
 
 

@@ -90,7 +90,7 @@ def test_the_reader_resolves_relative_imports_and_imports_inside_functions(tmp_p
     assert "pinframes.errors" in graph["pinframes.tree.frame_tree"]
     # `from .formats import asdf` inside __getattr__, seen as the module pinframes.formats.asdf
     assert "pinframes.formats.asdf" in graph["pinframes"]
-    assert "pinframes.kinematics._model" in graph["pinframes.kinematics._path"]
+    assert "pinframes.kinematics._model" in graph["pinframes.kinematics._plan"]
 
 
 def test_every_module_belongs_to_a_layer():

@@ -21,7 +21,7 @@ from hardening.tree_strategies import absolute_trees, trees
 from pinframes import FrameTree, JointWithoutSamplesWarning, Pose
 from pinframes.errors import ExtrapolationError
 from pinframes.kinematics._one_time import FEW_TIMES, MAX_DEGREES_OF_FREEDOM
-from pinframes.kinematics._path import prepare_path
+from pinframes.kinematics._plan import prepare_path
 from pinframes.values.interpolation import Keyframes, Segments, segment_position
 from pinframes.values.joint_trajectory import JointTrajectory
 

@@ -12,6 +12,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 DOCUMENTS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
 # run by CI, or long-running development tools (a 10-minute fuzz run, a fresh venv)
@@ -24,6 +26,7 @@ NOT_RUN_HERE = (
     "PINFRAMES_WELDX_PYTHON=",
     "PYTHONPATH=src .venv/bin/python tests/hardening/fuzz.py",
     ".venv/bin/mypy src",
+    ".venv/bin/python docs/make_api_reference.py",
 )
 # examples that need files or services a checkout does not have: a campaign of recorded runs,
 # a remote Dask scheduler (tests/batch runs pinframes batch on runs it writes itself)
@@ -43,6 +46,7 @@ def test_every_documented_command_is_run_here_or_by_ci():
         assert line.startswith("pinframes ") or line.startswith(NOT_RUN_HERE), line
 
 
+@pytest.mark.slow
 def test_documented_pinframes_commands_run_as_written(tmp_path):
     (tmp_path / "models").symlink_to(ROOT / "models")
     bin_folder = tmp_path / "bin"

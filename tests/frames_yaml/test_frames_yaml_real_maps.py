@@ -8,10 +8,11 @@ import numpy as np
 import pytest
 import yaml
 
+from conftest import SHARED_DATA
 from pinframes import FramesYamlWarning, read_frames_yaml, write_frames_yaml
 from pinframes.errors import FileFormatError
 
-MAPS = Path(__file__).resolve().parents[2] / ".." / "shared" / "data" / "duckietown-maps"
+MAPS = SHARED_DATA / "duckietown-maps"
 FOLDERS = sorted(p.name for p in MAPS.iterdir() if p.is_dir()) if MAPS.is_dir() else []
 MALFORMED = "dt-gui-tools__test"
 

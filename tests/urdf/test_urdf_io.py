@@ -86,7 +86,8 @@ def test_export_keeps_joints_limits_mimic_and_link_contents_and_reloads(tmp_path
     tree.attach_urdf(ARM, "table", Pose.from_xyz_rpy(0, 0, 0.1, 0, 0, 0.3), prefix="a/")
     tree.add("torch", "a/tool", Pose([0, 0, 0.4]))
     path = tmp_path / "cell.urdf"
-    write_urdf(tree, path, time=2.0)
+    with pytest.warns(UserWarning, match="no samples"):
+        write_urdf(tree, path, time=2.0)
     text = path.read_text()
     assert "package://arm/base.dae" in text and 'damping="0.7"' in text
     # wrist = -1 * elbow and elbow = 2 * shoulder + 0.1: one mimic of the driven joint

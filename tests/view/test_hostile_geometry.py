@@ -107,7 +107,8 @@ def test_a_point_cloud_mesh_is_a_warning(tmp_path):
     pieces, said = geometry_and_warnings(urdf)
     assert [piece.source for piece in pieces] == ["box"]
     assert len(said) == 1 and "cloud.obj" in said[0] and "no triangles" in said[0]
-    page = view_html(read_urdf(urdf))  # the page of the robot is made as well
+    with pytest.warns(GeometryWarning, match="no triangles"):
+        page = view_html(read_urdf(urdf))  # the page of the robot is made as well
     assert "pinframes-data" in page
 
 

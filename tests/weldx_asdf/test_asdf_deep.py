@@ -41,6 +41,7 @@ def tip_in_root_by_numpy(depth: int) -> np.ndarray:
     return matrix
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("schema", ["0.1.0", "1.0.0"])
 def test_deepest_supported_chain_round_trips(tmp_path, schema):
     path = tmp_path / "deep.asdf"
@@ -63,6 +64,7 @@ def test_deeper_chain_is_refused_clearly_when_writing_0_1_0(tmp_path):
     assert not path.exists()
 
 
+@pytest.mark.slow
 def test_deeper_chain_written_by_someone_else_is_refused_clearly(tmp_path):
     """asdf itself writes the graph, with Python's recursion limit raised far enough and on a
     thread with a stack large enough (asdf 5 overflows the main thread's C stack)."""

@@ -22,7 +22,7 @@ from ..values.joint import Joint
 from ..values.joint_trajectory import JointTrajectory
 from ..values.pose import Pose
 from ..values.se3 import IDENTITY, Transform, compose, inverse
-from ..values.timeline import TimedSource, source_reference
+from ..values.timeline import source_reference
 
 __all__ = ["ModelJoint", "ModelLayout", "TreeDescription", "paths_to_common_ancestor"]
 
@@ -90,6 +90,11 @@ class TreeDescription:
         The tree's reference time.
     has_frame_references : bool
         Whether the tree's moving frames and joints carry reference times of their own.
+    time_groups : mapping of str to str
+        Per driven joint, the first driven joint whose trajectory has the same times,
+        counted from the same reference time: joints driven together (one
+        ``set_joint_trajectory`` call, a robot's trajectory file) hold equal times arrays,
+        and a query searches their segments once per group.
     """
 
     root: str
@@ -101,15 +106,13 @@ class TreeDescription:
     joint_trajectories: Mapping[str, JointTrajectory]
     reference_time: np.datetime64 | None
     has_frame_references: bool
+    time_groups: Mapping[str, str]
     _anchors: dict[str, tuple[str, Transform]] = field(
         default_factory=dict, init=False, repr=False, compare=False)
     _evaluations: dict[tuple[str, ...], Any] = field(
         default_factory=dict, init=False, repr=False, compare=False)
-    _time_groups: dict[str, str] | None = field(
-        default=None, init=False, repr=False, compare=False)
-    # not empty once this version has warned about joints without samples
-    _warned_joints_without_samples: list[bool] = field(
-        default_factory=list, init=False, repr=False, compare=False)
+    # the warnings this version has given (each is given once per version)
+    _warned: set[str] = field(default_factory=set, init=False, repr=False, compare=False)
 
     @classmethod
     def freeze(
@@ -123,7 +126,8 @@ class TreeDescription:
                    MappingProxyType(dict(local_poses)), MappingProxyType(dict(joints)),
                    MappingProxyType(dict(joints_by_name)),
                    MappingProxyType(dict(joint_trajectories)), reference_time,
-                   has_frame_references)
+                   has_frame_references,
+                   MappingProxyType(_time_groups(joint_trajectories, reference_time)))
 
     @property
     def frames(self) -> list[str]:
@@ -158,18 +162,6 @@ class TreeDescription:
             pose = self.local_poses[frame]
             anchors[frame] = (anchor, compose(placement, (pose.rotation, pose.translation)))
         return anchors[name]
-
-    def frame_source(self, frame: str) -> TimedSource:
-        """The keyframe times of the moving frame ``frame`` and what they count from."""
-        pose = self.local_poses[frame]
-        return TimedSource(frame, pose.keyframes.times,
-                           source_reference(pose.reference_time, self.reference_time))
-
-    def joint_source(self, joint_name: str) -> TimedSource:
-        """The sample times of the driven joint ``joint_name`` and what they count from."""
-        trajectory = self.joint_trajectories[joint_name]
-        return TimedSource(joint_name, trajectory.times,
-                           source_reference(trajectory.reference, self.reference_time))
 
     def path_layout(self, frame: str, relative_to: str) -> Transform | ModelLayout:
         """The path between two frames: the static pose of ``frame`` in ``relative_to``
@@ -216,30 +208,13 @@ class TreeDescription:
         placements = {frame: placed(*self.anchor(frame)) for frame in frames}
         return ModelLayout(root, tuple(joints), placements)
 
-    def time_group(self, joint_name: str) -> str:
-        """The first driven joint whose trajectory has the same times, counted from the
-        same reference time, as ``joint_name``'s.
-
-        Joints driven together (one ``set_joint_trajectory`` call, a robot's trajectory
-        file) hold equal times arrays; a query searches their segments once per group.
-        """
-        groups = self._time_groups
-        if groups is None:
-            groups = {}
-            leaders: list[tuple[str, TimedSource]] = []
-            for name in self.joint_trajectories:
-                source = self.joint_source(name)
-                times = source.times
-                groups[name] = next(
-                    (leader for leader, known in leaders
-                     if known.reference == source.reference
-                     and (known.times is times or (known.times.shape == times.shape
-                                                   and np.array_equal(known.times, times)))),
-                    name)
-                if groups[name] == name:
-                    leaders.append((name, source))
-            object.__setattr__(self, "_time_groups", groups)  # whole, for concurrent queries
-        return groups[joint_name]
+    def first_warning(self, kind: str) -> bool:
+        """True the first time this version is asked about the warning ``kind``: a
+        warning about the tree is given once per version."""
+        if kind in self._warned:
+            return False
+        self._warned.add(kind)
+        return True
 
     def cached(self, key: tuple[str, ...]) -> Any:
         """A prepared query path stored with :meth:`store`, or None."""
@@ -254,6 +229,26 @@ class TreeDescription:
             with contextlib.suppress(KeyError, RuntimeError, StopIteration):
                 self._evaluations.pop(next(iter(self._evaluations)))
         self._evaluations[key] = prepared
+
+
+def _time_groups(trajectories: Mapping[str, JointTrajectory],
+                 tree_reference: np.datetime64 | None) -> dict[str, str]:
+    """Per driven joint, the first one whose trajectory has the same times counted from
+    the same reference time (see :attr:`TreeDescription.time_groups`)."""
+    groups: dict[str, str] = {}
+    leaders: list[tuple[str, JointTrajectory, np.datetime64 | None]] = []
+    for name, trajectory in trajectories.items():
+        times = trajectory.times
+        reference = source_reference(trajectory.reference, tree_reference)
+        groups[name] = next(
+            (leader for leader, known, known_reference in leaders
+             if known_reference == reference
+             and (known.times is times or (known.times.shape == times.shape
+                                           and np.array_equal(known.times, times)))),
+            name)
+        if groups[name] == name:
+            leaders.append((name, trajectory, reference))
+    return groups
 
 
 def paths_to_common_ancestor(

@@ -25,12 +25,10 @@ import pinocchio as pin
 from numpy.typing import NDArray
 
 from ..values.interpolation import FrameInterpolation, JointInterpolation, segment_position
-from ..values.joint import mimic_chain
 from ..values.se3 import Transform
-from ..values.timeline import QueryTimeline
-from ._description import TreeDescription
 from ._model import CompiledModel
-from ._path import PreparedPath
+from ._plan import PreparedPath
+from ._sampling import MovingFrame
 
 __all__ = ["FEW_TIMES", "MAX_DEGREES_OF_FREEDOM", "OneTimePlan", "one_time_plan",
            "takes_few_times"]
@@ -51,11 +49,10 @@ and 4 GB at 400 degrees of freedom; longer paths take the numpy kernels, which n
 such workspace."""
 
 
-def takes_few_times(timeline: QueryTimeline, model: CompiledModel) -> bool:
-    """Whether a query on ``timeline`` through ``model`` is answered here: it has at most
+def takes_few_times(times: NDArray[np.int64] | None, model: CompiledModel) -> bool:
+    """Whether a query at ``times`` through ``model`` is answered here: it has at most
     :data:`FEW_TIMES` evaluation times, or none (nothing on its path is sampled: one
     configuration), and at most :data:`MAX_DEGREES_OF_FREEDOM`."""
-    times = timeline.evaluation_times
     return ((times is None or times.shape[0] <= FEW_TIMES)
             and model.model.nv <= MAX_DEGREES_OF_FREEDOM)
 
@@ -73,7 +70,7 @@ class _MovingFrame:
 class _RobotJoint:
     """A robot joint: driven by the joint ``primary`` (itself unless it mimics one), from
     the interpolation of its ``trajectory``, whose times it shares with the joints of
-    ``time_group`` (see :meth:`TreeDescription.time_group`), or, without one, at ``rest``
+    ``time_group`` (see :attr:`TreeDescription.time_groups`), or, without one, at ``rest``
     (radians or metres); ``mimics`` are the ``(multiplier, offset)`` of the mimic links from
     the primary out to the joint."""
 
@@ -90,41 +87,28 @@ class OneTimePlan:
 
     Parameters
     ----------
-    tree : TreeDescription
-        The tree version the model was compiled from.
-    model : CompiledModel
-        The query's model.
-    frame, relative_to : str
-        The result is the pose of ``frame`` in ``relative_to``.
+    path : PreparedPath
+        A moving path: its model, and how each of its joints is sampled.
     """
 
-    def __init__(
-        self, tree: TreeDescription, model: CompiledModel, frame: str, relative_to: str
-    ) -> None:
+    def __init__(self, path: PreparedPath) -> None:
+        model = path.model
+        assert model is not None, "a static path has no model to evaluate"
         self.model = model
-        self.frame_id = model.frame_ids[frame]
-        self.reference_id = model.frame_ids[relative_to]
+        self.frame_id = model.frame_ids[path.frame]
+        self.reference_id = model.frame_ids[path.relative_to]
         steps: list[_MovingFrame | _RobotJoint] = []
-        for position, joint in enumerate(model.joints):
-            if joint.joint is None:
-                steps.append(_MovingFrame(joint.frame,
-                                           tree.local_poses[joint.frame].keyframes.scheme()))
+        for position, sampler in enumerate(path.samplers):
+            if isinstance(sampler, MovingFrame):
+                steps.append(_MovingFrame(sampler.frame, sampler.keyframes.scheme()))
                 continue
-            chain = mimic_chain(joint.joint, tree.joints_by_name)
-            primary = chain[-1]
-            mimics = tuple((link.mimic.multiplier, link.mimic.offset)
-                           for link in reversed(chain[:-1]) if link.mimic is not None)
-            trajectory = tree.joint_trajectories.get(primary.name)
-            group = "" if trajectory is None else tree.time_group(primary.name)
+            trajectory = sampler.trajectory
             # Pinocchio's joint ids count from 1 (0 is the universe)
             cos_sin = model.model.joints[position + 1].nq == 2
-            steps.append(_RobotJoint(primary.name, None if trajectory is None
-                                     else trajectory.scheme(), group, primary.rest_value,
-                                     mimics, cos_sin))
+            steps.append(_RobotJoint(sampler.primary, None if trajectory is None
+                                     else trajectory.scheme(), sampler.time_group,
+                                     sampler.rest, sampler.mimics, cos_sin))
         self._steps = tuple(steps)
-        self.holds_rest_values = any(isinstance(step, _RobotJoint) and step.trajectory is None
-                                     for step in steps)
-        """Whether a joint on the path has no samples and holds its rest value."""
 
     def poses(self, times: NDArray[np.int64] | None, shifts: dict[str, int]) -> Transform:
         """The pose of the frame in the reference frame at each of ``times`` (timeline
@@ -177,12 +161,10 @@ class OneTimePlan:
         return q
 
 
-def one_time_plan(tree: TreeDescription, path: PreparedPath) -> OneTimePlan:
+def one_time_plan(path: PreparedPath) -> OneTimePlan:
     """The :class:`OneTimePlan` of a moving ``path``, made once and kept with the path."""
     plan = path.plans.get("one time")
     if plan is None:
-        assert path.model is not None, "a static path has no model to evaluate"
-        plan = path.plans["one time"] = OneTimePlan(tree, path.model, path.frame,
-                                                    path.relative_to)
+        plan = path.plans["one time"] = OneTimePlan(path)
     assert isinstance(plan, OneTimePlan)
     return plan

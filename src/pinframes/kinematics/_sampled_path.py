@@ -9,21 +9,19 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from ..values.interpolation import SegmentSearches
 from ..values.se3 import Transform
-from ..values.timeline import QueryTimeline
 from ._description import TreeDescription
 from ._model import CompiledModel
-from ._path import PreparedPath, prepare_path
-from ._sampling import CHUNK, SegmentSearches, sample_joints
-from ._times import basis_shifts, checked_timeline
+from ._plan import QueryPlan
+from ._sampling import KERNEL_CHUNK, JointSampler, sample_joints
 from ._twists import Twist, joint_signs, robot_joint_axes
 
-__all__ = ["PlannedQuery", "SampledPath", "plan_query", "sample_path"]
+__all__ = ["SampledPath", "sample_path", "sampled_parts"]
 
 
 @dataclass(frozen=True)
@@ -35,6 +33,8 @@ class SampledPath:
     ----------
     model : CompiledModel
         The compiled path.
+    samplers : tuple of JointSampler
+        How each of its joints is sampled (:mod:`._sampling`).
     origins : dict of int to array
         Per joint that moves an end (a key of ``signs``), its origin ``p_j`` in ``C``, metres.
     parent_rotations : dict of int to array
@@ -52,6 +52,7 @@ class SampledPath:
     """
 
     model: CompiledModel
+    samplers: tuple[JointSampler, ...]
     origins: dict[int, NDArray[np.float64]]
     parent_rotations: dict[int, NDArray[np.float64]]
     unit_twists: dict[int, Twist]
@@ -62,60 +63,30 @@ class SampledPath:
     searches: SegmentSearches
 
 
-@dataclass(frozen=True)
-class PlannedQuery:
-    """A query's compiled path, its timeline and the result's times."""
-
-    prepared: PreparedPath
-    timeline: QueryTimeline
-    count: int
-    offsets: NDArray[np.int64] | None
-
-    @property
-    def times(self) -> NDArray[np.timedelta64] | None:
-        """Result times after :attr:`reference_time`, ``timedelta64[ns]``; None if static."""
-        return None if self.offsets is None else self.offsets.astype("timedelta64[ns]")
-
-    @property
-    def reference_time(self) -> np.datetime64 | None:
-        return self.timeline.reference
-
-    def chunks(self, tree: TreeDescription) -> Iterator[tuple[slice, SampledPath]]:
-        """The path sampled in slices of at most ``CHUNK`` times (moving paths only)."""
-        prepared, timeline = self.prepared, self.timeline
-        assert prepared.model is not None, "a static path has no model to sample"
-        shifts = basis_shifts(list(prepared.sources), timeline)
-        signs = joint_signs(prepared.model, prepared.frame, prepared.relative_to)
-        times = timeline.evaluation_times
-        if times is None:
-            times = np.zeros(1, dtype=np.int64)
-        for start in range(0, self.count, CHUNK):
-            part = slice(start, start + CHUNK)
-            yield part, sample_path(tree, prepared, signs, shifts, times[part])
+def sampled_parts(tree: TreeDescription, plan: QueryPlan
+                  ) -> Iterator[tuple[slice, SampledPath]]:
+    """The plan's path (a moving one) sampled in slices of at most ``KERNEL_CHUNK`` times, with
+    where each goes in the result."""
+    path = plan.path
+    assert path.model is not None, "a static path has no model to sample"
+    signs = joint_signs(path.model, path.frame, path.relative_to)
+    for part, piece in plan.parts(KERNEL_CHUNK):
+        yield part, sample_path(tree, piece, signs)
 
 
-def plan_query(tree: TreeDescription, frame: str, relative_to: str, times: Any, time_ref: Any,
-               extrapolation: str) -> PlannedQuery:
-    """Compile (or reuse) the path and plan its timeline by the rules of ``pose()``."""
-    prepared = prepare_path(tree, frame, relative_to)
-    timeline = checked_timeline(tree, prepared, times, time_ref, extrapolation)
-    offsets = timeline.result_offsets
-    return PlannedQuery(prepared, timeline, 1 if offsets is None else offsets.shape[0],
-                        offsets)
-
-
-def sample_path(tree: TreeDescription, prepared: PreparedPath, signs: dict[int, float],
-                shifts: dict[str, int], times: NDArray[np.int64]) -> SampledPath:
-    """The path of ``prepared`` (a moving one) at ``times`` (timeline basis).
+def sample_path(tree: TreeDescription, plan: QueryPlan, signs: dict[int, float]
+                ) -> SampledPath:
+    """The plan's path (a moving one) at the plan's times (timeline basis).
 
     Keeps of each joint's frame only what the twists need (its origin, its axis, a
     free-flyer's parent rotation), so that the forward kinematics can let the frames go
     (see :meth:`CompiledModel.joint_frames`).
     """
+    prepared, times = plan.path, plan.sample_times
     model = prepared.model
     assert model is not None, "a static path has no model to sample"
-    searches = SegmentSearches(tree, times, shifts)
-    samples = sample_joints(tree, model, prepared.placed_keyframes, times, shifts, searches)
+    searches = SegmentSearches(times, plan.shifts)
+    samples = sample_joints(prepared.samplers, times, plan.shifts, searches)
     ends = model.frame_parents([prepared.frame, prepared.relative_to])
     # the moving frames' free-flyers below another joint: their twists turn by its rotation
     flyer_parents = {index: joint.parent for index, joint in enumerate(model.joints)
@@ -136,7 +107,7 @@ def sample_path(tree: TreeDescription, prepared: PreparedPath, signs: dict[int, 
                         for index, parent in flyer_parents.items()}
     frame, relative_to = model.frame_placements_in_root(
         kept, [prepared.frame, prepared.relative_to])
-    return SampledPath(model, origins, parent_rotations, unit_twists,
+    return SampledPath(model, prepared.samplers, origins, parent_rotations, unit_twists,
                        (_rotations_first(frame[0]), _vectors_first(frame[1])),
                        (_rotations_first(relative_to[0]), _vectors_first(relative_to[1])),
                        signs, times, searches)

@@ -21,10 +21,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ArgumentTypeError, JointError, joint_not_found
-from ..values.joint import mimic_primary
 from ..values.se3 import IDENTITY
 from ._description import TreeDescription
-from ._sampled_path import SampledPath, plan_query
+from ._plan import plan_query
+from ._sampled_path import SampledPath, sampled_parts
+from ._sampling import DrivenJoint
 from ._twists import Twist, jacobian_columns
 
 __all__ = ["FrameJacobian", "evaluate_jacobian"]
@@ -62,29 +63,27 @@ def evaluate_jacobian(tree: TreeDescription, frame: str, relative_to: str, times
     """``tree.jacobian(...)``; frame names already checked."""
     names = _joint_names(tree, joints, frame)
     column_of = {name: column for column, name in enumerate(names)}
-    planned = plan_query(tree, frame, relative_to, times, time_ref, extrapolation)
-    matrix = np.zeros((planned.count, 6, len(names)))
-    if planned.prepared.static is None:
-        for part, path in planned.chunks(tree):
-            matrix[part] = _columns_in_reference(tree, path, column_of)
-    return FrameJacobian(matrix, tuple(names), planned.times, planned.reference_time)
+    plan = plan_query(tree, frame, relative_to, times, time_ref, extrapolation)
+    matrix = np.zeros((plan.count, 6, len(names)))
+    if plan.path.static is None:
+        for part, path in sampled_parts(tree, plan):
+            matrix[part] = _columns_in_reference(path, column_of)
+    return FrameJacobian(matrix, tuple(names), plan.result_times, plan.reference_time)
 
 
-def _columns_in_reference(tree: TreeDescription, path: SampledPath,
-                          column_of: dict[str, int]) -> FloatArray:
+def _columns_in_reference(path: SampledPath, column_of: dict[str, int]) -> FloatArray:
     """``(N, 6, n)`` Jacobians of one chunk, rows in the axes of the reference frame."""
     count = path.times.shape[0]
     unit_twists: dict[int, Twist] = {}
     targets: dict[int, tuple[int, float]] = {}
-    for position, compiled in enumerate(path.model.joints):
-        if compiled.joint is None or position not in path.signs:
+    for position, sampler in enumerate(path.samplers):
+        if not isinstance(sampler, DrivenJoint) or position not in path.signs:
             continue
-        primary, multiplier = mimic_primary(compiled.joint, tree.joints_by_name)
-        column = column_of.get(primary.name)
+        column = column_of.get(sampler.primary)
         if column is None:
             continue
         unit_twists[position] = path.unit_twists[position]
-        targets[position] = (column, multiplier)
+        targets[position] = (column, sampler.multiplier)
     root_matrix = np.zeros((count, 6, len(column_of)))
     for position, (linear, angular) in jacobian_columns(path.signs, path.origins, unit_twists,
                                                         path.frame[1]).items():

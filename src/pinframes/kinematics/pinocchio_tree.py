@@ -13,9 +13,8 @@ from numpy.typing import NDArray
 from ..values.geometry import FrameGeometry
 from ._description import TreeDescription
 from ._model import compile_model
-from ._path import model_sources
-from ._sampling import sample_configurations
-from ._times import basis_shifts, plan_timeline
+from ._plan import plan_query
+from ._sampling import path_samplers, sample_configurations, warn_joints_without_samples
 from .collision.coal_objects import ShapeLoader
 
 __all__ = ["PinocchioTree"]
@@ -91,10 +90,7 @@ class PinocchioTree:
         moving thing's keyframe times (one configuration if nothing moves).
         """
         tree, compiled = self._tree, self._compiled
-        sources = model_sources(tree, compiled)
-        timeline = plan_timeline(tree, sources, times, time_ref)
-        evaluation_times = timeline.evaluation_times
-        if evaluation_times is None:
-            evaluation_times = np.zeros(1, dtype=np.int64)
-        return sample_configurations(tree, compiled, evaluation_times,
-                                     basis_shifts(sources, timeline))
+        samplers, sources = path_samplers(tree, compiled)
+        plan = plan_query(tree, tree.root, tree.root, times, time_ref, "clamp", sources)
+        warn_joints_without_samples(tree, samplers)
+        return sample_configurations(compiled, samplers, plan.sample_times, plan.shifts)

@@ -11,24 +11,43 @@ moving frames (all tiles of a map relative to a moving robot, say).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 
 from ..errors import InvalidTimeError
-from ..values.pose import Pose
 from ..values.pose_stack import PoseStack
 from ._description import TreeDescription
-from .pose import evaluate_pose
+from ._plan import QueryPlan, plan_query
+from .pose import planned_transforms
 
-__all__ = ["evaluate_poses"]
+__all__ = ["evaluate_poses", "planned_poses"]
 
 
 def evaluate_poses(
     tree: TreeDescription, frames: list[str], references: list[str], times: Any, time_ref: Any,
     extrapolation: str,
 ) -> PoseStack:
-    """``tree.poses(frames, references, times, time_ref)``; names already checked."""
+    """``tree.poses(frames, references, times, time_ref)``; names already checked. Each
+    path between two anchors is planned from the caller's arguments; those that move must
+    share one timeline."""
+    def plan_between(frame: str, relative_to: str) -> QueryPlan:
+        return plan_query(tree, frame, relative_to, times, time_ref, extrapolation)
+    return _stacked_poses(tree, frames, references, plan_between)
+
+
+def planned_poses(tree: TreeDescription, frames: list[str], references: list[str],
+                  plan: QueryPlan) -> PoseStack:
+    """The poses of ``frames`` in ``references`` at the times of ``plan``."""
+    def plan_between(frame: str, relative_to: str) -> QueryPlan:
+        return plan.on(tree, frame, relative_to)
+    return _stacked_poses(tree, frames, references, plan_between)
+
+
+def _stacked_poses(tree: TreeDescription, frames: list[str], references: list[str],
+                   plan_between: Callable[[str, str], QueryPlan]) -> PoseStack:
+    """The poses of the pairs, each path between two anchors planned by ``plan_between``."""
     index = {name: position for position, name in enumerate(dict.fromkeys(frames + references))}
     anchored = [tree.anchor(name) for name in index]
     anchor_index: dict[str, int] = {}
@@ -49,37 +68,35 @@ def evaluate_poses(
     if not moving.any():
         rotation = np.matmul(rotation_b_t, rotation_a)
         translation = np.einsum("nij,nj->ni", rotation_b_t, translation_a - translation_b)
-        if times is None:
+        timeline = plan_between(frames[0], references[0])
+        if timeline.offsets is None:
             return PoseStack(rotation, translation)
-        timeline = evaluate_pose(tree, frames[0], references[0], times, time_ref,
-                                 extrapolation)
-        samples = len(timeline)
+        samples = timeline.count
         return PoseStack(
             np.repeat(rotation[:, None], samples, axis=1),
             np.repeat(translation[:, None], samples, axis=1),
-            timeline._times, timeline.reference_time)
+            timeline.offsets, timeline.reference_time)
     groups, members = np.unique(pair_anchors[moving], return_inverse=True)
-    betweens = []  # per group: its two anchors and the pose of one in the other
+    plans = []  # per group: the path between its two anchors
     for code in groups:
-        anchor_a = anchor_names[code // len(anchor_names)]
-        anchor_b = anchor_names[code % len(anchor_names)]
-        betweens.append((anchor_a, anchor_b, evaluate_pose(tree, anchor_a, anchor_b, times,
-                                                           time_ref, extrapolation)))
+        plans.append(plan_between(anchor_names[code // len(anchor_names)],
+                                  anchor_names[code % len(anchor_names)]))
     # a path through joints without samples, queried without times, holds still: it
     # repeats over the timeline of the paths that move (or the result is static)
-    timed = [entry for entry in betweens if entry[2]._times is not None]
-    shared = timed[0][2] if timed else None
-    for anchor_a, anchor_b, between in timed[1:]:
-        _check_same_timeline(timed[0][2], between, anchor_a, anchor_b)
-    samples = 1 if shared is None else len(shared)
+    timed = [plan for plan in plans if plan.offsets is not None]
+    shared = timed[0] if timed else None
+    for plan in timed[1:]:
+        _check_same_timeline(timed[0], plan)
+    samples = 1 if shared is None else shared.count
     translation = np.empty((count, samples, 3))
     rotation = np.empty((count, samples, 3, 3))
     moving_pairs = np.flatnonzero(moving)
-    for group, (_, _, between) in enumerate(betweens):
+    for group, plan in enumerate(plans):
         pairs = moving_pairs[members == group]
         # inv(P_b) @ M(t) @ P_a for every pair of the group and every time
-        rotation_m = np.broadcast_to(between.rotation, (samples, 3, 3))
-        translation_m = np.broadcast_to(between.translation, (samples, 3))
+        between_rotation, between_translation = planned_transforms(tree, plan)
+        rotation_m = np.broadcast_to(between_rotation, (samples, 3, 3))
+        translation_m = np.broadcast_to(between_translation, (samples, 3))
         placed = np.matmul(rotation_m[None], rotation_a[pairs, None])
         rotation[pairs] = np.matmul(rotation_b_t[pairs, None], placed)
         moved = np.einsum("tij,pj->pti", rotation_m, translation_a[pairs])
@@ -91,13 +108,14 @@ def evaluate_poses(
                                     translation_a[static] - translation_b[static])[:, None]
     if shared is None:
         return PoseStack(rotation[:, 0], translation[:, 0])
-    return PoseStack(rotation, translation, shared._times, shared.reference_time)
+    return PoseStack(rotation, translation, shared.offsets, shared.reference_time)
 
 
-def _check_same_timeline(first: Pose, other: Pose, anchor_a: str, anchor_b: str) -> None:
-    same = (first.reference_time == other.reference_time and first._times is not None
-            and other._times is not None and np.array_equal(first._times, other._times))
+def _check_same_timeline(first: QueryPlan, other: QueryPlan) -> None:
+    same = (first.reference_time == other.reference_time and first.offsets is not None
+            and other.offsets is not None and np.array_equal(first.offsets, other.offsets))
     if not same:
+        anchor_a, anchor_b = other.path.frame, other.path.relative_to
         raise InvalidTimeError(
             f"the pairs move on different timelines (the path from {anchor_a!r} to "
             f"{anchor_b!r} has other times or another reference time than the first moving "

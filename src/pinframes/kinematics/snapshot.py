@@ -13,10 +13,15 @@ from typing import Any
 import numpy as np
 
 from ..errors import InvalidTimeError
-from ..values.joint import mimic_chain
 from ._description import TreeDescription
-from ._sampling import SegmentSearches, sample_joint_values
-from ._times import basis_shifts, plan_timeline
+from ._plan import plan_query
+from ._sampling import (
+    frame_source,
+    joint_sampler,
+    joint_source,
+    sample_joints,
+    warn_joints_without_samples,
+)
 
 __all__ = ["Snapshot", "snapshot"]
 
@@ -40,23 +45,24 @@ class Snapshot:
 
 def snapshot(tree: TreeDescription, time: Any, time_ref: Any = None) -> Snapshot:
     """The tree at ``time`` (None only for a tree in which nothing moves)."""
-    sources = [tree.frame_source(frame) for frame, pose in tree.local_poses.items()
+    sources = [frame_source(tree, frame) for frame, pose in tree.local_poses.items()
                if pose.is_time_dependent]
-    sources += [tree.joint_source(name) for name in tree.joint_trajectories]
+    sources += [joint_source(tree, name) for name in tree.joint_trajectories]
     if time is None and sources:
         raise InvalidTimeError("parts of the tree move (" + ", ".join(
             s.name for s in sources) + "); give the time to take them at", field="time")
-    timeline = plan_timeline(tree, sources, None if time is None else [time], time_ref)
-    times = timeline.evaluation_times
-    searches = SegmentSearches(tree, times, basis_shifts(sources, timeline))
-    for joint in tree.joints_by_name.values():
-        mimic_chain(joint, tree.joints_by_name)  # a JointError for a mimic of a missing joint
-    cache: dict[str, Any] = {}
-    values = {name: float(np.ravel(sample_joint_values(tree, joint, searches, cache))[0])
-              for name, joint in tree.joints_by_name.items()}
+    plan = plan_query(tree, tree.root, tree.root, None if time is None else [time], time_ref,
+                      "clamp", sources)
+    times = plan.times
+    # a JointError for a mimic of a missing joint
+    samplers = [joint_sampler(tree, joint) for joint in tree.joints_by_name.values()]
+    warn_joints_without_samples(tree, samplers)
+    samples = sample_joints(samplers, times, plan.shifts)
+    values = {sampler.name: float(np.ravel(sample)[0])
+              for sampler, sample in zip(samplers, samples, strict=True)}
     if times is None:
         return Snapshot(None, values)
-    if timeline.absolute:
+    if plan.timeline.absolute:
         return Snapshot(np.datetime64(int(times[0]), "ns"), values)
     return Snapshot(np.timedelta64(int(times[0]), "ns"), values)
 

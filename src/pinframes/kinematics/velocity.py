@@ -18,17 +18,16 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..values.joint import Joint, mimic_primary
+from ..values.interpolation import SegmentSearches
 from ..values.se3 import IDENTITY
-from ..values.timeconv import TimeAxis
 from ._description import TreeDescription
-from ._path import PreparedPath
-from ._sampled_path import PlannedQuery, SampledPath, plan_query
-from ._sampling import SegmentSearches
+from ._plan import QueryPlan, plan_query
+from ._sampled_path import SampledPath, sampled_parts
+from ._sampling import DrivenJoint, MovingFrame
 from ._twists import Twist, rotate, velocity_sum
-from .pose import evaluate_pose
+from .pose import planned_transforms
 
-__all__ = ["Velocity", "evaluate_velocity", "joint_rates"]
+__all__ = ["Velocity", "evaluate_velocity", "joint_rates", "planned_velocity"]
 
 FloatArray = NDArray[np.float64]
 
@@ -68,44 +67,42 @@ class Velocity:
 def evaluate_velocity(tree: TreeDescription, frame: str, relative_to: str, times: Any,
                       time_ref: Any, extrapolation: str, expressed_in: str) -> Velocity:
     """``tree.velocity(...)``; frame names already checked."""
-    planned = plan_query(tree, frame, relative_to, times, time_ref, extrapolation)
-    linear, angular = np.zeros((planned.count, 3)), np.zeros((planned.count, 3))
-    if planned.prepared.static is None:
-        for part, path in planned.chunks(tree):
-            linear_c, angular_c = _velocity_in_root(tree, planned.prepared, path)
+    return planned_velocity(tree, plan_query(tree, frame, relative_to, times, time_ref,
+                                             extrapolation), expressed_in)
+
+
+def planned_velocity(tree: TreeDescription, plan: QueryPlan, expressed_in: str) -> Velocity:
+    """The velocity of the plan's frame relative to its reference frame at the plan's
+    times, in the axes of ``expressed_in``."""
+    frame, relative_to = plan.path.frame, plan.path.relative_to
+    linear, angular = np.zeros((plan.count, 3)), np.zeros((plan.count, 3))
+    if plan.path.static is None:
+        for part, path in sampled_parts(tree, plan):
+            linear_c, angular_c = _velocity_in_root(path)
             axes = (path.frame if expressed_in == frame else path.relative_to)[0]
             if axes is not IDENTITY[0]:  # the root's own axes need no turn
                 rotation_t = np.swapaxes(axes, -1, -2)
                 linear_c, angular_c = rotate(rotation_t, linear_c), rotate(rotation_t, angular_c)
             linear[part], angular[part] = linear_c, angular_c
     # without times a static path has one velocity, zero in any axes
-    if expressed_in not in (frame, relative_to) and planned.offsets is not None:
-        rotation_t = np.swapaxes(_orientation(tree, expressed_in, relative_to, planned), 1, 2)
+    if expressed_in not in (frame, relative_to) and plan.offsets is not None:
+        # the axes at the same times, whatever the policy: the path was checked
+        axes_plan = plan.on(tree, expressed_in, relative_to, extrapolation="clamp")
+        rotation_t = np.swapaxes(planned_transforms(tree, axes_plan)[0], 1, 2)
         linear, angular = rotate(rotation_t, linear), rotate(rotation_t, angular)
-    return Velocity(linear, angular, planned.times, planned.reference_time, frame,
+    return Velocity(linear, angular, plan.result_times, plan.reference_time, frame,
                     relative_to, expressed_in)
 
 
-def _orientation(tree: TreeDescription, other: str, relative_to: str, planned: PlannedQuery
-                 ) -> FloatArray:
-    """Rotations ``(T, 3, 3)`` of ``other`` in ``relative_to`` at the result's times."""
-    assert planned.offsets is not None  # a query at times
-    reference = planned.reference_time
-    return evaluate_pose(tree, other, relative_to,
-                         TimeAxis(planned.offsets, reference).as_numpy(), reference,
-                         "clamp").rotation
-
-
-def _velocity_in_root(tree: TreeDescription, prepared: PreparedPath, path: SampledPath
-                      ) -> tuple[FloatArray, FloatArray]:
+def _velocity_in_root(path: SampledPath) -> tuple[FloatArray, FloatArray]:
     """``(v, w)`` of the frame relative to the reference frame, in the root's axes."""
     twists: dict[int, Twist] = {}
-    for position, joint in enumerate(path.model.joints):
-        keyframes = prepared.placed_keyframes[position]
+    for position, sampler in enumerate(path.samplers):
         if position not in path.signs:
             continue
-        if keyframes is not None:  # a moving frame's free-flyer
-            segments = path.searches.of_frame(joint.frame, keyframes.times)
+        if isinstance(sampler, MovingFrame):  # a moving frame's free-flyer
+            keyframes = sampler.placed
+            segments = path.searches.of_frame(sampler.frame, keyframes.times)
             linear, angular = keyframes.rates(segments.times, segments)
             parent_rotation = path.parent_rotations.get(position)
             if parent_rotation is not None:
@@ -113,7 +110,7 @@ def _velocity_in_root(tree: TreeDescription, prepared: PreparedPath, path: Sampl
                 angular = rotate(parent_rotation, angular)
             twists[position] = (linear, angular)
             continue
-        rates = None if joint.joint is None else joint_rates(tree, joint.joint, path.searches)
+        rates = joint_rates(sampler, path.searches)
         if rates is not None:
             sliding, turning = path.unit_twists[position]
             twists[position] = (None if sliding is None else sliding * rates[:, None],
@@ -121,14 +118,12 @@ def _velocity_in_root(tree: TreeDescription, prepared: PreparedPath, path: Sampl
     return velocity_sum(path.signs, path.origins, twists, path.frame[1])
 
 
-def joint_rates(tree: TreeDescription, joint: Joint, searches: SegmentSearches
-                ) -> FloatArray | None:
+def joint_rates(joint: DrivenJoint, searches: SegmentSearches) -> FloatArray | None:
     """Velocities (N,) of ``joint`` at the times of ``searches``, rad/s or m/s: its
     trajectory's, or its mimic primary's times the product of the multipliers; None when
     no trajectory drives it."""
-    primary, multiplier = mimic_primary(joint, tree.joints_by_name)
-    trajectory = tree.joint_trajectories.get(primary.name)
+    trajectory = joint.trajectory
     if trajectory is None:
         return None
-    segments = searches.of_joint(primary.name, trajectory.times)
-    return multiplier * trajectory.rates(segments.times, segments)
+    segments = searches.of_joints(joint.time_group, joint.primary, trajectory.times)
+    return joint.multiplier * trajectory.rates(segments.times, segments)

@@ -1,6 +1,6 @@
 """``FrameTree.weld_process``: the welding process a torch produces along a seam, per sample.
 
-The terms are the welders' own (SPEC section 9). The seam frame sits at the weld point: x
+The terms are the welders' own (docs/welding-process.md). The seam frame sits at the weld point: x
 along the travel direction, z the work surface's normal pointing out of the material,
 y = z x x. The torch frame is the tool centre point; its z axis is the wire axis, from the
 torch toward the work. With ``a`` the torch z axis and ``p`` the torch origin, both in seam
@@ -27,8 +27,9 @@ from numpy.typing import NDArray
 
 from ..errors import InvalidTimeError
 from ._description import TreeDescription
-from .pose import evaluate_pose
-from .velocity import evaluate_velocity
+from ._plan import QueryPlan, plan_query
+from .pose import planned_transforms
+from .velocity import planned_velocity
 
 __all__ = ["WeldProcess", "evaluate_weld_process"]
 
@@ -37,7 +38,7 @@ FloatArray = NDArray[np.float64]
 
 @dataclass(frozen=True)
 class WeldProcess:
-    """The welding process of ``torch`` along ``seam``, per sample (SPEC section 9).
+    """The welding process of ``torch`` along ``seam``, per sample (docs/welding-process.md).
 
     Attributes
     ----------
@@ -96,24 +97,16 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
     The times are those of ``pose(torch, relative_to=seam, times, time_ref)``; the velocity
     and the contact tip are evaluated at exactly those times.
     """
-    torch_in_seam = evaluate_pose(tree, torch, seam, times, time_ref, extrapolation)
-    rotation = np.reshape(torch_in_seam.rotation, (-1, 3, 3))
-    origin = np.reshape(torch_in_seam.translation, (-1, 3))
-    same_times, same_ref = torch_in_seam.times, torch_in_seam.reference_time
-    if same_times is not None and same_ref is not None:
-        same_times = same_ref + same_times
+    plan = plan_query(tree, torch, seam, times, time_ref, extrapolation)
+    rotation, origin = planned_transforms(tree, plan)
     # in the torch's own axes (no second pose query), then turned into the seam's by the
     # rotation of the torch in the seam: R_ts R_tw^T = R_sw^T
-    velocity = evaluate_velocity(tree, torch, workpiece, same_times, same_ref, extrapolation,
-                                 torch)
-    _require_same_count(len(velocity), origin.shape[0], torch, workpiece, seam)
+    velocity = planned_velocity(tree, _same_times(tree, plan, torch, workpiece), torch)
     along_seam = np.einsum("tj,tj->t", rotation[:, 0, :], velocity.linear)
     wire = rotation[:, :, 2]  # the torch z axis in seam axes
     ctwd = None
     if contact_tip is not None:
-        tip_in_torch = np.reshape(evaluate_pose(tree, contact_tip, torch, same_times, same_ref,
-                                                extrapolation).translation, (-1, 3))
-        _require_same_count(tip_in_torch.shape[0], origin.shape[0], contact_tip, torch, seam)
+        tip_in_torch = planned_transforms(tree, _same_times(tree, plan, contact_tip, torch))[1]
         tip = np.einsum("tij,tj->ti", rotation, tip_in_torch) + origin
         toward_work = -wire[:, 2]
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -124,8 +117,8 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
         work_angle=np.arctan2(-wire[:, 2], -wire[:, 1]),
         offset=origin,
         ctwd=ctwd,
-        times=torch_in_seam.times,
-        reference_time=torch_in_seam.reference_time,
+        times=plan.result_times,
+        reference_time=plan.reference_time,
         torch=torch,
         seam=seam,
         workpiece=workpiece,
@@ -133,10 +126,13 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
     )
 
 
-def _require_same_count(count: int, expected: int, frame: str, other: str, seam: str) -> None:
-    """Without times, a static torch-to-seam path gives one sample: ``frame`` must not move
-    relative to ``other`` then, or the samples would not line up."""
-    if count != expected:
+def _same_times(tree: TreeDescription, plan: QueryPlan, frame: str, other: str) -> QueryPlan:
+    """The path from ``frame`` to ``other`` at the times of the torch in the seam. Without
+    times, a static torch-to-seam path gives one sample: ``frame`` must not move relative
+    to ``other`` then, or the samples would not line up."""
+    same = plan.on(tree, frame, other)
+    if plan.times is None and same.path.sources:
         raise InvalidTimeError(
             f"{frame!r} moves relative to {other!r} while nothing moves between the torch and "
-            f"the seam {seam!r}: give times", field="times")
+            f"the seam {plan.path.relative_to!r}: give times", field="times")
+    return same

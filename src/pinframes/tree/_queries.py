@@ -79,7 +79,7 @@ class TreeQueries(TreeStructure):
     ) -> Pose:
         """The pose of ``frame`` in ``relative_to`` (default: its parent).
 
-        Follows weldx ``CoordinateSystemManager.get_cs`` (SPEC section 4): every moving
+        Follows weldx ``CoordinateSystemManager.get_cs`` (docs/time-semantics.md): every moving
         frame and joint on the path is interpolated onto one timeline first (translation
         linear, rotation SLERP), then Pinocchio's kinematics composes the path.
 
@@ -100,7 +100,8 @@ class TreeQueries(TreeStructure):
         Returns
         -------
         Pose
-            One pose per requested time; ``reference_time`` set by the rules of SPEC 4.
+            One pose per requested time; ``reference_time`` set by the rules of
+            docs/time-semantics.md.
         """
         self._require(frame, "frame")
         relative_to = self._default_reference(frame, relative_to)
@@ -238,7 +239,9 @@ class TreeQueries(TreeStructure):
         workpiece: str | None = None, contact_tip: str | None = None,
         extrapolation: str = "clamp",
     ) -> WeldProcess:
-        """The welding process ``torch`` produces along ``seam``, per sample (SPEC section 9).
+        """The welding process ``torch`` produces along ``seam``, per sample.
+
+        The terms are defined in docs/welding-process.md.
 
         ``seam`` is a frame at the weld point with x along the travel direction and z the
         surface normal out of the material (:meth:`Pose.along_curve` makes one); ``torch``
@@ -387,7 +390,7 @@ class TreeQueries(TreeStructure):
         its URDF links' geometry (:meth:`PinocchioTree.geometry_model`).
 
         Beware: Pinocchio's ``createData`` grows with the cube of the number of joints
-        (SPEC section 5); :meth:`pose` never builds such a model.
+        (50 free-flyer joints: seconds and gigabytes); :meth:`pose` never builds such a model.
         """
         recorded = {frame: geometry for frame in self._children
                     if (geometry := self._recorded_geometry(frame)) is not None}

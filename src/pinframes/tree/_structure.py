@@ -1,12 +1,12 @@
 """`TreeStructure`: what a frame tree holds, and every edit of it.
 
 The frames (a parent each, every parent before its children), their poses in their parents,
-robot joints and their trajectories, the count of reference times behind SPEC 4's rule
-(moving frames all with a reference time or all without), frame metadata, the table of
-attached data and the subsystems. Every edit checks its input first and leaves the tree as it
-was when it fails; the immutable :class:`TreeDescription` that the kinematics reads is built
-once per version (:meth:`TreeStructure._frozen`). :class:`~pinframes.FrameTree` adds the
-queries, the data and the whole-tree operations on top.
+robot joints and their trajectories, the count of reference times behind the rule of
+docs/time-semantics.md (moving frames all with a reference time or all without), frame
+metadata, the table of attached data and the subsystems. Every edit checks its input first and
+leaves the tree as it was when it fails; the immutable :class:`TreeDescription` that the
+kinematics reads is built once per version (:meth:`TreeStructure._frozen`).
+:class:`~pinframes.FrameTree` adds the queries, the data and the whole-tree operations on top.
 """
 
 from __future__ import annotations

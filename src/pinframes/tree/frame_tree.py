@@ -38,7 +38,7 @@ class FrameTree(TreeQueries):
         Name of the tree (weldx calls it the hierarchy's name).
     reference_time : None or timestamp
         Reference time of the tree: relative keyframe times of frames without their own
-        reference time count from it, and query results use it (SPEC section 4).
+        reference time count from it, and query results use it (docs/time-semantics.md).
 
     Every frame other than the root has a parent and a pose in that parent: static, moving
     (a time-dependent :class:`Pose`) or driven by a robot :class:`Joint`.

@@ -1,7 +1,7 @@
 """Whole-tree time helpers, as weldx's ``time_union`` and ``interp_time`` of a hierarchy.
 
 Keyframes of a moving frame without a reference time of its own, and joint samples likewise,
-count from the tree's reference time (SPEC section 4).
+count from the tree's reference time (docs/time-semantics.md).
 """
 
 from __future__ import annotations
@@ -40,7 +40,7 @@ def time_union(tree: TreeStructure, frames: Iterable[str] | None = None) -> Time
             sources.extend(
                 TimedSource(frame, times, source_reference(own, tree.reference_time))
                 for times, own in _frame_samples(tree, frame))
-    # the default times of a query through all of them (SPEC 4, values.timeline)
+    # the default times of a query through all of them (docs/time-semantics.md, values.timeline)
     timeline = plan_query_timeline(sources, None, None, tree.reference_time, False)
     offsets = timeline.result_offsets
     return None if offsets is None else TimeAxis(offsets, timeline.reference)

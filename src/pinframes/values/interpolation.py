@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 from abc import ABC, abstractmethod
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import ClassVar
 
@@ -35,7 +36,8 @@ from .rotations import matrix_rows_from_quaternion, quaternion_from_matrix
 from .se3 import IDENTITY, Transform, to_stacks
 
 __all__ = ["DEFAULT_FRAME_INTERPOLATION", "DEFAULT_JOINT_INTERPOLATION", "FrameInterpolation",
-           "JointInterpolation", "Keyframes", "LinearSlerp", "LinearValues", "Segments",
+           "JointInterpolation", "Keyframes", "LinearSlerp", "LinearValues", "SegmentSearches",
+           "Segments",
            "rotation_steps", "segment_indices", "segment_position"]
 
 FloatArray = NDArray[np.float64]
@@ -106,6 +108,47 @@ class Segments:
                 inverse[(times < sample_times[0]) | (times > sample_times[-1])] = 0.0
                 self._inverse_duration = inverse
         return self._inverse_duration
+
+
+class SegmentSearches:
+    """Where one set of times (a query's timeline basis, ns) falls among the samples of
+    the moving things it takes: one :class:`Segments` per moving frame and one per group
+    of driven joints with equal sample times, shared by everything taken at those times
+    (poses, joint values, and their rates).
+
+    ``shifts`` holds, per moving thing, what to subtract from a timeline time to land on its
+    own time basis.
+
+    Attributes
+    ----------
+    times : ndarray of int64 or None
+        The times; None for a path on which nothing is sampled.
+    """
+
+    __slots__ = ("_found", "_shifts", "times")
+
+    def __init__(self, times: NDArray[np.int64] | None, shifts: Mapping[str, int]) -> None:
+        self.times = times
+        self._shifts = shifts
+        self._found: dict[tuple[str, str], Segments] = {}
+
+    def of_frame(self, frame: str, keyframe_times: NDArray[np.int64]) -> Segments:
+        """The times among the keyframes of the moving frame ``frame`` (its own basis)."""
+        return self._search(("frame", frame), frame, keyframe_times)
+
+    def of_joints(self, time_group: str, joint: str, sample_times: NDArray[np.int64]
+                  ) -> Segments:
+        """The times among the samples of the driven ``joint`` of ``time_group`` (joints
+        whose trajectories share their times; its own basis)."""
+        return self._search(("joints", time_group), joint, sample_times)
+
+    def _search(self, key: tuple[str, str], source: str, sample_times: NDArray[np.int64]
+                ) -> Segments:
+        found = self._found.get(key)
+        if found is None:
+            assert self.times is not None  # a moving thing is sampled: the query has times
+            found = self._found[key] = Segments(sample_times, self.times - self._shifts[source])
+        return found
 
 
 def segment_position(sample_times: NDArray[np.int64], time: int) -> tuple[int, float]:

@@ -11,9 +11,9 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import PinframesError
+from ..errors import InvalidPoseError, PinframesError
 
-__all__ = ["float_array", "require_finite_result"]
+__all__ = ["float_array", "require_finite_pose", "require_finite_result"]
 
 
 def float_array(values: ArrayLike, field: str, error: type[PinframesError], *,
@@ -48,6 +48,15 @@ def require_finite_result(array: NDArray[np.float64], what: str,
     if not _all_finite(array):
         raise error(f"{what} overflows double precision (beyond about 1.8e308): the values "
                     "combined are finite but too large", frame=frame, field=field)
+
+
+def require_finite_pose(translation: NDArray[np.float64], frame: str, relative_to: str
+                        ) -> None:
+    """An :class:`~pinframes.errors.InvalidPoseError` naming the frame when the pose of
+    ``frame`` in ``relative_to``, composed from finite poses, overflowed to infinity or NaN
+    (two translations of 1e308 m)."""
+    require_finite_result(translation, f"the pose of {frame!r} in {relative_to!r}",
+                          InvalidPoseError, frame=frame, field="translation")
 
 
 _FEW = 64

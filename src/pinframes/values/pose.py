@@ -397,8 +397,8 @@ class Pose:
         reference time, else the first of absolute ``times``. Outside its keyframes a pose
         is held at the first or last keyframe.
         """
-        # the rules of a tree query (SPEC 4) with this pose as the one moving thing; a
-        # time_ref is never ambiguous here, as for a tree whose frames have references
+        # the rules of a tree query (docs/time-semantics.md) with this pose as the one moving
+        # thing; a time_ref is never ambiguous here, as for a tree whose frames have references
         timeline = plan_query_timeline(self._sources(), parse_time_axis(times), time_ref,
                                        None, True)
         offsets = timeline.result_offsets

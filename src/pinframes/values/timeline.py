@@ -1,19 +1,20 @@
 """Which times a query is evaluated at, and which reference time its result carries.
 
-Implements the weldx ``CoordinateSystemManager.get_cs`` rules (SPEC section 4). All times
+Implements the weldx ``CoordinateSystemManager.get_cs`` rules (docs/time-semantics.md). All times
 here are int64 nanoseconds: *offsets* relative to a reference, or *absolute* nanoseconds
 since the epoch when any reference time is involved.
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import InvalidTimeError, ReferenceTimeError
+from ..errors import ExtrapolationError, InvalidTimeError, ReferenceTimeError
 from .timeconv import TimeAxis, parse_timestamp, shift_ns, timestamp_ns
 
 __all__ = ["QueryTimeline", "TimedSource", "plan_query_timeline", "source_reference"]
@@ -22,7 +23,7 @@ __all__ = ["QueryTimeline", "TimedSource", "plan_query_timeline", "source_refere
 def source_reference(own: np.datetime64 | None, tree_reference: np.datetime64 | None
                      ) -> np.datetime64 | None:
     """What the times of a moving frame or a driven joint count from: its own reference
-    time, else its tree's (SPEC section 4); None when neither has one."""
+    time, else its tree's (docs/time-semantics.md); None when neither has one."""
     return own if own is not None else tree_reference
 
 
@@ -64,6 +65,31 @@ class QueryTimeline:
     absolute: bool
     reference: np.datetime64 | None
 
+    def shifts(self, sources: Iterable[TimedSource]) -> dict[str, int]:
+        """Per source, what to subtract from a time of this timeline (ns) to land on the
+        source's own time basis."""
+        absolute = self.absolute
+        return {source.name: (timestamp_ns(source.reference)
+                              if absolute and source.reference is not None else 0)
+                for source in sources}
+
+    def require_within(self, sources: Iterable[TimedSource], times: NDArray[np.int64]
+                       ) -> None:
+        """An :class:`~pinframes.errors.ExtrapolationError` naming the source when
+        ``times`` (on this timeline) reach before a source's first sample or after its
+        last (``extrapolation='error'``)."""
+        first, last = times.min(), times.max()
+        for source in sources:
+            samples = source.on_basis(self.absolute)
+            early, late = samples[0] - first, last - samples[-1]
+            if early > 0 or late > 0:
+                sides = ([f"{early / 1e9:.9g} s before its first keyframe"] if early > 0
+                         else []) + ([f"{late / 1e9:.9g} s after its last keyframe"]
+                                     if late > 0 else [])
+                raise ExtrapolationError(
+                    f"requested times reach {' and '.join(sides)} (extrapolation='error')",
+                    frame=source.name, field="times")
+
     @property
     def result_offsets(self) -> NDArray[np.int64] | None:
         """Times of the result relative to :attr:`reference`."""
@@ -86,7 +112,7 @@ def plan_query_timeline(
     tree_reference: np.datetime64 | None,
     tree_has_frame_references: bool,
 ) -> QueryTimeline:
-    """Apply the reference-time table of SPEC section 4 to one query.
+    """Apply the reference-time table of docs/time-semantics.md to one query.
 
     Parameters
     ----------

@@ -1,4 +1,7 @@
-"""weldx ASDF files: coordinate system hierarchies of all three generations (SPEC 7)."""
+"""weldx ASDF files: coordinate system hierarchies of all three generations.
+
+The generations and their tags: docs/asdf-format.md.
+"""
 
 from ._reader import read_asdf
 from ._writer import write_asdf

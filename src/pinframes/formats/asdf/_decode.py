@@ -2,7 +2,7 @@
 
 Every weldx object is read as asdf's raw tagged data (``TaggedDict``, ``TaggedString``), never
 through weldx's converters, so the result does not depend on whether weldx is installed.
-Times come out as int64 nanoseconds (SPEC section 7).
+Times come out as int64 nanoseconds (docs/asdf-format.md).
 """
 
 from __future__ import annotations
@@ -47,7 +47,7 @@ _WELDX_WARNINGS = (
     r"tag:stsci\.edu:asdf/unit/unit-\S* is not recognized",
 )
 _TAG = re.compile(r"^(?P<path>.+)-(?P<version>\d+\.\d+\.\d+)$")
-# Frequency aliases of older pandas versions (SPEC 7.1), as units pinframes reads.
+# Frequency aliases of older pandas versions (docs/asdf-format.md), as units pinframes reads.
 _PANDAS_FREQUENCY_ALIASES = {"H": "h", "T": "min", "S": "s", "L": "ms", "U": "us", "N": "ns",
                              "D": "d"}
 _FREQUENCY = re.compile(r"^\s*(\d*)\s*([A-Za-zµ]+)\s*$")

@@ -3,7 +3,7 @@
 The graph's ``root_node`` is the root frame; each node lists ``edges`` to its children. Under
 node P with target C, a ``bwd`` edge holds the pose of C in P, a ``fwd`` edge the pose of P
 in C (inverted here). ``subsystems`` nest; each is kept with the node it shares with the
-hierarchy it was merged into (``common_node``) as its root (SPEC 7.2). Data attached to
+hierarchy it was merged into (``common_node``) as its root (docs/asdf-format.md). Data attached to
 nodes (``attributes.data``) is read by ``_data``.
 """
 

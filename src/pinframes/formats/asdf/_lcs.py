@@ -4,7 +4,7 @@ The transformation maps coordinates in the child to its reference system: ``orie
 are rotation matrices (shape (3, 3) or (T, 3, 3)), ``coordinates`` the child's origin
 (shape (3,) or (T, 3)) in ``units`` (``unit`` in 1.0.0; none means millimetres), converted to
 metres here. A static part broadcasts against a time-dependent other part; ``{}`` is the
-identity (SPEC section 7).
+identity (docs/asdf-format.md).
 """
 
 from __future__ import annotations

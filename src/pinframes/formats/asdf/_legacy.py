@@ -3,7 +3,7 @@
 ``coordinate_systems`` is a flat list of transformations ``name`` in ``reference_system``, in
 any order, and an edge that was defined parent-in-child appears with the two swapped: the
 tree is rebuilt from ``root_system_name``, accepting either end of an entry as the one
-already known (SPEC 7.1). ``subsystems`` lists all nesting levels. weldx 0.4's
+already known (docs/asdf-format.md). ``subsystems`` lists all nesting levels. weldx 0.4's
 ``spatial_data`` list of ``{coordinate_system, name, data}`` is read by ``_data``.
 """
 

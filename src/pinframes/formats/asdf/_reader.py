@@ -28,7 +28,7 @@ def read_asdf(path: str | os.PathLike[str], key: str | None = None, *,
               limits: Limits | None = None) -> FrameTree:
     """Read the weldx coordinate system hierarchy stored in the ASDF file at ``path``.
 
-    All three generations of weldx files are read (SPEC section 7): the legacy ``1.0.0``
+    All three generations of weldx files are read (docs/asdf-format.md): the legacy ``1.0.0``
     format (weldx up to 0.4), weldx 0.5 (``di_graph``, coordinates without unit) and weldx
     0.6 to 0.8 (coordinates with units). Lengths become metres (no unit means millimetres);
     times keep their reference times. weldx itself is never used, even when installed.

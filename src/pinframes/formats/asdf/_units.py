@@ -1,7 +1,7 @@
 """Length units of weldx ASDF files, as metres per unit.
 
 weldx writes pint's long names (``millimeter``, ``meter``); older files and hand-written ones
-may use the short symbols. Coordinates without a unit are millimetres (SPEC section 7).
+may use the short symbols. Coordinates without a unit are millimetres (docs/asdf-format.md).
 """
 
 from __future__ import annotations

@@ -1,4 +1,7 @@
-"""Duckietown ``frames.yaml`` map layers: read into a FrameTree and written back (SPEC 8)."""
+"""Duckietown ``frames.yaml`` map layers: read into a FrameTree and written back.
+
+The format and how it is read: docs/frames-yaml.md.
+"""
 
 from pathlib import Path
 

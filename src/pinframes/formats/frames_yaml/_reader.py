@@ -1,6 +1,6 @@
 """Reading a Duckietown ``frames.yaml`` map layer into a :class:`~pinframes.FrameTree`.
 
-Frame names are the file's keys; a key's path makes the hierarchy (SPEC section 8). What is
+Frame names are the file's keys; a key's path makes the hierarchy (docs/frames-yaml.md). What is
 needed to write the file back unchanged is kept in metadata under ``"frames_yaml"``:
 
 ``tree.metadata["frames_yaml"]``

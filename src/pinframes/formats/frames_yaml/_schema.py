@@ -4,7 +4,7 @@ A layer is ``{version: str | float, frames: {key: Frame}}``; a Frame is ``relati
 (a key, ``~`` or ``''``: unset), ``unit`` (``meters``, ``tiles`` or unset), ``pose``
 (``x y z`` and ``roll pitch yaw``, each optional, 0 when missing) and an optional ``twist``.
 This module checks those values and hands them on as :class:`Entry` records; it knows
-nothing of trees (see SPEC section 8).
+nothing of trees (see docs/frames-yaml.md).
 """
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 """ROS bags (ROS 1 ``.bag``, ROS 2 folders, ``.db3`` and MCAP files) as frame trees, read with
-rosbags and tf2's semantics (SPEC 10).
+rosbags and tf2's semantics (docs/ros-bags.md).
 
 Modules: ``_storage`` (which kind of bag, its raw messages), ``_tf_messages`` (TFMessage
 bytes decoded in bulk), ``_messages`` (the types read; JointState and String through

@@ -1,4 +1,4 @@
-"""``sensor_msgs/JointState`` messages as samples per joint (SPEC 10).
+"""``sensor_msgs/JointState`` messages as samples per joint (docs/ros-bags.md).
 
 Each message names the joints it carries (``name[]``, ``position[]`` in radians or metres)
 at ``header.stamp``; messages may name a subset. Each joint is sampled at the stamps of the

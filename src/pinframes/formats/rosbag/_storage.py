@@ -1,6 +1,6 @@
 """Which kind of ROS bag a path holds, and its raw messages, read with rosbags.
 
-Four kinds (SPEC 10): a ROS 1 ``.bag`` file, a ROS 2 bag folder (``metadata.yaml`` beside
+Four kinds (docs/ros-bags.md): a ROS 1 ``.bag`` file, a ROS 2 bag folder (``metadata.yaml`` beside
 its ``.db3`` or ``.mcap`` files), and the two ROS 2 storage files on their own (an MCAP
 file, a SQLite ``.db3`` file). Files are told by their first bytes, never by their names.
 Whatever rosbags raises on a truncated or corrupt bag becomes a

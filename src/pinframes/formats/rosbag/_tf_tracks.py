@@ -1,4 +1,4 @@
-"""tf2's rules (SPEC 10) applied to the transforms of a bag: one track per frame.
+"""tf2's rules (docs/ros-bags.md) applied to the transforms of a bag: one track per frame.
 
 - The child is ``child_frame_id``, the parent ``header.frame_id``, a leading ``/`` dropped;
   the time is ``header.stamp``. Transforms that tf2's buffer refuses (an empty name, a

@@ -27,9 +27,8 @@ from ...errors import GeometryError
 from ...values.geometry import FrameGeometry
 from ...values.timeconv import TimeAxis
 from .._description import TreeDescription
-from .._path import prepare_path
-from .._times import plan_timeline
-from ..poses import evaluate_poses
+from .._plan import QueryPlan, plan_query, prepare_path
+from ..poses import planned_poses
 from .coal_objects import CollisionShape, ShapeLoader
 
 __all__ = ["Clearance", "clearance_times", "evaluate_clearance"]
@@ -130,25 +129,28 @@ def evaluate_clearance(
     if not len(pairs):
         raise GeometryError("a and b leave no pair of two different frames to check (a frame "
                             "is never checked against itself; see also exclude)", field="b")
-    offsets, reference = _timeline(tree, frames, times, time_ref)
-    count = 1 if offsets is None else offsets.shape[0]
+    plan = _plan(tree, frames, times, time_ref, extrapolation)
+    count = plan.count
     frame_index = {frame: position for position, frame in enumerate(frames)}
     owners = np.array([frame_index[shape.frame] for shape in shapes], dtype=np.intp)
     distance = np.empty(count)
     closest = np.empty((count, 2), dtype=np.intp)
     point_a, point_b = np.empty((count, 3)), np.empty((count, 3))
     chunk = max(16, min(CHUNK, _CHUNK_ELEMENTS // max(len(pairs), 12 * len(shapes))))
-    for start in range(0, count, chunk):
-        part = slice(start, min(count, start + chunk))
-        rotation, translation = _frame_poses(tree, frames, None if offsets is None
-                                             else offsets[part], reference, extrapolation)
+    roots = [tree.root] * len(frames)
+    for part, piece in plan.parts(chunk):
+        # every frame's pose in the root at these samples: (F, n, 3, 3) and (F, n, 3)
+        poses = planned_poses(tree, frames, roots, piece)
+        rotation, translation = poses.rotation, poses.translation
+        if piece.offsets is None:
+            rotation, translation = rotation[:, None], translation[:, None]
         rotation, translation = _placed_shapes(rotation, translation, shapes, owners)
         _closest_pairs(shapes, pairs, rotation, translation, distance[part], closest[part],
                        point_a[part], point_b[part])
     names = np.array([shape.frame for shape in shapes], dtype=np.str_)
     return Clearance(distance, names[closest], point_a, point_b,
-                     None if offsets is None else offsets.astype("timedelta64[ns]"),
-                     reference, tuple(dict.fromkeys(frames_a)), tuple(dict.fromkeys(frames_b)),
+                     plan.result_times, plan.reference_time, tuple(dict.fromkeys(frames_a)),
+                     tuple(dict.fromkeys(frames_b)),
                      tuple(tuple(pair) for pair in excluded),  # type: ignore[misc]
                      kind)
 
@@ -188,33 +190,18 @@ def _shape_pairs(shapes: list[CollisionShape], side_a: set[str], side_b: set[str
 def clearance_times(tree: TreeDescription, frames: Sequence[str]) -> TimeAxis | None:
     """The times a clearance between ``frames`` evaluates at when given none: every
     keyframe and joint sample time on their paths from the root; None if nothing moves."""
-    offsets, reference = _timeline(tree, list(frames), None, None)
-    return None if offsets is None else TimeAxis(offsets, reference)
+    plan = _plan(tree, list(frames), None, None, "clamp")
+    return None if plan.offsets is None else TimeAxis(plan.offsets, plan.reference_time)
 
 
-def _timeline(tree: TreeDescription, frames: list[str], times: Any, time_ref: Any
-              ) -> tuple[NDArray[np.int64] | None, np.datetime64 | None]:
-    """The one timeline of every moving thing on the paths from the root to ``frames``
-    (the rules of ``pose()``): offsets (ns) and reference time."""
+def _plan(tree: TreeDescription, frames: list[str], times: Any, time_ref: Any,
+          extrapolation: str) -> QueryPlan:
+    """The plan of a clearance: one timeline (the rules of ``pose()``) of every moving thing
+    on the paths from the root to ``frames``, on which each frame's path is then taken."""
     sources = {source.name: source for frame in frames
                for source in prepare_path(tree, frame, tree.root).sources}
-    timeline = plan_timeline(tree, list(sources.values()), times, time_ref)
-    return timeline.result_offsets, timeline.reference
-
-
-def _frame_poses(tree: TreeDescription, frames: list[str], offsets: NDArray[np.int64] | None,
-                 reference: np.datetime64 | None, extrapolation: str
-                 ) -> tuple[FloatArray, FloatArray]:
-    """Every frame's pose in the root at ``offsets`` (ns after ``reference``, a part of the
-    clearance's timeline; None: static), ``(F, n, 3, 3)`` and ``(F, n, 3)``."""
-    roots = [tree.root] * len(frames)
-    if offsets is None:
-        poses = evaluate_poses(tree, frames, roots, None, None, extrapolation)
-        return poses.rotation[:, None], poses.translation[:, None]
-    # every frame's path on this one timeline: the same times and reference time
-    poses = evaluate_poses(tree, frames, roots, offsets.astype("timedelta64[ns]"), reference,
-                           extrapolation)
-    return poses.rotation, poses.translation
+    return plan_query(tree, tree.root, tree.root, times, time_ref, extrapolation,
+                      sources.values())
 
 
 def _placed_shapes(rotation: FloatArray, translation: FloatArray, shapes: list[CollisionShape],

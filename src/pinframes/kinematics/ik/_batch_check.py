@@ -10,7 +10,7 @@ from numpy.typing import NDArray
 
 from ...values.se3 import Transform, compose, inverse, samples_last, to_stacks
 from .._description import TreeDescription
-from .._path import PreparedPath
+from .._plan import PreparedPath
 from .._sampling import sample_joints
 from ._tool_error import AxisError, PoseError
 
@@ -34,7 +34,7 @@ def measure_solutions(
     assert model is not None
     count = times.shape[0]
     held = {name: positions[:, column] for column, name in enumerate(joint_names)}
-    samples = sample_joints(tree, model, path.placed_keyframes, times, shifts, held=held)
+    samples = sample_joints(path.samplers, times, shifts, held=held)
     tool, reference = model.forward_kinematics(samples, [path.frame, path.relative_to])
     tool_in_target = compose(inverse(reference), tool)
     if targets is not None:

@@ -25,9 +25,8 @@ from ...values.se3 import Transform
 from ...values.timeline import TimedSource
 from .._description import TreeDescription
 from .._model import CompiledModel
-from .._path import PreparedPath, prepare_path
-from .._sampling import CHUNK, sample_configurations
-from .._times import basis_shifts, plan_timeline
+from .._plan import PreparedPath, QueryPlan, plan_query, prepare_path
+from .._sampling import KERNEL_CHUNK, sample_configurations
 from ._batch_check import measure_solutions
 from ._bounded_step import LeastSquares
 from ._newton_tracking import (
@@ -67,42 +66,32 @@ def evaluate_solve_joints(
     model = path.model
     solved = _solved_joints(tree, model, joints, frame, reference)
     held = {name: 0.0 for name in solved.names}
-    sources = [source for source in path.sources if source.name not in held]
-    if target_pose is not None and target_pose.is_time_dependent:
-        target_times = target_pose.times
-        assert target_times is not None
-        sources.append(TimedSource(_TARGET_SOURCE, target_times.astype(np.int64),
-                                   target_pose.reference_time))
-    timeline = plan_timeline(tree, sources, times, time_ref)
-    moments = timeline.evaluation_times
-    if moments is None:  # nothing moves: one sample
-        moments = np.zeros(1, dtype=np.int64)
-    offsets = timeline.result_offsets
-    if offsets is None:
-        offsets = np.zeros(1, dtype=np.int64)
-    shifts = basis_shifts([*path.sources, *sources], timeline)
+    plan = _plan(tree, path, held, target_pose, times, time_ref)
+    moments = plan.sample_times  # nothing moves: one sample
+    offsets = np.zeros(1, dtype=np.int64) if plan.offsets is None else plan.offsets
+    shifts = plan.shifts
     start = _seed(tree, solved, seed, int(moments[0]), shifts, frame)
     ratios = _step_ratios(moments)
     history = TrackingHistory(start)
     reference_id = _reference_id(model, reference)
     solver = LeastSquares()
     parts: list[Tracked] = []
-    for begin in range(0, moments.shape[0], CHUNK):
-        part = slice(begin, begin + CHUNK)
+    for begin in range(0, moments.shape[0], KERNEL_CHUNK):
+        part = slice(begin, begin + KERNEL_CHUNK)
         targets = _targets(target_pose, moments[part], shifts.get(_TARGET_SOURCE, 0))
         problem = TrackingProblem(
             model.model, model.data, model.frame_ids[frame], reference_id,
-            sample_configurations(tree, model, moments[part], shifts, held),
+            sample_configurations(model, path.samplers, moments[part], shifts, held),
             None if targets is None else _xyz_quaternions(targets),
             solved, error, tolerances[0], tolerances[1], ratios[part], solver)
         tracked = track_targets(problem, history, stop_when_unreached=strict)
         _measure_the_rest(tree, path, moments[part], shifts, targets, problem, tracked)
         parts.append(tracked)
         if strict and not tracked.reached.all():
-            _raise_unreached(parts, offsets, timeline.reference, tolerances, frame)
+            _raise_unreached(parts, offsets, plan.reference_time, tolerances, frame)
     solution = JointSolution(
         solved.names, np.concatenate([part.positions for part in parts]),
-        offsets.astype("timedelta64[ns]"), timeline.reference,
+        offsets.astype("timedelta64[ns]"), plan.reference_time,
         np.concatenate([part.position_error for part in parts]),
         np.concatenate([part.orientation_error for part in parts]),
         np.concatenate([part.reached for part in parts]),
@@ -110,6 +99,21 @@ def evaluate_solve_joints(
     if strict:
         require_within_speed(solution, tree.joints_by_name, frame)
     return solution
+
+
+def _plan(tree: TreeDescription, path: PreparedPath, solved: Mapping[str, float],
+          target: Pose | None, times: Any, time_ref: Any) -> QueryPlan:
+    """The plan of the solve on ``path``: its times those of every moving thing on it but
+    the ``solved`` joints (whose samples are what is solved for), and of a time-dependent
+    target."""
+    sources = [source for source in path.sources if source.name not in solved]
+    if target is not None and target.is_time_dependent:
+        target_times = target.times
+        assert target_times is not None
+        sources.append(TimedSource(_TARGET_SOURCE, target_times.astype(np.int64),
+                                   target.reference_time))
+    return plan_query(tree, path.frame, path.relative_to, times, time_ref, "clamp", sources,
+                      held=solved)
 
 
 def _solved_joints(tree: TreeDescription, model: CompiledModel, joints: Any, frame: str,
