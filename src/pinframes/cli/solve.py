@@ -158,6 +158,8 @@ def summary(tree: FrameTree, solution: JointSolution) -> str:
 def _fastest(tree: FrameTree, solution: JointSolution) -> str:
     """The joint that comes closest to (or goes furthest past) its velocity limit: its
     speed, the limit, the share and the time."""
+    if len(solution) < 2:
+        return "one sample, so no joint speeds"
     if not np.isfinite(solution.velocity_limits).any():
         return "no joint velocity limits in the URDF"
     ratios = solution.joint_speed_ratios
