@@ -23,6 +23,7 @@ def warnings_of(result) -> list[str]:
     ("transform", CELL, POINTS, "torch_tcp", "-r", "workpiece"),
     ("process", CELL, "--torch", "torch_tcp", "--seam", "seam_point", "--workpiece",
      "workpiece"),
+    ("solve", CELL, "--frame", "torch_tcp", "--target", "torch_target"),
 ])
 def test_times_after_the_motion_warn_once_or_fail(run_cli, tmp_path, command):
     points = tmp_path / "points.csv"

@@ -15,6 +15,7 @@ from ..kinematics import JointSolution
 from ..kinematics.ik.joint_speeds import speed_unit
 from ..tree import FrameTree
 from ._evaluate import add_time_arguments, requested_times
+from ._extrapolation import add_extrapolation_argument, check_extrapolation
 from ._files import read_tree, require_frames
 from ._output import write_text
 
@@ -61,6 +62,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         "closest configuration there and go on; the summary names the "
                         "fastest joint against its limit)")
     add_time_arguments(parser)
+    add_extrapolation_argument(parser)
     parser.add_argument("-o", "--output", metavar="OUT",
                         help="write the CSV to this file (default: standard output)")
     parser.set_defaults(run=run)
@@ -71,6 +73,8 @@ def run(args: argparse.Namespace) -> int:
     tree = read_tree(args.file)
     require_frames(tree, args.file, args.frame, args.target)
     times = requested_times(args, tree, args.frame, args.target)
+    if args.target != tree.root:  # the target's own motion (the solved joints have none)
+        check_extrapolation(args, tree, [(args.target, tree.root)], times, args.time_ref)
     solution = tree.solve_joints(
         args.frame, args.target, times=None if times is None else times.as_numpy(),
         time_ref=args.time_ref, joints=args.joints, seed=_seed(tree, args.seed),
