@@ -24,6 +24,7 @@ def warnings_of(result) -> list[str]:
     ("process", CELL, "--torch", "torch_tcp", "--seam", "seam_point", "--workpiece",
      "workpiece"),
     ("solve", CELL, "--frame", "torch_tcp", "--target", "torch_target"),
+    ("clearance", CELL, "torch", "pipe"),
 ])
 def test_times_after_the_motion_warn_once_or_fail(run_cli, tmp_path, command):
     points = tmp_path / "points.csv"
