@@ -106,7 +106,7 @@ def test_same_answers_with_and_without_the_sphere_bounds(rng, monkeypatch, chunk
     """Many spheres moving at random: the smallest pair distance computed over all pairs
     with numpy equals the query, which skips pairs by their bounding spheres (evaluated in
     one chunk of samples, and in three)."""
-    monkeypatch.setattr(clearance_module, "CHUNK", chunk)
+    monkeypatch.setattr(clearance_module, "CLEARANCE_CHUNK", chunk)
     tree = FrameTree()
     times = np.linspace(0.0, 1.0, 40)
     centres = {}

@@ -37,8 +37,7 @@ from .formats.limits import Limits
 from .formats.pose_files import write_poses
 from .formats.rosbag import read_rosbag
 from .formats.scene import read_scene, write_scene
-from .formats.urdf import write_urdf
-from .formats.urdf_files import read_urdf
+from .formats.urdf import read_urdf, write_urdf
 from .kinematics import (
     Clearance,
     FrameJacobian,

@@ -78,6 +78,11 @@ def test_points_in_millimetres_stay_millimetres(run_cli, turntable, tmp_path):
     assert result.returncode == 0, result.stderr
     np.testing.assert_allclose(read_rows(result.stdout, "time_s,x_cm,y_cm,z_cm"),
                                [[10, 100, 30, 50]], atol=1e-9)
+    data.write_text("x_in,y_in,z_in\n10,0,0\n")  # 0.254 m along tip's x, 0.2 m out itself
+    result = run_cli("transform", turntable, data, "tip", "-r", "table")
+    assert result.returncode == 0, result.stderr
+    np.testing.assert_allclose(read_rows(result.stdout, "x_in,y_in,z_in"),
+                               [[(0.254 + 0.2) / 0.0254, 0, 0]], atol=1e-9)
 
 
 def test_vectors_keep_any_unit_they_share(run_cli, turntable, tmp_path):
@@ -93,7 +98,7 @@ def test_vectors_keep_any_unit_they_share(run_cli, turntable, tmp_path):
 @pytest.mark.parametrize(("header", "vectors", "message"), [
     ("x_mm,y_m,z_mm", False, "different units"),
     ("x,y_mm,z_mm", True, "different units"),
-    ("x_ft,y_ft,z_ft", False, "'ft' is not a length unit"),
+    ("x_yd,y_yd,z_yd", False, "'yd' is not a length unit"),
     ("vx_m_s,vy_m_s,vz_m_s", False, "--vectors"),
     ("x (mm),y (mm),z (mm)", False, "no unit pinframes knows"),
 ])

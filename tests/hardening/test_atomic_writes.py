@@ -15,7 +15,7 @@ import pytest
 from hardening.file_cases import joint, urdf
 from pinframes import FrameTree, Joint, Mimic, Pose, write_frames_yaml, write_scene, write_urdf
 from pinframes.cli import main
-from pinframes.cli._output import write_poses
+from pinframes.cli._output import output_poses
 from pinframes.errors import JointError, UnsupportedFeatureError, WriteError
 from pinframes.formats.atomic import atomic_write
 
@@ -31,7 +31,7 @@ def static_tree() -> FrameTree:
 
 def poses_writer(fmt: str):
     def write(tree: FrameTree, path: Path) -> None:
-        write_poses(tree.pose("tool", "world", times=[0.0, 1.0]), fmt, str(path), frame="tool",
+        output_poses(tree.pose("tool", "world", times=[0.0, 1.0]), fmt, str(path), frame="tool",
                     relative_to="world")
     return write
 

@@ -1,8 +1,9 @@
 """The unit a CSV column names after its label: ``x_mm`` is ``x`` in millimetres.
 
 A column name is ``LABEL`` or ``LABEL_UNIT``, split at the first underscore (``vx_m_s`` is
-``vx`` in ``m_s``). Points need lengths: ``m``, ``cm``, ``mm`` or ``um``, or no unit at all,
-which is metres as everywhere in pinframes. Directions only rotate, so their unit (``m_s``,
+``vx`` in ``m_s``). Points need lengths (``m``, ``cm``, ``mm``, ``in``... the units of
+:mod:`pinframes.values.length_units`), or no unit at all, which is metres as everywhere in
+pinframes. Directions only rotate, so their unit (``m_s``,
 ``rad_s``, none) does not change the numbers, but all three columns must share it. Names
 with a unit pinframes does not know, and columns in different units, are refused.
 """
@@ -10,11 +11,9 @@ with a unit pinframes does not know, and columns in different units, are refused
 from __future__ import annotations
 
 from ..errors import FileFormatError
+from ..values.length_units import LENGTH_SYMBOLS, metres_per_length_unit
 
-__all__ = ["LENGTH_UNITS", "metres_per_unit"]
-
-LENGTH_UNITS = {"m": 1.0, "cm": 1e-2, "mm": 1e-3, "um": 1e-6}
-"""Metres per unit of each length unit a column name may carry."""
+__all__ = ["metres_per_unit"]
 
 
 def metres_per_unit(names: list[str], points: bool, file: str) -> float:
@@ -40,7 +39,7 @@ def metres_per_unit(names: list[str], points: bool, file: str) -> float:
                 f"no unit pinframes knows in {label!r}: name the columns LABEL_UNIT with a "
                 f"length unit ({_known()}), e.g. x_mm", file=file, field=label)
         return 1.0
-    factor = LENGTH_UNITS.get(unit)
+    factor = metres_per_length_unit(unit)
     if factor is None:
         hint = ("; directions (velocities, normals) only rotate: pass --vectors"
                 if "_" in unit else "")
@@ -60,4 +59,4 @@ def _spoken(unit: str | None) -> str:
 
 
 def _known() -> str:
-    return ", ".join(LENGTH_UNITS)
+    return ", ".join(LENGTH_SYMBOLS)

@@ -21,13 +21,13 @@ from ..values.timeconv import (
     timestamp_ns,
 )
 
-__all__ = ["ProgressBar", "add_time_arguments", "evaluate_poses", "in_chunks", "pose_velocity",
+__all__ = ["ProgressBar", "add_time_arguments", "in_chunks", "pose_in_chunks", "pose_velocity",
            "requested_times", "terminal_stderr", "times_from_options"]
 
 Result = TypeVar("Result")
 
-CHUNK_SIZE = 20_000
-"""Times evaluated per call; the progress bar moves once per chunk."""
+POSE_CHUNK_SIZE = 20_000
+"""Times a pose query takes per call; the progress bar moves once per chunk."""
 
 MAX_SAMPLES = 50_000_000
 """The most times a --start/--stop/--step grid may have (about 3 GB of poses)."""
@@ -118,9 +118,10 @@ def _grid_end(value: str | None, field: str, samples: TimeAxis | None, index: in
     return True, int(axis.offsets[0]) + timestamp_ns(axis.reference)
 
 
-def evaluate_poses(tree: FrameTree, frame: str, relative_to: str, times: TimeAxis | None,
+def pose_in_chunks(tree: FrameTree, frame: str, relative_to: str, times: TimeAxis | None,
                    time_ref: Any = None, *, progress: TextIO | None = None) -> Pose:
-    """``tree.pose(frame, relative_to, times, time_ref)``, in chunks of :data:`CHUNK_SIZE`.
+    """``tree.pose(frame, relative_to, times, time_ref)``, in chunks of
+    :data:`POSE_CHUNK_SIZE` times.
 
     With ``progress`` (a terminal), a text bar on it shows how far the evaluation is.
     """
@@ -135,18 +136,18 @@ def evaluate_poses(tree: FrameTree, frame: str, relative_to: str, times: TimeAxi
 
 
 def in_chunks(query: Callable[[np.ndarray], Result], times: TimeAxis,
-              progress: TextIO | None) -> list[Result]:
-    """``query(values)`` for consecutive chunks of at most :data:`CHUNK_SIZE` of ``times``
+              progress: TextIO | None, size: int = POSE_CHUNK_SIZE) -> list[Result]:
+    """``query(values)`` for consecutive chunks of at most ``size`` of ``times``
     (``timedelta64`` values, or ``datetime64`` with a reference), with a progress bar on
     ``progress`` (a terminal) when there is more than one chunk."""
     values = times.as_numpy()
     count = values.shape[0]
-    bar = ProgressBar(progress, count) if progress is not None and count > CHUNK_SIZE else None
+    bar = ProgressBar(progress, count) if progress is not None and count > size else None
     parts = []
-    for start in range(0, count, CHUNK_SIZE):
-        parts.append(query(values[start:start + CHUNK_SIZE]))
+    for start in range(0, count, size):
+        parts.append(query(values[start:start + size]))
         if bar is not None:
-            bar.update(min(start + CHUNK_SIZE, count))
+            bar.update(min(start + size, count))
     if bar is not None:
         bar.close()
     return parts

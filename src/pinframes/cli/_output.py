@@ -8,12 +8,11 @@ from pathlib import Path
 
 from ..errors import FileFormatError
 from ..formats.atomic import atomic_write
-from ..formats.pose_files import POSE_FILE_FORMATS, pose_file_format, poses_text
-from ..formats.pose_files import write_poses as write_pose_file
+from ..formats.pose_files import POSE_FILE_FORMATS, pose_file_format, poses_text, write_poses
 from ..kinematics import Velocity
 from ..values.pose import Pose
 
-__all__ = ["OUTPUT_FORMATS", "output_format", "require_suffix", "write_poses", "write_text"]
+__all__ = ["OUTPUT_FORMATS", "output_format", "output_poses", "require_suffix", "write_text"]
 
 OUTPUT_FORMATS = POSE_FILE_FORMATS
 
@@ -44,12 +43,13 @@ def require_suffix(out: str | None, suffixes: tuple[str, ...], what: str) -> Non
                               f"{' or '.join(suffixes)}", file=out, field="-o")
 
 
-def write_poses(pose: Pose, fmt: str, out: str | None, *, frame: str, relative_to: str,
-                velocity: Velocity | None = None) -> None:
-    """Write ``pose`` (of ``frame`` in ``relative_to``) to the file ``out`` or stdout, with
-    the columns of ``velocity`` (at the same times) after the pose's when given."""
+def output_poses(pose: Pose, fmt: str, out: str | None, *, frame: str, relative_to: str,
+                 velocity: Velocity | None = None) -> None:
+    """``pose`` (of ``frame`` in ``relative_to``) to the file ``out`` (through
+    :func:`~pinframes.write_poses`) or to standard output, with the columns of ``velocity``
+    (at the same times) after the pose's when given."""
     if out is not None:
-        write_pose_file(pose, out, fmt, frame=frame, relative_to=relative_to,
+        write_poses(pose, out, fmt, frame=frame, relative_to=relative_to,
                         velocity=velocity)
         return
     if fmt == "npz":

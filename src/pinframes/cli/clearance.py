@@ -16,20 +16,16 @@ from ..kinematics.collision.mesh_files import PACKAGE_PATH_VARIABLE
 from ..tree import FrameTree
 from ..values.geometry import GEOMETRY_KINDS
 from ..values.timeconv import TimeAxis
-from ._evaluate import (
-    ProgressBar,
-    add_time_arguments,
-    terminal_stderr,
-    times_from_options,
-)
+from ._evaluate import add_time_arguments, in_chunks, terminal_stderr, times_from_options
 from ._extrapolation import add_extrapolation_argument, check_query_extrapolation
 from ._files import read_tree
 from ._output import write_text
 
 __all__ = ["add_parser", "clearance_summary", "frame_names", "run"]
 
-CHUNK_SIZE = 2_000
-"""Samples per call; the progress bar moves once per chunk (a sample costs 0.05-1 ms)."""
+CLEARANCE_CHUNK_SIZE = 2_000
+"""Samples a clearance takes per call; the progress bar moves once per chunk (a sample
+costs 0.05-1 ms)."""
 
 
 def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
@@ -112,25 +108,16 @@ def frame_names(tree: FrameTree, text: str) -> list[str]:
 
 def _in_chunks(tree: FrameTree, a: list[str], b: list[str], times: TimeAxis | None,
                time_ref: Any, options: dict[str, Any]) -> Clearance:
-    """``tree.clearance`` in chunks of :data:`CHUNK_SIZE` samples, with a progress bar on a
-    terminal."""
+    """``tree.clearance`` in chunks of :data:`CLEARANCE_CHUNK_SIZE` samples, with a progress
+    bar on a terminal."""
     if times is None:
         times = tree.clearance_times(a, b, geometry=options["geometry"])
         if times is None:
             return tree.clearance(a, b, **options)
         time_ref = times.reference
-    values = times.as_numpy()
-    count = values.shape[0]
-    stream = terminal_stderr()
-    bar = ProgressBar(stream, count) if stream is not None and count > CHUNK_SIZE else None
-    parts = []
-    for start in range(0, count, CHUNK_SIZE):
-        parts.append(tree.clearance(a, b, times=values[start:start + CHUNK_SIZE],
-                                    time_ref=time_ref, **options))
-        if bar is not None:
-            bar.update(min(start + CHUNK_SIZE, count))
-    if bar is not None:
-        bar.close()
+    parts = in_chunks(lambda values: tree.clearance(a, b, times=values, time_ref=time_ref,
+                                                    **options),
+                      times, terminal_stderr(), CLEARANCE_CHUNK_SIZE)
     if len(parts) == 1:
         return parts[0]
     def joined(name: str) -> np.ndarray:

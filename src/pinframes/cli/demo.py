@@ -18,9 +18,9 @@ from ..values.pose import Pose
 from ..view import write_view
 from ._cell_clearance import clearance_lines
 from ._demo_process import DEFAULT_SEAM, demo_process, plot_process, process_table
-from ._evaluate import evaluate_poses, pose_velocity, terminal_stderr
+from ._evaluate import pose_in_chunks, pose_velocity, terminal_stderr
 from ._files import read_tree, require_frames
-from ._output import write_poses
+from ._output import output_poses
 
 __all__ = ["PathSummary", "add_parser", "bundled_scene", "run", "summarize"]
 
@@ -118,7 +118,7 @@ def run(args: argparse.Namespace) -> int:
     scene = Path(args.scene) if args.scene else bundled_scene()
     tree = read_tree(scene)
     require_frames(tree, scene, args.tool, args.workpiece)
-    pose = evaluate_poses(tree, args.tool, args.workpiece, None, progress=terminal_stderr())
+    pose = pose_in_chunks(tree, args.tool, args.workpiece, None, progress=terminal_stderr())
     if not pose.is_time_dependent or len(pose) < 2:
         raise FileFormatError(f"{args.tool!r} does not move relative to {args.workpiece!r}",
                               file=scene)
@@ -130,7 +130,7 @@ def run(args: argparse.Namespace) -> int:
         out.mkdir(exist_ok=True)  # the output folder itself, never its parents
     except OSError as exc:
         raise WriteError(f"cannot create the output folder: {exc.strerror}", file=out) from None
-    write_poses(pose, "csv", str(out / POSES_FILE), frame=args.tool,
+    output_poses(pose, "csv", str(out / POSES_FILE), frame=args.tool,
                 relative_to=args.workpiece)
     written = [out / POSES_FILE]
     missing = []

@@ -7,14 +7,14 @@ import sys
 
 from ._evaluate import (
     add_time_arguments,
-    evaluate_poses,
+    pose_in_chunks,
     pose_velocity,
     requested_times,
     terminal_stderr,
 )
 from ._extrapolation import add_extrapolation_argument, check_extrapolation
 from ._files import read_tree, require_frames
-from ._output import OUTPUT_FORMATS, output_format, write_poses
+from ._output import OUTPUT_FORMATS, output_format, output_poses
 
 __all__ = ["add_parser", "run"]
 
@@ -60,13 +60,13 @@ def run(args: argparse.Namespace) -> int:
         tree.pose(args.frame)  # raises the error for the root, which has no parent
     times = requested_times(args, tree, args.frame, relative_to)
     check_extrapolation(args, tree, [(args.frame, relative_to)], times, args.time_ref)
-    pose = evaluate_poses(tree, args.frame, relative_to, times, args.time_ref,
+    pose = pose_in_chunks(tree, args.frame, relative_to, times, args.time_ref,
                           progress=terminal_stderr())
     velocity = None
     if args.velocity or args.expressed_in is not None:
         require_frames(tree, args.file, args.expressed_in)
         velocity = pose_velocity(tree, pose, args.frame, relative_to, args.expressed_in)
-    write_poses(pose, fmt, args.output, frame=args.frame, relative_to=relative_to,
+    output_poses(pose, fmt, args.output, frame=args.frame, relative_to=relative_to,
                 velocity=velocity)
     if pose.reference_time is not None and fmt == "csv":
         print(f"pinframes: time_s counts from {pose.reference_time}", file=sys.stderr)

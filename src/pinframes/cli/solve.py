@@ -80,9 +80,12 @@ def run(args: argparse.Namespace) -> int:
         time_ref=args.time_ref, joints=args.joints, seed=_seed(tree, args.seed),
         free_axis=args.free_axis, position_tolerance=args.position_tolerance,
         orientation_tolerance=args.orientation_tolerance, strict=args.strict)
-    moments = solution.absolute_times
-    write_text(joint_trajectory_csv(solution.seconds if moments is None else moments,
-                                    solution.positions, csv_joint_names(tree, solution)),
+    # timestamps when the solution has a reference time, else seconds (it has a time per sample)
+    moments: np.ndarray | None = solution.absolute_times
+    if moments is None:
+        moments = solution.seconds
+    assert moments is not None
+    write_text(joint_trajectory_csv(moments, solution.positions, csv_joint_names(tree, solution)),
                args.output)
     print(f"pinframes: {summary(tree, solution)}", file=sys.stderr)
     return 0
@@ -174,5 +177,6 @@ def _fastest(tree: FrameTree, solution: JointSolution) -> str:
     assert limit is not None  # a finite velocity limit came from it
     unit = speed_unit(joint)
     text = (f"fastest joint {joint.name}: {ratio * limit:.3g} of {limit:.3g} {unit} "
-            f"({ratio:.0%} of its limit) at {solution.seconds[index]:.6g} s")
+            f"({ratio:.0%} of its limit) at "
+            f"{int(solution.times[index].astype(np.int64)) / 1e9:.6g} s")
     return text + (": faster than the robot can move" if ratio > 1.0 else "")

@@ -19,8 +19,9 @@ import numpy as np
 
 from ..errors import FileFormatError, InvalidDataError
 from ..formats.reading import read_text
+from ..values.length_units import LENGTH_SYMBOLS
 from ..values.timeconv import TimeAxis, parse_time_axis
-from ._column_units import LENGTH_UNITS, metres_per_unit
+from ._column_units import metres_per_unit
 from ._evaluate import add_time_arguments, requested_times
 from ._extrapolation import add_extrapolation_argument, check_extrapolation
 from ._files import read_tree, require_frames
@@ -38,7 +39,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         description="Read points (or, with --vectors, directions) given in FRAME from the CSV "
         "file DATA and write them in --relative-to. DATA has a header row naming three data "
         "columns in one unit, LABEL_UNIT (points: "
-        f"{', '.join(LENGTH_UNITS)}, or no unit for metres; e.g. x_mm,y_mm,z_mm), kept in "
+        f"{', '.join(LENGTH_SYMBOLS)}, or no unit for metres; e.g. x_mm,y_mm,z_mm), kept in "
         f"the output with the data in that unit, and optionally '{TIME_COLUMN}': then each "
         "row is one point at its own time (seconds after the reference time). Without it "
         "every point is written at every time of the time options, with columns time_s, "

@@ -30,8 +30,7 @@ from .reading import InputFile
 from .rosbag import ROSBAG_FORMAT
 from .scene import SCENE_FORMAT
 from .trajectory_files import CSV_TRAJECTORY_FORMAT, NPZ_TRAJECTORY_FORMAT, read_joint_trajectory
-from .urdf import mount_urdf
-from .urdf_files import URDF_FORMAT
+from .urdf import URDF_FORMAT, mount_urdf
 
 __all__ = [
     "FileFormat",

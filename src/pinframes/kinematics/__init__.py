@@ -5,9 +5,10 @@ The queries, one public module each: :mod:`.pose` (``FrameTree.pose``, ``sample_
 :mod:`.velocity`, :mod:`.jacobian`, :mod:`.weld_process` (the welding process along a seam)
 and :mod:`.pinocchio_tree` (``to_pinocchio``). Two rooms of their own: :mod:`.ik` (inverse
 kinematics along a path: ``solve_joints`` and its solution) and :mod:`.collision` (the
-clearance between frames' shapes, with coal). The steps they all share are the ``_``
-modules here: the frozen tree (``_description``), its compiled path (``_model``), path
-preparation (``_path``), the query's times (``_times``), joint sampling (``_sampling``), the
+clearance between frames' shapes, with coal). Every query is planned once by
+:func:`._plan.plan_query` (its path, its timeline, how each joint is sampled) and evaluated
+with the steps they all share, the ``_`` modules here: the frozen tree (``_description``),
+the plan (``_plan``), its compiled path (``_model``), joint sampling (``_sampling``), the
 one-time path (``_one_time``), for velocities and Jacobians the sampled path
 (``_sampled_path``) and joint twists (``_twists``) (the exact rates of what moves are its
 interpolation scheme's, :mod:`pinframes.values.interpolation`).

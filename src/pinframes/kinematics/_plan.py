@@ -39,6 +39,9 @@ __all__ = ["EXTRAPOLATION_POLICIES", "PreparedPath", "QueryPlan", "plan_query",
 EXTRAPOLATION_POLICIES = ("clamp", "error")
 """Outside its keyframes a moving thing holds its first / last value, or the query fails."""
 
+_WITHOUT_TIMES = {policy: f"plan without times, {policy}" for policy in EXTRAPOLATION_POLICIES}
+"""Where a path keeps its plan without times (per policy)."""
+
 
 @dataclass(frozen=True)
 class PreparedPath:
@@ -46,9 +49,10 @@ class PreparedPath:
 
     Either ``static`` (the pose of the frame in the reference frame, when nothing between
     them can move) or ``model`` with, per joint, how it is sampled (its
-    :mod:`._sampling` sampler), and the moving things they read. ``plans`` keeps what
-    queries derive from the path once (the one-time plan), so that it lives as long as the
-    path.
+    :mod:`._sampling` sampler), the moving things they read, and the joints without
+    samples (``resting``, held at their rest value). ``plans`` keeps what queries derive
+    from the path once (the one-time plan, the plan without times), so that it lives as
+    long as the path.
     """
 
     frame: str
@@ -57,6 +61,7 @@ class PreparedPath:
     model: CompiledModel | None = None
     samplers: tuple[JointSampler, ...] = ()
     sources: tuple[TimedSource, ...] = ()
+    resting: frozenset[str] = frozenset()
     plans: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
 
 
@@ -67,19 +72,20 @@ def prepare_path(tree: TreeDescription, frame: str, relative_to: str) -> Prepare
     if cached is not None:
         return cached
     layout = tree.path_layout(frame, relative_to)
-    if isinstance(layout, ModelLayout):
-        model = CompiledModel(layout)
-        path = PreparedPath(frame, relative_to, None, model, *path_samplers(tree, model))
-    else:
+    if not isinstance(layout, ModelLayout):
         require_finite_pose(layout[1], frame, relative_to)
         path = PreparedPath(frame, relative_to, layout)
+    else:
+        model = CompiledModel(layout)
+        path = PreparedPath(frame, relative_to, None, model, *path_samplers(tree, model))
     tree.store(key, path)
     return path
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True)
 class QueryPlan:
-    """A query's path, its timeline and its sources' shifts, made once per call.
+    """A query's path, its timeline and its sources' shifts, made once per call (and
+    never changed: a plan may be kept with its path and handed to several queries).
 
     Attributes
     ----------
@@ -132,7 +138,8 @@ class QueryPlan:
         ``extrapolation``, by default this plan's)."""
         path = prepare_path(tree, frame, relative_to)
         policy, timeline, times = extrapolation or self.extrapolation, self.timeline, self.times
-        warn_joints_without_samples(tree, path.samplers)
+        if path.resting:
+            warn_joints_without_samples(tree, path.resting)
         if policy == "error" and times is not None:
             timeline.require_within(path.sources, times)
         return QueryPlan(path, timeline, timeline.shifts(path.sources), policy, times,
@@ -158,12 +165,13 @@ class QueryPlan:
 def plan_query(
     tree: TreeDescription, frame: str, relative_to: str, times: Any, time_ref: Any,
     extrapolation: str, sources: Iterable[TimedSource] | None = None,
-    held: Collection[str] = (),
+    held: Collection[str] = (), extra: Iterable[TimedSource] = (),
 ) -> QueryPlan:
     """The plan of a query from the caller's arguments: the path from ``frame`` to
     ``relative_to`` and the timeline of ``times`` / ``time_ref`` on ``sources`` (by default
-    the moving things of the path but the ``held`` joints, whose values the caller gives;
-    others where the times are those of other things, or of a target).
+    the moving things of the path but the ``held`` joints, whose values the caller gives,
+    and the ``extra`` ones, a target's; others where the times are those of other
+    things).
 
     Warns (once per tree version) when a joint of the path holds its rest value.
     """
@@ -171,8 +179,16 @@ def plan_query(
         raise ExtrapolationError(f"expected one of {', '.join(EXTRAPOLATION_POLICIES)}, "
                                  f"got {extrapolation!r}", field="extrapolation")
     path = prepare_path(tree, frame, relative_to)
-    planned = tuple(source for source in path.sources if source.name not in held
-                    ) if sources is None else tuple(sources)
+    own_sources = sources is None and not held and not extra
+    without_times = times is None and own_sources
+    if without_times:  # the same plan every time: kept with the path
+        kept = path.plans.get(_WITHOUT_TIMES[extrapolation])
+        if kept is not None:
+            return kept
+    if path.resting:
+        warn_joints_without_samples(tree, path.resting, held)
+    planned = path.sources if own_sources else tuple(sources) if sources is not None else (
+        *(source for source in path.sources if source.name not in held), *extra)
     requested = None
     if isinstance(times, str) and times in tree.depths:
         requested = frame_times(tree, times)
@@ -183,11 +199,13 @@ def plan_query(
         timeline = plan_query_timeline(list(planned), requested, time_ref, tree.reference_time,
                                        tree.has_frame_references)
     evaluated = timeline.evaluation_times
-    warn_joints_without_samples(tree, path.samplers, held)
+    shifts = timeline.shifts(planned if own_sources else (*path.sources, *planned))
     if extrapolation == "error" and evaluated is not None:
         timeline.require_within(path.sources, evaluated)
-    return QueryPlan(path, timeline, timeline.shifts((*path.sources, *planned)), extrapolation,
-                     evaluated, timeline.result_offsets)
+    plan = QueryPlan(path, timeline, shifts, extrapolation, evaluated, timeline.result_offsets)
+    if without_times:
+        path.plans[_WITHOUT_TIMES[extrapolation]] = plan
+    return plan
 
 
 _NO_TIMELINE = QueryTimeline(None, False, None)

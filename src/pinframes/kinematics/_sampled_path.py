@@ -14,14 +14,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..values.interpolation import SegmentSearches
-from ..values.se3 import Transform
+from ..values.se3 import Transform, rotations_first, vectors_first
 from ._description import TreeDescription
 from ._model import CompiledModel
 from ._plan import QueryPlan
 from ._sampling import KERNEL_CHUNK, JointSampler, sample_joints
 from ._twists import Twist, joint_signs, robot_joint_axes
 
-__all__ = ["SampledPath", "sample_path", "sampled_parts"]
+__all__ = ["SampledPath", "sampled_parts"]
 
 
 @dataclass(frozen=True)
@@ -65,66 +65,43 @@ class SampledPath:
 
 def sampled_parts(tree: TreeDescription, plan: QueryPlan
                   ) -> Iterator[tuple[slice, SampledPath]]:
-    """The plan's path (a moving one) sampled in slices of at most ``KERNEL_CHUNK`` times, with
-    where each goes in the result."""
-    path = plan.path
-    assert path.model is not None, "a static path has no model to sample"
-    signs = joint_signs(path.model, path.frame, path.relative_to)
-    for part, piece in plan.parts(KERNEL_CHUNK):
-        yield part, sample_path(tree, piece, signs)
-
-
-def sample_path(tree: TreeDescription, plan: QueryPlan, signs: dict[int, float]
-                ) -> SampledPath:
-    """The plan's path (a moving one) at the plan's times (timeline basis).
+    """The plan's path (a moving one) sampled in slices of at most ``KERNEL_CHUNK`` times,
+    with where each goes in the result.
 
     Keeps of each joint's frame only what the twists need (its origin, its axis, a
     free-flyer's parent rotation), so that the forward kinematics can let the frames go
     (see :meth:`CompiledModel.joint_frames`).
     """
-    prepared, times = plan.path, plan.sample_times
+    prepared = plan.path
     model = prepared.model
     assert model is not None, "a static path has no model to sample"
-    searches = SegmentSearches(times, plan.shifts)
-    samples = sample_joints(prepared.samplers, times, plan.shifts, searches)
-    ends = model.frame_parents([prepared.frame, prepared.relative_to])
+    ends = [prepared.frame, prepared.relative_to]
+    signs = joint_signs(model, *ends)
+    parents = model.frame_parents(ends)
     # the moving frames' free-flyers below another joint: their twists turn by its rotation
     flyer_parents = {index: joint.parent for index, joint in enumerate(model.joints)
                      if index in signs and joint.joint is None and joint.parent >= 0}
-    kept: dict[int, Transform] = {}
-    origins: dict[int, NDArray[np.float64]] = {}
-    unit_twists: dict[int, Twist] = {}
-    for index, (rotation, translation) in model.joint_frames(samples):
-        if index in ends or index in flyer_parents.values():
-            kept[index] = (rotation, translation)
-        if index not in signs:
-            continue
-        origins[index] = _vectors_first(translation)
-        robot_joint = model.joints[index].joint
-        if robot_joint is not None:  # copies: a column view would hold the whole rotation
-            unit_twists[index] = _copied(robot_joint_axes(robot_joint, _rotations_first(rotation)))
-    parent_rotations = {index: _rotations_first(kept[parent][0])
-                        for index, parent in flyer_parents.items()}
-    frame, relative_to = model.frame_placements_in_root(
-        kept, [prepared.frame, prepared.relative_to])
-    return SampledPath(model, prepared.samplers, origins, parent_rotations, unit_twists,
-                       (_rotations_first(frame[0]), _vectors_first(frame[1])),
-                       (_rotations_first(relative_to[0]), _vectors_first(relative_to[1])),
-                       signs, times, searches)
-
-
-def _rotations_first(rotation: NDArray[np.float64]) -> NDArray[np.float64]:
-    """A ``(N, 3, 3)`` view of ``(3, 3, N)`` rotations; a static one stays the same object
-    (the shared identity is still recognised)."""
-    return np.moveaxis(rotation, -1, 0) if rotation.ndim == 3 else rotation
-
-
-def _vectors_first(vector: NDArray[np.float64]) -> NDArray[np.float64]:
-    """A ``(N, 3)`` view of ``(3, N)`` vectors; a static one stays as it is."""
-    return vector.T if vector.ndim == 2 else vector
-
-
-def _copied(twist: Twist) -> Twist:
-    linear, angular = twist
-    return (None if linear is None else np.ascontiguousarray(linear),
-            None if angular is None else np.ascontiguousarray(angular))
+    for part, piece in plan.parts(KERNEL_CHUNK):
+        times = piece.sample_times
+        searches = SegmentSearches(times, piece.shifts)
+        samples = sample_joints(prepared.samplers, times, piece.shifts, searches)
+        kept: dict[int, Transform] = {}
+        origins: dict[int, NDArray[np.float64]] = {}
+        unit_twists: dict[int, Twist] = {}
+        for index, (rotation, translation) in model.joint_frames(samples):
+            if index in parents or index in flyer_parents.values():
+                kept[index] = (rotation, translation)
+            if index not in signs:
+                continue
+            origins[index] = vectors_first(translation)
+            robot_joint = model.joints[index].joint
+            if robot_joint is not None:
+                unit_twists[index] = robot_joint_axes(robot_joint, rotations_first(rotation))
+        parent_rotations = {index: rotations_first(kept[parent][0])
+                            for index, parent in flyer_parents.items()}
+        frame, relative_to = model.frame_placements_in_root(kept, ends)
+        yield part, SampledPath(
+            model, prepared.samplers, origins, parent_rotations, unit_twists,
+            (rotations_first(frame[0]), vectors_first(frame[1])),
+            (rotations_first(relative_to[0]), vectors_first(relative_to[1])),
+            signs, times, searches)

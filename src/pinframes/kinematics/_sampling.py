@@ -29,9 +29,20 @@ from ..values.timeline import TimedSource, source_reference
 from ._description import TreeDescription
 from ._model import CompiledModel
 
-__all__ = ["KERNEL_CHUNK", "DrivenJoint", "JointSampler", "MovingFrame", "frame_source",
-           "frame_times", "joint_sampler", "joint_source", "path_samplers", "sample_configurations",
-           "sample_joints", "warn_joints_without_samples"]
+__all__ = [
+    "KERNEL_CHUNK",
+    "DrivenJoint",
+    "JointSampler",
+    "MovingFrame",
+    "frame_source",
+    "frame_times",
+    "joint_sampler",
+    "joint_source",
+    "path_samplers",
+    "sample_configurations",
+    "sample_joints",
+    "warn_joints_without_samples",
+]
 
 KERNEL_CHUNK = 1 << 12
 """Samples the numpy kernels evaluate at once: the temporaries of a chunk (under 300 kB
@@ -74,9 +85,10 @@ JointSampler = MovingFrame | DrivenJoint
 
 
 def path_samplers(tree: TreeDescription, model: CompiledModel
-                  ) -> tuple[tuple[JointSampler, ...], tuple[TimedSource, ...]]:
-    """Per joint of ``model`` its sampler, and the moving frames and driven joints (a mimic
-    joint's chain of primaries included) whose samples they read."""
+                  ) -> tuple[tuple[JointSampler, ...], tuple[TimedSource, ...], frozenset[str]]:
+    """Per joint of ``model`` its sampler, the moving frames and driven joints (a mimic
+    joint's chain of primaries included) whose samples they read, and the joints without
+    samples that drive them (held at their rest value)."""
     samplers: list[JointSampler] = []
     moving: dict[str, tuple[Any, np.datetime64 | None]] = {}  # times and own reference
     for position, joint in enumerate(model.joints):
@@ -94,7 +106,9 @@ def path_samplers(tree: TreeDescription, model: CompiledModel
         moving[joint.frame] = (keyframes.times, pose.reference_time)
     sources = tuple(TimedSource(name, times, source_reference(own, tree.reference_time))
                     for name, (times, own) in moving.items())
-    return tuple(samplers), sources
+    resting = frozenset(sampler.primary for sampler in samplers
+                        if isinstance(sampler, DrivenJoint) and sampler.trajectory is None)
+    return tuple(samplers), sources, resting
 
 
 def joint_sampler(tree: TreeDescription, joint: Joint) -> DrivenJoint:
@@ -192,12 +206,12 @@ def sample_configurations(
     return model.configuration(motions, values, times.shape[0])
 
 
-def warn_joints_without_samples(tree: TreeDescription, samplers: Sequence[JointSampler],
+def warn_joints_without_samples(tree: TreeDescription, resting: Collection[str],
                                 held: Collection[str] = ()) -> None:
     """One :class:`JointWithoutSamplesWarning` per version of a tree, naming its joints
-    without samples, when one of ``samplers`` (but those ``held``) holds its rest value."""
-    if not any(isinstance(sampler, DrivenJoint) and sampler.trajectory is None
-               and sampler.primary not in held for sampler in samplers):
+    without samples, when one of the ``resting`` joints (without samples, held at their
+    rest value) is not ``held`` (given its values by the caller)."""
+    if all(name in held for name in resting):
         return
     if not tree.first_warning("joints without samples"):
         return

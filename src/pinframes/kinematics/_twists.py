@@ -68,8 +68,8 @@ def robot_joint_axes(joint: Joint, rotation_in_root: FloatArray) -> Twist:
     zero), where ``R`` is the joint frame's rotation in the root."""
     axis = np.asarray(joint.axis)
     aligned = np.flatnonzero(axis == 1.0)
-    if aligned.size:  # a unit axis picks a column of R
-        turned = rotation_in_root[..., :, int(aligned[0])]
+    if aligned.size:  # a unit axis picks a column of R (a copy: a view would hold all of R)
+        turned = np.ascontiguousarray(rotation_in_root[..., :, int(aligned[0])])
     else:
         turned = rotate(rotation_in_root, axis)
     return (turned, None) if joint.kind == "prismatic" else (None, turned)

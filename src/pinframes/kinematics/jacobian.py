@@ -22,6 +22,7 @@ from numpy.typing import NDArray
 
 from ..errors import ArgumentTypeError, JointError, joint_not_found
 from ..values.se3 import IDENTITY
+from ..values.timed import Timed
 from ._description import TreeDescription
 from ._plan import plan_query
 from ._sampled_path import SampledPath, sampled_parts
@@ -34,7 +35,7 @@ FloatArray = NDArray[np.float64]
 
 
 @dataclass(frozen=True)
-class FrameJacobian:
+class FrameJacobian(Timed):
     """Jacobians of ``frame`` relative to ``relative_to`` per sample.
 
     Attributes

@@ -14,7 +14,11 @@ from ..values.geometry import FrameGeometry
 from ._description import TreeDescription
 from ._model import compile_model
 from ._plan import plan_query
-from ._sampling import path_samplers, sample_configurations, warn_joints_without_samples
+from ._sampling import (
+    path_samplers,
+    sample_configurations,
+    warn_joints_without_samples,
+)
 from .collision.coal_objects import ShapeLoader
 
 __all__ = ["PinocchioTree"]
@@ -90,7 +94,7 @@ class PinocchioTree:
         moving thing's keyframe times (one configuration if nothing moves).
         """
         tree, compiled = self._tree, self._compiled
-        samplers, sources = path_samplers(tree, compiled)
+        samplers, sources, resting = path_samplers(tree, compiled)
         plan = plan_query(tree, tree.root, tree.root, times, time_ref, "clamp", sources)
-        warn_joints_without_samples(tree, samplers)
+        warn_joints_without_samples(tree, resting)
         return sample_configurations(compiled, samplers, plan.sample_times, plan.shifts)

@@ -44,7 +44,7 @@ def planned_pose(tree: TreeDescription, plan: QueryPlan) -> Pose:
         rotation, translation = planned_transforms(tree, plan)
         if offsets is None:
             rotation, translation = rotation[0], translation[0]
-    return trusted_pose(rotation, translation, offsets, plan.reference_time)
+    return trusted_pose(rotation, translation, offsets, plan.timeline.reference)
 
 
 def planned_transforms(tree: TreeDescription, plan: QueryPlan) -> Transform:

@@ -56,7 +56,8 @@ def snapshot(tree: TreeDescription, time: Any, time_ref: Any = None) -> Snapshot
     times = plan.times
     # a JointError for a mimic of a missing joint
     samplers = [joint_sampler(tree, joint) for joint in tree.joints_by_name.values()]
-    warn_joints_without_samples(tree, samplers)
+    warn_joints_without_samples(tree, {sampler.primary for sampler in samplers
+                                       if sampler.trajectory is None})
     samples = sample_joints(samplers, times, plan.shifts)
     values = {sampler.name: float(np.ravel(sample)[0])
               for sampler, sample in zip(samplers, samples, strict=True)}

@@ -18,22 +18,22 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..values.interpolation import SegmentSearches
 from ..values.se3 import IDENTITY
+from ..values.timed import Timed
 from ._description import TreeDescription
 from ._plan import QueryPlan, plan_query
 from ._sampled_path import SampledPath, sampled_parts
-from ._sampling import DrivenJoint, MovingFrame
+from ._sampling import MovingFrame
 from ._twists import Twist, rotate, velocity_sum
 from .pose import planned_transforms
 
-__all__ = ["Velocity", "evaluate_velocity", "joint_rates", "planned_velocity"]
+__all__ = ["Velocity", "evaluate_velocity", "planned_velocity"]
 
 FloatArray = NDArray[np.float64]
 
 
 @dataclass(frozen=True)
-class Velocity:
+class Velocity(Timed):
     """Velocity of ``frame`` relative to ``relative_to`` per sample.
 
     Attributes
@@ -67,8 +67,8 @@ class Velocity:
 def evaluate_velocity(tree: TreeDescription, frame: str, relative_to: str, times: Any,
                       time_ref: Any, extrapolation: str, expressed_in: str) -> Velocity:
     """``tree.velocity(...)``; frame names already checked."""
-    return planned_velocity(tree, plan_query(tree, frame, relative_to, times, time_ref,
-                                             extrapolation), expressed_in)
+    plan = plan_query(tree, frame, relative_to, times, time_ref, extrapolation)
+    return planned_velocity(tree, plan, expressed_in)
 
 
 def planned_velocity(tree: TreeDescription, plan: QueryPlan, expressed_in: str) -> Velocity:
@@ -95,7 +95,9 @@ def planned_velocity(tree: TreeDescription, plan: QueryPlan, expressed_in: str) 
 
 
 def _velocity_in_root(path: SampledPath) -> tuple[FloatArray, FloatArray]:
-    """``(v, w)`` of the frame relative to the reference frame, in the root's axes."""
+    """``(v, w)`` of the frame relative to the reference frame, in the root's axes: per
+    joint that moves an end, a moving frame's exact rate (its interpolation scheme's), or a
+    robot joint's unit twist times its driver's rate and the mimic links' multipliers."""
     twists: dict[int, Twist] = {}
     for position, sampler in enumerate(path.samplers):
         if position not in path.signs:
@@ -110,20 +112,13 @@ def _velocity_in_root(path: SampledPath) -> tuple[FloatArray, FloatArray]:
                 angular = rotate(parent_rotation, angular)
             twists[position] = (linear, angular)
             continue
-        rates = joint_rates(sampler, path.searches)
-        if rates is not None:
-            sliding, turning = path.unit_twists[position]
-            twists[position] = (None if sliding is None else sliding * rates[:, None],
-                                None if turning is None else turning * rates[:, None])
+        trajectory = sampler.trajectory
+        if trajectory is None:  # held at its rest value: no velocity
+            continue
+        segments = path.searches.of_joints(sampler.time_group, sampler.primary,
+                                           trajectory.times)
+        rates = sampler.multiplier * trajectory.rates(segments.times, segments)
+        sliding, turning = path.unit_twists[position]
+        twists[position] = (None if sliding is None else sliding * rates[:, None],
+                            None if turning is None else turning * rates[:, None])
     return velocity_sum(path.signs, path.origins, twists, path.frame[1])
-
-
-def joint_rates(joint: DrivenJoint, searches: SegmentSearches) -> FloatArray | None:
-    """Velocities (N,) of ``joint`` at the times of ``searches``, rad/s or m/s: its
-    trajectory's, or its mimic primary's times the product of the multipliers; None when
-    no trajectory drives it."""
-    trajectory = joint.trajectory
-    if trajectory is None:
-        return None
-    segments = searches.of_joints(joint.time_group, joint.primary, trajectory.times)
-    return joint.multiplier * trajectory.rates(segments.times, segments)

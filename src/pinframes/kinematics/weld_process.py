@@ -26,8 +26,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InvalidTimeError
+from ..values.timed import Timed
 from ._description import TreeDescription
-from ._plan import QueryPlan, plan_query
+from ._plan import plan_query
 from .pose import planned_transforms
 from .velocity import planned_velocity
 
@@ -37,7 +38,7 @@ FloatArray = NDArray[np.float64]
 
 
 @dataclass(frozen=True)
-class WeldProcess:
+class WeldProcess(Timed):
     """The welding process of ``torch`` along ``seam``, per sample (docs/welding-process.md).
 
     Attributes
@@ -80,11 +81,6 @@ class WeldProcess:
     workpiece: str
     contact_tip: str | None
 
-    @property
-    def seconds(self) -> FloatArray | None:
-        """Sample times as float seconds after :attr:`reference_time`; None if static."""
-        return None if self.times is None else self.times.astype(np.int64) / 1e9
-
     def __len__(self) -> int:
         return int(self.travel_speed.shape[0])
 
@@ -98,16 +94,26 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
     and the contact tip are evaluated at exactly those times.
     """
     plan = plan_query(tree, torch, seam, times, time_ref, extrapolation)
+    # the torch relative to the workpiece, and the contact tip, at the same times
+    velocity_plan = plan.on(tree, torch, workpiece)
+    tip_plan = None if contact_tip is None else plan.on(tree, contact_tip, torch)
+    for same in (velocity_plan, tip_plan):
+        # without times a static torch-to-seam path gives one sample: the others must not
+        # move then, or the samples would not line up
+        if same is not None and plan.times is None and same.path.sources:
+            raise InvalidTimeError(
+                f"{same.path.frame!r} moves relative to {same.path.relative_to!r} while "
+                f"nothing moves between the torch and the seam {seam!r}: give times",
+                field="times")
     rotation, origin = planned_transforms(tree, plan)
     # in the torch's own axes (no second pose query), then turned into the seam's by the
     # rotation of the torch in the seam: R_ts R_tw^T = R_sw^T
-    velocity = planned_velocity(tree, _same_times(tree, plan, torch, workpiece), torch)
+    velocity = planned_velocity(tree, velocity_plan, torch)
     along_seam = np.einsum("tj,tj->t", rotation[:, 0, :], velocity.linear)
     wire = rotation[:, :, 2]  # the torch z axis in seam axes
     ctwd = None
-    if contact_tip is not None:
-        tip_in_torch = planned_transforms(tree, _same_times(tree, plan, contact_tip, torch))[1]
-        tip = np.einsum("tij,tj->ti", rotation, tip_in_torch) + origin
+    if tip_plan is not None:
+        tip = np.einsum("tij,tj->ti", rotation, planned_transforms(tree, tip_plan)[1]) + origin
         toward_work = -wire[:, 2]
         with np.errstate(divide="ignore", invalid="ignore"):
             ctwd = np.where(toward_work > 0.0, tip[:, 2] / toward_work, np.nan)
@@ -124,15 +130,3 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
         workpiece=workpiece,
         contact_tip=contact_tip,
     )
-
-
-def _same_times(tree: TreeDescription, plan: QueryPlan, frame: str, other: str) -> QueryPlan:
-    """The path from ``frame`` to ``other`` at the times of the torch in the seam. Without
-    times, a static torch-to-seam path gives one sample: ``frame`` must not move relative
-    to ``other`` then, or the samples would not line up."""
-    same = plan.on(tree, frame, other)
-    if plan.times is None and same.path.sources:
-        raise InvalidTimeError(
-            f"{frame!r} moves relative to {other!r} while nothing moves between the torch and "
-            f"the seam {plan.path.relative_to!r}: give times", field="times")
-    return same

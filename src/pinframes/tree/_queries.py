@@ -52,12 +52,12 @@ from ..values.numbers import require_finite_result
 from ..values.pose import Pose
 from ..values.pose_stack import PoseStack
 from ..values.timeconv import TimeAxis
-from ._structure import TreeStructure
+from ._structure import EditableTree
 
 __all__ = ["TreeQueries"]
 
 
-class TreeQueries(TreeStructure):
+class TreeQueries(EditableTree):
     """The queries of a :class:`~pinframes.FrameTree` (see there)."""
 
     # -- queries ---------------------------------------------------------------------------

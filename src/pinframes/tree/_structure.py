@@ -1,11 +1,11 @@
-"""`TreeStructure`: what a frame tree holds, and every edit of it.
+"""`EditableTree`: what a frame tree holds, and every edit of it.
 
 The frames (a parent each, every parent before its children), their poses in their parents,
 robot joints and their trajectories, the count of reference times behind the rule of
 docs/time-semantics.md (moving frames all with a reference time or all without), frame
 metadata, the table of attached data and the subsystems. Every edit checks its input first and
 leaves the tree as it was when it fails; the immutable :class:`TreeDescription` that the
-kinematics reads is built once per version (:meth:`TreeStructure._frozen`).
+kinematics reads is built once per version (:meth:`EditableTree._frozen`).
 :class:`~pinframes.FrameTree` adds the queries, the data and the whole-tree operations on top.
 """
 
@@ -37,10 +37,10 @@ from ..values.spatial_data import SpatialData
 from ..values.subsystem import Subsystem
 from ..values.timeconv import parse_timestamp
 
-__all__ = ["TreeStructure"]
+__all__ = ["EditableTree"]
 
 
-class TreeStructure:
+class EditableTree:
     """The frames of a :class:`~pinframes.FrameTree` and every edit of them (see there).
 
     Not used alone: ``FrameTree`` is this class with the queries added.
@@ -224,7 +224,7 @@ class TreeStructure:
             self._joint_trajectories[joint_name] = trajectory
         self._invalidate()
 
-    # the names of the two methods above before 0.2 (kept for existing code)
+    # the earlier names of the two methods above (kept for existing code)
     joint_track = joint_trajectory
     set_joint_track = replace_joint_trajectory
 

@@ -24,11 +24,11 @@ from ..values.pose import Pose
 from ..values.spatial_data import SpatialData
 from ..values.subsystem import Subsystem
 from ..values.timeline import source_reference
-from ._structure import TreeStructure
+from ._structure import EditableTree
 
 __all__ = ["Tree", "copy_tree", "graft", "subtree"]
 
-Tree = TypeVar("Tree", bound=TreeStructure)
+Tree = TypeVar("Tree", bound=EditableTree)
 """A tree of one class throughout a call: ``subtree(tree)`` returns a tree of ``type(tree)``."""
 
 
@@ -103,7 +103,7 @@ def copy_tree(tree: Tree) -> Tree:
     return copied
 
 
-def _copy_frames(source: TreeStructure, target: TreeStructure, renamed: Callable[[str], str],
+def _copy_frames(source: EditableTree, target: EditableTree, renamed: Callable[[str], str],
                  prefix: str, reference: np.datetime64 | None, top: str | None = None) -> None:
     """Add every frame below ``top`` (default: the root) of ``source`` to ``target``.
 
@@ -156,7 +156,7 @@ def _anchored_data(data: SpatialData, reference: np.datetime64 | None) -> Spatia
     return data.with_points(data.points, times.astype(np.int64), reference)
 
 
-def _refuse_clashes(tree: TreeStructure, other: TreeStructure, renamed: Callable[[str], str],
+def _refuse_clashes(tree: EditableTree, other: EditableTree, renamed: Callable[[str], str],
                     prefix: str, subsystem_names: list[str], metadata_keys: list[Any]) -> None:
     """A :class:`FrameExistsError` for any name the graft would take twice; nothing changed."""
     clashes = [
@@ -175,7 +175,7 @@ def _refuse_clashes(tree: TreeStructure, other: TreeStructure, renamed: Callable
                 frame=names[0] if kind == "frames" else None, field=kind)
 
 
-def _renamed_metadata(other: TreeStructure, prefix: str) -> dict[Any, Any]:
+def _renamed_metadata(other: EditableTree, prefix: str) -> dict[Any, Any]:
     """``other.metadata`` deep-copied, with ``prefix`` before every key; with a prefix, a key
     that is not a string is an :class:`ArgumentTypeError` (raised before the tree changes)."""
     if prefix:
@@ -187,7 +187,7 @@ def _renamed_metadata(other: TreeStructure, prefix: str) -> dict[Any, Any]:
             for key, value in copy.deepcopy(other.metadata).items()}
 
 
-def _renamed_subsystems(other: TreeStructure, renamed: Callable[[str], str], prefix: str,
+def _renamed_subsystems(other: EditableTree, renamed: Callable[[str], str], prefix: str,
                         record: str | None) -> list[Subsystem]:
     """The grafted tree's subsystems: names prefixed, top-level ones nested in ``record``."""
     nesting = {inner: s.name for s in other.subsystems for inner in s.subsystems}
@@ -198,7 +198,7 @@ def _renamed_subsystems(other: TreeStructure, renamed: Callable[[str], str], pre
             for s in other.subsystems]
 
 
-def _below(tree: TreeStructure, frame: str) -> set[str]:
+def _below(tree: EditableTree, frame: str) -> set[str]:
     """``frame`` and every frame below it."""
     below, stack = set(), [frame]
     while stack:

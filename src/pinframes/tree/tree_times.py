@@ -18,7 +18,7 @@ from ..values.joint_trajectory import JointTrajectory
 from ..values.pose import Pose
 from ..values.timeconv import TimeAxis, parse_time_axis, parse_timestamp, shift_ns, timestamp_ns
 from ..values.timeline import TimedSource, plan_query_timeline, source_reference
-from ._structure import TreeStructure
+from ._structure import EditableTree
 from .grafting import Tree, copy_tree
 
 __all__ = ["resampled", "time_union"]
@@ -26,7 +26,7 @@ __all__ = ["resampled", "time_union"]
 _Samples = tuple[NDArray[np.int64], "np.datetime64 | None"]
 
 
-def time_union(tree: TreeStructure, frames: Iterable[str] | None = None) -> TimeAxis | None:
+def time_union(tree: EditableTree, frames: Iterable[str] | None = None) -> TimeAxis | None:
     """Every keyframe and joint sample time of ``frames`` (default: all); see
     :meth:`pinframes.FrameTree.time_union`."""
     if isinstance(frames, str):
@@ -76,7 +76,7 @@ def resampled(tree: Tree, times: Any, time_ref: Any = None) -> Tree:
     return copy
 
 
-def _frame_samples(tree: TreeStructure, frame: str) -> list[_Samples]:
+def _frame_samples(tree: EditableTree, frame: str) -> list[_Samples]:
     joint = tree.joint_of(frame)
     if joint is None:
         pose = tree.local_pose(frame)
@@ -88,7 +88,7 @@ def _frame_samples(tree: TreeStructure, frame: str) -> list[_Samples]:
 
 
 def _own_basis(axis: TimeAxis, instants: NDArray[np.int64] | None,
-               own: np.datetime64 | None, tree: TreeStructure, frame: str) -> NDArray[np.int64]:
+               own: np.datetime64 | None, tree: EditableTree, frame: str) -> NDArray[np.int64]:
     """The requested times as ns on the basis of a pose or trajectory (its own reference time,
     else the tree's, else plain offsets)."""
     reference = source_reference(own, tree.reference_time)

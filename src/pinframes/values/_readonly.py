@@ -1,6 +1,6 @@
 """Read-only arrays: how values stay immutable once they enter or leave the library.
 
-A :class:`~pinframes.Pose`, a :class:`~pinframes.JointTrack` and the transforms cached by a
+A :class:`~pinframes.Pose`, a :class:`~pinframes.JointTrajectory` and the transforms cached by a
 tree share their arrays freely (a query may hand out the very arrays a cache keeps), which is
 safe only because none of them can be written: writing into one raises numpy's
 ``ValueError: assignment destination is read-only``. Arrays that come in from a caller are

@@ -104,7 +104,7 @@ class JointTrajectory:
 
 
 JointTrack = JointTrajectory
-"""The name :class:`JointTrajectory` had before 0.2 (kept for existing code)."""
+"""The earlier name of :class:`JointTrajectory` (kept for existing code)."""
 
 
 def joint_trajectories_from_samples(

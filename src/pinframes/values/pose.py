@@ -40,6 +40,7 @@ from .timeconv import (
     shift_ns,
     timestamp_ns,
 )
+from .timed import Timed
 from .timeline import QueryTimeline, TimedSource, plan_query_timeline
 
 __all__ = ["Pose", "trusted_pose"]
@@ -48,7 +49,7 @@ FloatArray = NDArray[np.float64]
 _QUATERNION_NORM_TOLERANCE = 1e-3
 
 
-class Pose:
+class Pose(Timed):
     """A rigid transform, static or sampled at strictly increasing times.
 
     Parameters
@@ -294,21 +295,9 @@ class Pose:
         return self._reference
 
     @property
-    def absolute_times(self) -> NDArray[np.datetime64] | None:
-        """Keyframe times as ``datetime64[ns]``, or None without reference time or times."""
-        if self._times is None or self._reference is None:
-            return None
-        return self._reference + self._times.astype("timedelta64[ns]")
-
-    @property
     def is_time_dependent(self) -> bool:
         """True when the pose is sampled in time."""
         return self._times is not None
-
-    @property
-    def seconds(self) -> FloatArray | None:
-        """Keyframe times as float seconds after :attr:`reference_time`; None if static."""
-        return None if self._times is None else self._times / 1e9
 
     def __len__(self) -> int:
         """Number of samples (1 for a static pose)."""

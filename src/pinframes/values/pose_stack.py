@@ -15,12 +15,13 @@ from numpy.typing import NDArray
 
 from ._readonly import readonly
 from .pose import Pose, trusted_pose
+from .timed import Timed
 
 __all__ = ["PoseStack"]
 
 
 @dataclass(frozen=True, eq=False)
-class PoseStack:
+class PoseStack(Timed):
     """Poses of F frames (or pairs), static or on one common timeline of T times.
 
     Attributes

@@ -37,10 +37,12 @@ __all__ = [
     "inverse",
     "rotated_vector",
     "rotation_product",
+    "rotations_first",
     "samples_first",
     "samples_last",
     "to_stacks",
     "turned",
+    "vectors_first",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -95,6 +97,17 @@ def samples_first(transform: Transform) -> Transform:
     return (np.ascontiguousarray(rotation.transpose(2, 0, 1)) if rotation.ndim == 3
             else rotation,
             np.ascontiguousarray(translation.T) if translation.ndim == 2 else translation)
+
+
+def rotations_first(rotation: FloatArray) -> FloatArray:
+    """A ``(N, 3, 3)`` view of ``(3, 3, N)`` rotations; a static one stays the same object
+    (the shared identity is still recognised)."""
+    return np.moveaxis(rotation, -1, 0) if rotation.ndim == 3 else rotation
+
+
+def vectors_first(vector: FloatArray) -> FloatArray:
+    """A ``(N, 3)`` view of ``(3, N)`` vectors; a static one stays as it is."""
+    return vector.T if vector.ndim == 2 else vector
 
 
 def to_stacks(transform: Transform, count: int) -> Transform:

@@ -26,6 +26,7 @@ from numpy.typing import NDArray
 from ...errors import GeometryError
 from ...values.geometry import FrameGeometry
 from ...values.timeconv import TimeAxis
+from ...values.timed import Timed
 from .._description import TreeDescription
 from .._plan import QueryPlan, plan_query, prepare_path
 from ..poses import planned_poses
@@ -35,7 +36,7 @@ __all__ = ["Clearance", "clearance_times", "evaluate_clearance"]
 
 FloatArray = NDArray[np.float64]
 
-CHUNK = 1 << 14
+CLEARANCE_CHUNK = 1 << 14
 """The most samples whose frame poses and sphere bounds are computed at once."""
 _CHUNK_ELEMENTS = 1 << 21
 """Fewer samples at once for many pairs or shapes: a chunk's bounds (samples x pairs) and
@@ -43,7 +44,7 @@ placed shapes (samples x shapes x 12) stay within about 16 MB each."""
 
 
 @dataclass(frozen=True)
-class Clearance:
+class Clearance(Timed):
     """The smallest distance between the geometries of two sets of links, per sample.
 
     Attributes
@@ -83,11 +84,6 @@ class Clearance:
 
     def __len__(self) -> int:
         return int(self.distance.shape[0])
-
-    @property
-    def seconds(self) -> FloatArray | None:
-        """:attr:`times` as float seconds (None for a static result)."""
-        return None if self.times is None else self.times.astype(np.int64) / 1e9
 
     @property
     def in_contact(self) -> NDArray[np.bool_]:
@@ -136,7 +132,7 @@ def evaluate_clearance(
     distance = np.empty(count)
     closest = np.empty((count, 2), dtype=np.intp)
     point_a, point_b = np.empty((count, 3)), np.empty((count, 3))
-    chunk = max(16, min(CHUNK, _CHUNK_ELEMENTS // max(len(pairs), 12 * len(shapes))))
+    chunk = max(16, min(CLEARANCE_CHUNK, _CHUNK_ELEMENTS // max(len(pairs), 12 * len(shapes))))
     roots = [tree.root] * len(frames)
     for part, piece in plan.parts(chunk):
         # every frame's pose in the root at these samples: (F, n, 3, 3) and (F, n, 3)

@@ -8,13 +8,15 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ...values.timed import Timed
+
 __all__ = ["JointSolution"]
 
 FloatArray = NDArray[np.float64]
 
 
 @dataclass(frozen=True)
-class JointSolution:
+class JointSolution(Timed):
     """Joint values that put a tool frame on its target, sample by sample.
 
     Apply it with ``tree.set_joint_trajectory(sol.seconds, sol.positions,
@@ -62,18 +64,6 @@ class JointSolution:
     velocity_limit_joints: tuple[str, ...]
 
     @property
-    def seconds(self) -> FloatArray:
-        """:attr:`times` in seconds (float)."""
-        return self.times.astype(np.int64) / 1e9
-
-    @property
-    def absolute_times(self) -> NDArray[np.datetime64] | None:
-        """``reference_time + times``, or None without a reference time."""
-        if self.reference_time is None:
-            return None
-        return (self.reference_time + self.times).astype("datetime64[ns]")
-
-    @property
     def velocities(self) -> FloatArray:
         """Joint rates (T, n), radians or metres per second, over the interval ending at each
         sample: ``(q_i - q_{i-1}) / (t_i - t_{i-1})``, the first row 0. Two samples at one
@@ -82,7 +72,7 @@ class JointSolution:
         if self.positions.shape[0] < 2:
             return rates
         steps = np.diff(self.positions, axis=0)
-        durations = np.diff(self.seconds)[:, None]
+        durations = np.diff(self.times).astype(np.float64)[:, None] / 1e9  # seconds
         with np.errstate(divide="ignore", invalid="ignore"):
             rates[1:] = np.where(steps == 0.0, 0.0, steps / durations)
         rates[1:][(durations == 0.0) & (steps != 0.0)] = np.inf

@@ -25,7 +25,7 @@ from ...values.se3 import Transform
 from ...values.timeline import TimedSource
 from .._description import TreeDescription
 from .._model import CompiledModel
-from .._plan import PreparedPath, QueryPlan, plan_query, prepare_path
+from .._plan import PreparedPath, plan_query, prepare_path
 from .._sampling import KERNEL_CHUNK, sample_configurations
 from ._batch_check import measure_solutions
 from ._bounded_step import LeastSquares
@@ -59,21 +59,26 @@ def evaluate_solve_joints(
     error = _tool_error(free_axis, frame)
     tolerances = (_tolerance(position_tolerance, "position_tolerance", frame),
                   _tolerance(orientation_tolerance, "orientation_tolerance", frame))
+    # a time-dependent target's times are the solve's, beside those of what moves
+    target_times = None if target_pose is None else target_pose.times
+    extra = () if target_pose is None or target_times is None else (
+        TimedSource(_TARGET_SOURCE, target_times.astype(np.int64), target_pose.reference_time),)
     path = prepare_path(tree, frame, reference)
     if path.model is None:
         raise JointError(f"no robot joint moves {frame!r} relative to {reference!r}",
                          frame=frame, field="joints")
     model = path.model
-    solved = _solved_joints(tree, model, joints, frame, reference)
+    solved = _solved_joints(tree, path, joints)
     held = {name: 0.0 for name in solved.names}
-    plan = _plan(tree, path, held, target_pose, times, time_ref)
+    # the solved joints' samples are what is solved for: not among the solve's times
+    plan = plan_query(tree, frame, reference, times, time_ref, "clamp", held=held, extra=extra)
     moments = plan.sample_times  # nothing moves: one sample
     offsets = np.zeros(1, dtype=np.int64) if plan.offsets is None else plan.offsets
     shifts = plan.shifts
-    start = _seed(tree, solved, seed, int(moments[0]), shifts, frame)
     ratios = _step_ratios(moments)
-    history = TrackingHistory(start)
     reference_id = _reference_id(model, reference)
+    start = _seed(tree, solved, seed, int(moments[0]), shifts, frame)
+    history = TrackingHistory(start)
     solver = LeastSquares()
     parts: list[Tracked] = []
     for begin in range(0, moments.shape[0], KERNEL_CHUNK):
@@ -101,35 +106,22 @@ def evaluate_solve_joints(
     return solution
 
 
-def _plan(tree: TreeDescription, path: PreparedPath, solved: Mapping[str, float],
-          target: Pose | None, times: Any, time_ref: Any) -> QueryPlan:
-    """The plan of the solve on ``path``: its times those of every moving thing on it but
-    the ``solved`` joints (whose samples are what is solved for), and of a time-dependent
-    target."""
-    sources = [source for source in path.sources if source.name not in solved]
-    if target is not None and target.is_time_dependent:
-        target_times = target.times
-        assert target_times is not None
-        sources.append(TimedSource(_TARGET_SOURCE, target_times.astype(np.int64),
-                                   target.reference_time))
-    return plan_query(tree, path.frame, path.relative_to, times, time_ref, "clamp", sources,
-                      held=solved)
-
-
-def _solved_joints(tree: TreeDescription, model: CompiledModel, joints: Any, frame: str,
-                   reference: str) -> SolvedJoints:
-    """:func:`solved_joints`, prepared once per tree version and request."""
+def _solved_joints(tree: TreeDescription, path: PreparedPath, joints: Any) -> SolvedJoints:
+    """:func:`solved_joints` of a moving ``path``, prepared once per path (so per tree
+    version) and request."""
+    model = path.model
+    assert model is not None
     if joints is None or (isinstance(joints, (list, tuple))
                           and all(isinstance(name, str) for name in joints)):
-        key = ("solve_joints", frame, reference,
-               *(("every joint",) if joints is None else ("named", *joints)))
-        cached = tree.cached(key)
+        key = "solve_joints: " + ("every joint" if joints is None
+                                  else "named: " + "\0".join(joints))
+        cached = path.plans.get(key)
         if cached is None:
-            cached = solved_joints(model, tree.joints_by_name, joints, frame, reference)
-            tree.store(key, cached)
+            cached = path.plans[key] = solved_joints(model, tree.joints_by_name, joints,
+                                                     path.frame, path.relative_to)
         assert isinstance(cached, SolvedJoints)
         return cached
-    return solved_joints(model, tree.joints_by_name, joints, frame, reference)
+    return solved_joints(model, tree.joints_by_name, joints, path.frame, path.relative_to)
 
 
 def _reference(tree: TreeDescription, frame: str, target: str | Pose, relative_to: str | None

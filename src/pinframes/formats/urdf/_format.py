@@ -2,9 +2,8 @@
 
 :func:`pinframes.write_urdf` writes a tree at one time as two files, the robot
 (``cell.urdf``) and its joints' values then (``cell.joints.csv``, a joint trajectory file of
-one row). Reading the URDF reads both, so the robot stands where it stood. This sits beside
-the ``urdf`` package, which parses, mounts and writes robots, with the format's entry
-(:data:`URDF_FORMAT`), whose reader reads a joint trajectory file too.
+one row). Reading the URDF reads both, so the robot stands where it stood. Here too the
+format's entry (:data:`URDF_FORMAT`) in the formats' registry.
 """
 
 from __future__ import annotations
@@ -12,13 +11,14 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from ..errors import PinframesError
-from ..tree import FrameTree
-from ._registry import FileFormat
-from .limits import Limits
-from .reading import InputFile
-from .trajectory_files import read_joint_trajectory
-from .urdf import is_urdf, joint_state_path, read_robot, write_urdf
+from ...errors import PinframesError
+from ...tree import FrameTree
+from .._registry import FileFormat
+from ..limits import Limits
+from ..reading import InputFile
+from ..trajectory_files import read_joint_trajectory
+from ._parse import is_urdf
+from ._read_write import joint_state_path, read_robot, write_urdf
 
 __all__ = ["URDF_FORMAT", "read_urdf"]
 
