@@ -68,6 +68,25 @@ def pinframes_case(samples: int):
     return run
 
 
+def cell_part(part: str, frames: dict) -> list:
+    """The collision objects of a cell part: from its frame's ``geometry`` entry in
+    scene.yaml (boxes and cylinders, read with PyYAML), else from its URDF (Pinocchio)."""
+    if "geometry" in frames.get(part, {}):
+        pieces = []
+        for index, entry in enumerate(frames[part]["geometry"]):
+            if "box" in entry:
+                shape = coal.Box(*entry["box"]["size"])
+            else:
+                shape = coal.Cylinder(entry["cylinder"]["radius"], entry["cylinder"]["length"])
+            placement = pin.SE3(pin.rpy.rpyToMatrix(*entry.get("rpy", [0.0, 0.0, 0.0])),
+                                np.array(entry.get("xyz", [0.0, 0.0, 0.0])))
+            pieces.append(pin.GeometryObject(f"{part}_{index}", 0, placement, shape))
+        return pieces
+    urdf = CELL / "geometry" / f"{part}.urdf"
+    return list(pin.buildGeomFromUrdf(pin.buildModelFromUrdf(str(urdf)), str(urdf),
+                                      pin.GeometryType.COLLISION).geometryObjects)
+
+
 class PinocchioLoop:
     """The reference: Pinocchio's own model and geometry, one computeDistances per sample."""
 
@@ -81,11 +100,7 @@ class PinocchioLoop:
         robot_objects = self.geometry.ngeoms
         self.parts = []  # (object id, its pose in its cell frame, the cell frame)
         for part, frame in PARTS.items():
-            part_urdf = CELL / "geometry" / f"{part}.urdf"
-            part_model = pin.buildModelFromUrdf(str(part_urdf))
-            part_geometry = pin.buildGeomFromUrdf(part_model, str(part_urdf),
-                                                  pin.GeometryType.COLLISION)
-            for piece in part_geometry.geometryObjects:
+            for piece in cell_part(part, frames):
                 placement = piece.placement.homogeneous
                 piece.parentJoint, piece.parentFrame = 0, 0
                 self.parts.append((self.geometry.addGeometryObject(piece), placement, frame))

@@ -4,6 +4,7 @@ import re
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -22,6 +23,10 @@ def test_readme_python_examples_run(monkeypatch):
     torch = namespace["torch"]
     assert (len(namespace["pieces"]), torch.source, torch.faces.shape) == (
         17, "meshes/torch.stl", (352, 3))
+    # the shapes example: the probe's ball 0.3 m above the table top (the cylinder is
+    # hypot(0.3, 0.2) - 0.03 m aside), less its radius
+    assert namespace["jig"].clearance("table", "probe").distance[0] == \
+        pytest.approx(0.3 - 0.02, abs=1e-12)
 
 
 def test_readme_kinematics_example_prints_hand_derived_numbers(monkeypatch):

@@ -1,21 +1,19 @@
-"""Generate the visual and collision geometry of the bundled welding cell: URDFs and STL meshes.
+"""Generate the pipe's and the torch's visual and collision geometry: URDFs and STL meshes.
 
 Run from the repository root::
 
     python models/welding_cell/make_geometry.py [--out DIR]
 
 It writes into ``geometry/`` beside itself (or into ``--out DIR``), the same bytes on every
-run. Everything is made here from boxes, cylinders and tubes; nothing is copied. Each URDF
-has one link and no joint: the scene mounts it on a frame of the cell (``scene.yaml``,
-``robots``), so it moves with that frame. Lengths in metres.
+run. Everything is made here from cylinders and tubes; nothing is copied. Each URDF has one
+link and no joint: the scene mounts it on a frame of the cell (``scene.yaml``, ``robots``),
+so it moves with that frame. Lengths in metres. (The fixtures and the faceplate are boxes and
+cylinders only: ``scene.yaml`` gives them as its frames' ``geometry`` entries.)
 
-Collision geometry is made of primitives (what coal measures exactly and fastest): the
-fixtures and the faceplate collide as they look; the pipe is a solid cylinder of its outer
-diameter and length; the torch is three cylinders along its body and neck, the neck ending
-where the drawn neck ends, 15 mm before the wire tip.
+Collision geometry is made of primitives (what coal measures exactly and fastest): the pipe
+is a solid cylinder of its outer diameter and length; the torch is three cylinders along its
+body and neck, the neck ending where the drawn neck ends, 15 mm before the wire tip.
 
-- ``fixtures.urdf`` (on ``world``): the robot's riser and the positioner's headstock housing.
-- ``faceplate.urdf`` (on ``positioner``): the turning faceplate with three chuck jaws.
 - ``pipe.urdf`` (on ``workpiece``): the two pipe halves (outer diameter 219.1 mm, wall 8 mm),
   a mesh ``meshes/pipe.stl`` named relative to the URDF.
 - ``torch.urdf`` (on ``robot/flange``): the torch body and its 22 degree neck, a mesh
@@ -128,7 +126,6 @@ def cylinder_between(start: np.ndarray, end: np.ndarray, radius: float) -> str:
 
 def files() -> dict[str, bytes | str]:
     steel = {"steel": "0.62 0.64 0.68 1.0"}
-    grey = {"machine_grey": "0.30 0.32 0.36 1.0", "machine_blue": "0.10 0.28 0.55 1.0"}
     pipe = merge(tube(np.array([0, 0, -0.29]), np.array([0, 0, -0.0015]), PIPE_RADIUS,
                       PIPE_RADIUS - PIPE_WALL),
                  tube(np.array([0, 0, 0.0015]), np.array([0, 0, 0.29]), PIPE_RADIUS,
@@ -138,24 +135,7 @@ def files() -> dict[str, bytes | str]:
     torch = merge(tube(np.array([0, 0, 0.0]), np.array([0, 0, 0.06]), 0.035, sections=32),
                   tube(np.array([0, 0, 0.06]), NECK_START_IN_FLANGE, 0.022, sections=32),
                   tube(NECK_START_IN_FLANGE, neck_end, 0.011, sections=24))
-    jaws = [(f'xyz="{0.13 * np.cos(a):.6f} {0.13 * np.sin(a):.6f} 0.03" rpy="0 0 {a:.6f}"',
-             '<box size="0.07 0.04 0.06"/>', "machine_grey")
-            for a in 2 * np.pi * np.arange(3) / 3 + np.pi / 2]
-    fixtures = [
-        # riser under robot_base (world 0, 0.4, 0.3): 0.3 m high
-        ('xyz="0 0.4 0.15" rpy="0 0 0"', '<box size="0.45 0.45 0.3"/>', "machine_grey"),
-        # headstock housing behind the faceplate (turning axis at z 0.85 along +y)
-        ('xyz="1.0 -0.55 0.5" rpy="0 0 0"', '<box size="0.55 0.4 1.0"/>', "machine_blue"),
-        ('xyz="1.0 -0.33 0.85" rpy="1.5707963267948966 0 0"',
-         '<cylinder radius="0.12" length="0.06"/>', "machine_grey"),
-    ]
-    faceplate = [('xyz="0 0 -0.01" rpy="0 0 0"', '<cylinder radius="0.22" length="0.04"/>',
-                  "machine_grey"), *jaws]
     return {
-        "fixtures.urdf": urdf("fixtures", [visual(*piece) for piece in fixtures], grey,
-                              [collision(*piece[:2]) for piece in fixtures]),
-        "faceplate.urdf": urdf("faceplate", [visual(*piece) for piece in faceplate], grey,
-                               [collision(*piece[:2]) for piece in faceplate]),
         "pipe.urdf": urdf("pipe", [
             visual('xyz="0 0 0" rpy="0 0 0"', '<mesh filename="meshes/pipe.stl"/>', "steel")],
             steel, [collision('xyz="0 0 0" rpy="0 0 0"',

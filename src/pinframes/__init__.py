@@ -53,6 +53,7 @@ from .values.joint import Joint, Mimic
 from .values.joint_trajectory import JointTrack, JointTrajectory
 from .values.pose import Pose
 from .values.pose_stack import PoseStack
+from .values.shapes import Box, Cylinder, Mesh, Sphere
 from .values.spatial_data import SpatialData
 from .values.subsystem import Subsystem
 from .values.timeconv import TimeAxis
@@ -62,8 +63,10 @@ __version__ = "0.1.0"
 __all__ = [
     "ArgumentTypeError",
     "BagWarning",
+    "Box",
     "BrokenMimicWarning",
     "Clearance",
+    "Cylinder",
     "DataNotFoundError",
     "ExtrapolationError",
     "ExtrapolationWarning",
@@ -89,6 +92,7 @@ __all__ = [
     "JointTrajectory",
     "JointWithoutSamplesWarning",
     "Limits",
+    "Mesh",
     "Mimic",
     "NameNotFoundError",
     "PinframesError",
@@ -100,6 +104,7 @@ __all__ = [
     "Shape",
     "Snapshot",
     "SpatialData",
+    "Sphere",
     "Subsystem",
     "TargetNotReachedError",
     "TimeAxis",

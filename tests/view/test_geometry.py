@@ -2,8 +2,8 @@
 
 The robots are mounted on a frame of a tree and driven with random joint values; each loaded
 piece of geometry, placed by ``tree.pose(piece.frame) @ piece.pose_in_frame``, must sit where
-yourdfpy's own forward kinematics put its scene node and where Pinocchio's
-``updateGeometryPlacements`` puts the matching GeometryObject.
+yourdfpy's own forward kinematics put its scene nodes (the same triangles, per link) and
+where Pinocchio's ``updateGeometryPlacements`` puts the matching GeometryObject.
 """
 
 from __future__ import annotations
@@ -147,14 +147,32 @@ def test_panda_collision_meshes_match_pinocchio_one_to_one(rng):
 
 
 def _against_yourdfpy(urdf: Path, tree, pieces, ours, values, count) -> None:
-    """yourdfpy loads the same URDF on its own; its scene nodes must sit where ours do."""
+    """yourdfpy loads the same URDF on its own: per link and time, its scene's triangles
+    (every node placed) must be ours: their number, bounding box and mean corner."""
     model = yourdfpy.URDF.load(str(urdf), load_meshes=True, build_scene_graph=True)
     nodes = model.scene.graph.nodes_geometry
-    assert len(nodes) == len(pieces)
+    links = sorted({piece.link for piece in pieces})
+    assert links == sorted({model.scene.graph.transforms.parents[node] for node in nodes})
     for k in range(count):
         model.update_cfg({name: float(v[k]) for name, v in values.items()
                           if name in model.actuated_joint_names})
-        for node, piece, placed in zip(nodes, pieces, ours, strict=True):
-            assert model.scene.graph.transforms.parents[node] == piece.link
-            expected = MOUNT.matrix @ model.scene.graph.get(node)[0]
-            np.testing.assert_allclose(placed[k], expected, atol=1e-9)
+        for link in links:
+            theirs = [_corners(model.scene.graph.get(node)[0],
+                               model.scene.geometry[model.scene.graph.get(node)[1]])
+                      for node in nodes if model.scene.graph.transforms.parents[node] == link]
+            expected = MOUNT.matrix[:3, :3] @ np.concatenate(theirs).T
+            expected = expected.T + MOUNT.matrix[:3, 3]
+            placed = np.concatenate([_corners(matrix[k], piece) for piece, matrix
+                                     in zip(pieces, ours, strict=True) if piece.link == link])
+            assert placed.shape == expected.shape
+            for statistic in (np.min, np.max, np.mean):
+                np.testing.assert_allclose(statistic(placed, axis=0),
+                                           statistic(expected, axis=0), atol=1e-9)
+
+
+def _corners(matrix: np.ndarray, mesh) -> np.ndarray:
+    """Every triangle corner of ``mesh`` (a LinkGeometry or a trimesh) placed by
+    ``matrix``, shape (3 m, 3)."""
+    faces = getattr(mesh, "faces", None)
+    corners = np.asarray(mesh.vertices)[np.asarray(faces).reshape(-1)]
+    return corners @ matrix[:3, :3].T + matrix[:3, 3]

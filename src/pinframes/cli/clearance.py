@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from ..formats.clearance_files import CLEARANCE_FILE_FORMATS, clearance_text
+from ..formats.limits import current_limits
 from ..kinematics import Clearance
 from ..kinematics.collision.mesh_files import PACKAGE_PATH_VARIABLE
 from ..tree import FrameTree
@@ -68,7 +69,8 @@ def run(args: argparse.Namespace) -> int:
     tree = read_tree(args.file)
     a, b = frame_names(tree, args.a), frame_names(tree, args.b)
     options = {"geometry": args.geometry, "package_dirs": args.package_dir,
-               "exclude": [tuple(pair) for pair in args.exclude]}
+               "exclude": [tuple(pair) for pair in args.exclude],
+               "limits": current_limits()}  # --max-triangles (main() sets the limits)
     times = times_from_options(args, lambda: tree.clearance_times(a, b,
                                                                   geometry=args.geometry))
     check_query_extrapolation(

@@ -24,6 +24,7 @@ from dataclasses import dataclass, fields
 from typing import Any, TypeVar, cast
 
 from ..errors import ArgumentTypeError, FileFormatError
+from ..kinematics.collision.mesh_reader import MAX_TRIANGLES
 
 __all__ = ["Limits", "checked_limits", "current_limits", "exceeded", "reader_with_limits",
            "using_limits"]
@@ -55,6 +56,10 @@ class Limits:
     max_xml_elements : int
         XML elements of a URDF file (every start tag counts one; the largest robot of
         example-robot-data has 3,851).
+    max_triangles : int
+        Triangles of one mesh file after instancing (a COLLADA node instanced twice counts
+        its triangles twice), counted before any is built: past it the clearance is an
+        error naming the frame, the 3-D page leaves the mesh out with a warning.
     """
 
     max_samples: int = 2_000_000
@@ -62,6 +67,7 @@ class Limits:
     max_decompressed_bytes: int = 1024**3
     max_depth: int = 1_000
     max_xml_elements: int = 1_000_000
+    max_triangles: int = MAX_TRIANGLES
 
     def __post_init__(self) -> None:
         for item in fields(self):

@@ -58,13 +58,16 @@ class PinocchioTree:
 
     def geometry_model(self, kind: str = "collision",
                        package_dirs: Iterable[str | os.PathLike[str]] = ()) -> pin.GeometryModel:
-        """The URDF links' ``kind`` geometry as a ``pinocchio.GeometryModel`` on this model.
+        """The frames' ``kind`` geometry as a ``pinocchio.GeometryModel`` on this model.
 
         One ``GeometryObject`` per ``<collision>`` (or ``<visual>``) element of every link
-        that has any, named ``FRAME_INDEX`` (``robot/link_2_0``), hanging on the link's frame
-        (``parentFrame``, ``parentJoint`` and the placement in that joint), with the coal
-        object ``pinocchio.buildGeomFromUrdf`` would build (meshes found as
-        ``FrameTree.clearance`` finds them, in ``package_dirs`` first). No collision pairs
+        that has any, and per shape given by ``FrameTree.add_geometry``, named
+        ``FRAME_INDEX`` (``robot/link_2_0``), hanging on its frame (``parentFrame``,
+        ``parentJoint`` and the placement in that joint), with the coal object
+        ``FrameTree.clearance`` measures: ``pinocchio.buildGeomFromUrdf``'s for primitives
+        and STL, OBJ, PLY meshes; COLLADA meshes in the unit their file gives (Pinocchio's
+        loader leaves it out). Meshes are found as the clearance finds them, in
+        ``package_dirs`` first. No collision pairs
         are set: ``addAllCollisionPairs()`` or ``addCollisionPair`` choose them. A mesh
         that is missing or unreadable is a :class:`~pinframes.errors.GeometryError`.
         """

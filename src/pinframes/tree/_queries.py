@@ -47,6 +47,7 @@ from ..kinematics import (
     paths_to_common_ancestor,
     snapshot,
 )
+from ..kinematics.collision.mesh_reader import DEFAULT_BOUNDS, MeshBounds
 from ..values.geometry import GEOMETRY_METADATA_KEY, FrameGeometry
 from ..values.numbers import require_finite_result
 from ..values.pose import Pose
@@ -400,16 +401,17 @@ class TreeQueries(EditableTree):
         self, a: str | Sequence[str], b: str | Sequence[str], *, times: Any = None,
         time_ref: Any = None, package_dirs: Iterable[str | os.PathLike[str]] = (),
         geometry: str = "collision", exclude: Iterable[tuple[str, str]] = (),
-        extrapolation: str = "clamp",
+        extrapolation: str = "clamp", limits: Any = None,
     ) -> Clearance:
-        """The smallest distance between the geometry of the links ``a`` and ``b``, per sample.
+        """The smallest distance between the shapes of the frames ``a`` and ``b``, per sample.
 
         Parameters
         ----------
         a, b : str or sequence of str
             Frame names or glob patterns over frame names (``"robot/*"``). Their geometry
             is the ``<collision>`` (or, with ``geometry="visual"``, ``<visual>``) geometry
-            of the URDF links among them: boxes, cylinders, spheres and meshes. A frame
+            of the URDF links among them and the shapes :meth:`add_geometry` gave them:
+            boxes, cylinders, spheres and meshes. A frame
             named outright must have such geometry; a pattern takes the frames it matches
             that have some (a link such as ``tool0`` without any is left out, as
             ``pinocchio.buildGeomFromUrdf`` leaves it out) and must take at least one.
@@ -426,6 +428,10 @@ class TreeQueries(EditableTree):
         exclude : iterable of (str, str)
             Pairs of frame names or patterns not to check, in either order (a torch that
             works at the seam, a robot standing on its base).
+        limits : pinframes.Limits or None
+            Its ``max_triangles`` bounds the triangles of each mesh file after
+            instancing, its ``max_decompressed_bytes`` the file's size (None: 1,000,000
+            triangles, any size; the command line passes its ``--max-...`` options).
 
         Returns
         -------
@@ -434,12 +440,15 @@ class TreeQueries(EditableTree):
             ``closest`` (T, 2) the pair's frames; ``point_a``, ``point_b`` (T, 3) m in the
             root's axes; ``times``, ``seconds``, ``reference_time``; ``first_contact``.
             Distances are coal's, as ``pinocchio.computeDistances`` computes them on the
-            same URDF geometry.
+            same URDF geometry; but a closed mesh is a solid here (a shape wholly inside it
+            is in contact, at minus the distance between their surfaces), and COLLADA
+            meshes are in the unit their file gives.
 
         Raises
         ------
         GeometryError
-            A frame without geometry, a malformed shape, a mesh missing or unreadable.
+            A frame without geometry, a malformed shape, a mesh missing, unreadable or of more
+        triangles than ``max_triangles``, a shape not finite or placed beyond 1e9 m.
         FrameNotFoundError
             A name that is no frame and a pattern that matches none.
         """
@@ -449,8 +458,11 @@ class TreeQueries(EditableTree):
                     for first in self._frames_matching(pattern_a, "exclude")
                     for second in self._frames_matching(pattern_b, "exclude")]
         recorded = {frame: self._recorded_geometry(frame) for frame in [*frames_a, *frames_b]}
+        bounds = DEFAULT_BOUNDS if limits is None else MeshBounds(
+            limits.max_triangles, limits.max_decompressed_bytes)
         return evaluate_clearance(self._frozen(), recorded, frames_a, frames_b, excluded,
-                                  geometry, package_dirs, times, time_ref, extrapolation)
+                                  geometry, package_dirs, times, time_ref, extrapolation,
+                                  bounds)
 
     def clearance_times(self, a: str | Sequence[str], b: str | Sequence[str], *,
                         geometry: str = "collision") -> TimeAxis | None:
@@ -505,7 +517,8 @@ class TreeQueries(EditableTree):
                 kept.append(frame)
         if not kept:
             raise GeometryError(f"{', '.join(map(repr, outright))} match no frame with {kind} "
-                                "geometry (only the links of attached URDFs have shapes)",
+                                "geometry (only the links of attached URDFs and frames given "
+                                "shapes by add_geometry have some)",
                                 field=field)
         return kept
 

@@ -9,14 +9,17 @@ from files and the whole-tree operations, whose work is done in :mod:`.grafting`
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
-from ..errors import InvalidTimeError
+from ..errors import ArgumentTypeError, InvalidDataError, InvalidTimeError, PinframesError
+from ..values.geometry import GEOMETRY_KINDS, GEOMETRY_METADATA_KEY, FrameGeometry
 from ..values.pose import Pose
+from ..values.shapes import ShapeLike, shape_record
 from ..values.spatial_data import SpatialData, apply_pose
 from ..values.subsystem import Subsystem
 from ..values.timeconv import TimeAxis
@@ -79,6 +82,34 @@ class FrameTree(TreeQueries):
         """
         return robot_mounter("urdf")(self, urdf, parent, pose, prefix, strict=strict,
                                      limits=limits)
+
+    def add_geometry(self, frame: str, shape: ShapeLike, *, origin: Pose | None = None,
+                     kind: str = "both",
+                     rgba: tuple[float, float, float, float] | None = None) -> None:
+        """Give ``frame`` a shape: a :class:`~pinframes.Box`, :class:`~pinframes.Cylinder`,
+        :class:`~pinframes.Sphere` or :class:`~pinframes.Mesh`, with its coordinates at
+        ``origin`` in the frame (static; None: the frame's own).
+
+        ``kind`` is ``"collision"`` (measured by :meth:`clearance`), ``"visual"`` (drawn on
+        the page) or ``"both"``. The shape joins those the frame has (a robot link keeps its
+        URDF shapes) and moves with the frame; :meth:`to_pinocchio`, the page and scene
+        files (a frame's ``geometry`` entry) keep it. ``rgba`` is its colour on the page
+        (red, green, blue, alpha in 0..1).
+        """
+        self._require(frame, "frame")
+        if kind not in ("both", *GEOMETRY_KINDS):
+            raise ArgumentTypeError(f"expected 'both', 'collision' or 'visual', got {kind!r}",
+                                    frame=frame, field="kind")
+        try:
+            record = shape_record(shape, origin, _colour(rgba))
+        except PinframesError as exc:
+            raise exc.located(frame=frame) from None
+        metadata = self.frame_metadata(frame)
+        recorded = metadata.get(GEOMETRY_METADATA_KEY) or FrameGeometry(frame, None)
+        added = {name: (record,) if kind in ("both", name) else () for name in GEOMETRY_KINDS}
+        metadata[GEOMETRY_METADATA_KEY] = dataclasses.replace(
+            recorded, collision=recorded.collision + added["collision"],
+            visual=recorded.visual + added["visual"])
 
     def graft(self, other: FrameTree, at: str | None = None, prefix: str = "",
               name: str | None = None, record: bool = True) -> Subsystem | None:
@@ -158,3 +189,15 @@ class FrameTree(TreeQueries):
         pose = self.pose(frame, target, times, time_ref)
         offsets = None if pose.times is None else pose.times.astype(np.int64)
         return data.with_points(apply_pose(pose, data.points), offsets, pose.reference_time)
+
+
+def _colour(rgba: Any) -> tuple[float, float, float, float] | None:
+    """``rgba`` as four numbers in 0..1, or None."""
+    if rgba is None:
+        return None
+    values = np.asarray(rgba, dtype=float).reshape(-1)
+    if values.shape != (4,) or not np.all((values >= 0) & (values <= 1)):
+        raise InvalidDataError(f"expected red, green, blue, alpha in 0..1, got {rgba!r}",
+                               field="rgba")
+    red, green, blue, alpha = values.tolist()
+    return (red, green, blue, alpha)

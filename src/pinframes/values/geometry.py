@@ -1,10 +1,12 @@
-"""The geometry of a robot link: the shapes of its URDF ``<collision>`` and ``<visual>`` elements.
+"""The geometry of a frame: a URDF link's ``<collision>`` and ``<visual>`` shapes, and those
+given by ``FrameTree.add_geometry``.
 
-A :class:`FrameGeometry` is what the URDF mounter records for every link it adds to a tree
-(in the frame's metadata under :data:`GEOMETRY_METADATA_KEY`, so that renaming, removing,
-grafting and copying carry it). The clearance query turns it into coal objects, the 3-D page
-into triangles; neither parses the URDF again. Mesh files are named as the URDF writes them
-and are only opened by those consumers. Lengths in metres.
+A :class:`FrameGeometry` is what the URDF mounter records for every link it adds to a tree,
+and what ``add_geometry`` adds to (in the frame's metadata under
+:data:`GEOMETRY_METADATA_KEY`, so that renaming, removing, grafting and copying carry it).
+The clearance query turns it into coal objects, the 3-D page into triangles; neither parses
+the URDF again. Mesh files are named as the URDF writes them and are only opened by those
+consumers. Lengths in metres.
 """
 
 from __future__ import annotations
@@ -75,12 +77,14 @@ class Shape:
 
 @dataclass(frozen=True)
 class FrameGeometry:
-    """The shapes of one URDF link, as recorded when the robot was attached.
+    """The shapes of one frame: a URDF link's, as recorded when the robot was attached, and
+    those added by ``FrameTree.add_geometry``.
 
     Attributes
     ----------
     link : str
-        The link's name in its URDF (without the tree's prefix).
+        The link's name in its URDF (without the tree's prefix); for a frame that is no
+        link, the frame's name when its first shape was added.
     urdf : str or None
         The URDF file, as an absolute path (its folder resolves relative mesh names); None
         when the robot came from an XML string.

@@ -55,8 +55,9 @@ def require_finite_pose(translation: NDArray[np.float64], frame: str, relative_t
     """An :class:`~pinframes.errors.InvalidPoseError` naming the frame when the pose of
     ``frame`` in ``relative_to``, composed from finite poses, overflowed to infinity or NaN
     (two translations of 1e308 m)."""
-    require_finite_result(translation, f"the pose of {frame!r} in {relative_to!r}",
-                          InvalidPoseError, frame=frame, field="translation")
+    if not _all_finite(translation):  # the message is made only then (a query's hot path)
+        require_finite_result(translation, f"the pose of {frame!r} in {relative_to!r}",
+                              InvalidPoseError, frame=frame, field="translation")
 
 
 _FEW = 64

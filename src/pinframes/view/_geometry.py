@@ -1,13 +1,14 @@
 """Visual and collision geometry of the URDF links in a frame tree, as triangles.
 
-:func:`load_geometry` reads the shapes recorded when each robot was attached
-(:class:`~pinframes.FrameGeometry`, the same record the clearance query measures; the URDF is
-not parsed again) and makes their triangles with trimesh: boxes, cylinders and spheres as
-trimesh's primitives, meshes (STL, DAE, OBJ) read from the file
-:class:`~pinframes.kinematics.collision.mesh_files.MeshFiles` finds, scaled, every node of a
-DAE scene in its place, a visual's URDF colour on meshes without colours of their own (as yourdfpy
-draws them). Nothing here is used by :meth:`FrameTree.pose`: geometry is loaded only when
-asked for.
+:func:`load_geometry` reads the shapes recorded when each robot was attached or each shape
+added (:class:`~pinframes.FrameGeometry`, the same record the clearance query measures; the
+URDF is not parsed again) and makes their triangles: boxes, cylinders and spheres as
+trimesh's primitives, meshes from the file
+:class:`~pinframes.kinematics.collision.mesh_files.MeshFiles` finds, read by the clearance's
+own reader (:func:`~pinframes.kinematics.collision.mesh_reader.read_mesh`: COLLADA units
+applied, every node in its place), scaled, a visual's URDF colour on every part (as yourdfpy
+draws them), else a COLLADA material's colour. Nothing here is used by
+:meth:`FrameTree.pose`: geometry is loaded only when asked for.
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import GeometryWarning, UnsupportedFeatureError, warn_at_caller
+from ..errors import GeometryError, GeometryWarning, UnsupportedFeatureError, warn_at_caller
 from ..formats.limits import Limits, current_limits, reader_with_limits
 from ..kinematics.collision.mesh_files import (
     HOW_TO_SEARCH,
@@ -28,6 +29,7 @@ from ..kinematics.collision.mesh_files import (
     mesh_file_problem,
     package_search_dirs,
 )
+from ..kinematics.collision.mesh_reader import TriangleMesh, read_mesh
 from ..tree import FrameTree
 from ..values.geometry import GEOMETRY_METADATA_KEY, FrameGeometry, Shape
 
@@ -45,16 +47,17 @@ class LinkGeometry:
     frame : str
         The tree frame of the link (prefix included).
     link : str
-        The link's name in its URDF.
+        The link's name in its URDF (a frame's own name for shapes it was given).
     pose_in_frame : ndarray, shape (4, 4)
         Placement of the vertices' coordinate system in ``frame`` (the ``<origin>`` of the
-        ``<visual>``/``<collision>`` times any placement inside the mesh file); metres.
+        ``<visual>``/``<collision>``, or of the added shape); metres.
     vertices : ndarray, shape (n, 3), float64
-        Metres, in the geometry's own coordinates (mesh scale applied).
+        Metres, in the shape's own coordinates (for a mesh: every node of the file placed,
+        its unit and the scale applied).
     faces : ndarray, shape (m, 3), int64
         Vertex indices of each triangle.
-    colours : ndarray, shape (4,) or (n, 4)
-        RGBA in 0..1: one colour, or one per vertex.
+    colours : ndarray, shape (4,)
+        RGBA in 0..1.
     source : str
         The mesh file as the URDF names it, or ``box``/``cylinder``/``sphere``.
     """
@@ -83,13 +86,14 @@ def load_geometry(
     search folder; the link keeps its other geometry. Mesh files are read uncompressed only,
     and up to ``limits.max_decompressed_bytes`` each (None: the limits in effect, see
     :class:`pinframes.Limits`); others are skipped with a :class:`GeometryWarning` too, and
-    so is a mesh of points without triangles. Needs trimesh and, for DAE meshes, pycollada
-    (``pip install "pinframes[view]"``).
+    so is a mesh of points without triangles and one of more than ``limits.max_triangles``
+    triangles after instancing. Needs trimesh for the primitives (``pip install
+    "pinframes[view]"``).
     """
     kind = "collision" if collision else "visual"
     search_dirs = package_search_dirs(package_dirs)
-    scenes: dict[str, Any] = {}  # mesh file -> its trimesh scene, None when unreadable or
-    # not found (key: the name and the places searched)
+    # mesh file -> its triangles, None: unreadable or not found (key: name and places searched)
+    meshes: dict[str, TriangleMesh | None] = {}
     pieces: list[LinkGeometry] = []
     for frame in tree.frames:
         recorded = tree.frame_metadata(frame).get(GEOMETRY_METADATA_KEY)
@@ -101,93 +105,65 @@ def load_geometry(
                                search_dirs)
         for shape in recorded.shapes(kind):
             with np.errstate(over="ignore", invalid="ignore"):  # 1e308 m: left out on the page
-                parts = _triangles(shape, recorded, mesh_files, scenes)
-            for pose_in_shape, mesh in parts:
-                if len(mesh.faces) == 0:  # a primitive of a size that is zero or not finite
+                parts = _triangles(shape, recorded, mesh_files, meshes)
+            for vertices, faces, rgba in parts:
+                if len(faces) == 0:  # a primitive of a size that is zero or not finite
                     _warn(recorded, f"{shape.describe()} has no triangles", "geometry")
                     continue
+                colour = shape.rgba or rgba or _DEFAULT_RGBA
                 pieces.append(LinkGeometry(
-                    frame, recorded.link, shape.origin.matrix @ pose_in_shape,
-                    np.asarray(mesh.vertices, dtype=float),
-                    np.asarray(mesh.faces, dtype=np.int64), _colours(mesh, shape),
+                    frame, recorded.link, shape.origin.matrix, vertices, faces,
+                    np.array(colour, dtype=float),
                     shape.kind if shape.mesh is None else shape.mesh))
     return pieces
 
 
+Part = tuple[np.ndarray, np.ndarray, "tuple[float, float, float, float] | None"]
+
+
 def _triangles(shape: Shape, recorded: FrameGeometry, mesh_files: MeshFiles,
-               scenes: dict[str, Any]) -> list[tuple[np.ndarray, Any]]:
-    """``(placement in the shape's coordinates, trimesh.Trimesh)`` of each part of ``shape``."""
-    trimesh = _trimesh()
-    if shape.kind == "box":
-        return [(np.eye(4), trimesh.primitives.Box(extents=shape.dimensions).to_mesh())]
-    if shape.kind == "cylinder":
-        radius, length = shape.dimensions
-        return [(np.eye(4), trimesh.primitives.Cylinder(radius=radius, height=length)
-                 .to_mesh())]
-    if shape.kind == "sphere":
-        return [(np.eye(4), trimesh.primitives.Sphere(radius=shape.dimensions[0]).to_mesh())]
+               meshes: dict[str, TriangleMesh | None]) -> list[Part]:
+    """``(vertices (n, 3) m, faces (m, 3), rgba or None)`` of each part of ``shape``, in the
+    shape's coordinates."""
+    if shape.kind != "mesh":
+        trimesh = _trimesh()
+        if shape.kind == "box":
+            made = trimesh.primitives.Box(extents=shape.dimensions)
+        elif shape.kind == "cylinder":
+            radius, length = shape.dimensions
+            made = trimesh.primitives.Cylinder(radius=radius, height=length)
+        else:
+            made = trimesh.primitives.Sphere(radius=shape.dimensions[0])
+        mesh = made.to_mesh()
+        return [(np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64),
+                 None)]
     assert shape.mesh is not None  # a mesh always names its file
     path = mesh_files.find(shape.mesh)
     if path is None:
         missing = f"not found: {shape.mesh} in {mesh_files.candidates(shape.mesh)}"
-        if missing not in scenes:  # one warning per mesh and search, not one per link
-            scenes[missing] = None
+        if missing not in meshes:  # one warning per mesh and search, not one per link
+            meshes[missing] = None
             _warn(recorded, f"mesh {shape.mesh!r} not found ({mesh_files.looked_in(shape.mesh)}"
                   f"); {HOW_TO_SEARCH}")
         return []
     key = str(path)
-    if key not in scenes:
-        problem = mesh_file_problem(path, current_limits().max_decompressed_bytes)
+    if key not in meshes:
+        limits = current_limits()
+        problem = mesh_file_problem(path, limits.max_decompressed_bytes)
         if problem is not None:
             _warn(recorded, f"mesh {shape.mesh!r} ({path}) {problem}")
-            scenes[key] = None
+            meshes[key] = None
         else:
-            scenes[key] = _read_scene(trimesh, path, recorded, shape.mesh)
-    scene = scenes[key]
-    if scene is None:
+            try:
+                meshes[key] = read_mesh(path, max_triangles=limits.max_triangles)
+            except GeometryError as exc:
+                _warn(recorded, f"mesh {shape.mesh!r} {exc.message} ({path})")
+                meshes[key] = None
+    mesh = meshes[key]
+    if mesh is None:
         return []
-    if shape.scale != (1.0, 1.0, 1.0):
-        scene = scene.scaled(np.array(shape.scale))
-    parts = []
-    for node in scene.graph.nodes_geometry:
-        placement, name = scene.graph.get(node)
-        if len(getattr(scene.geometry[name], "faces", ())) > 0:  # not points or lines
-            parts.append((np.asarray(placement, dtype=float), scene.geometry[name]))
-    return parts
-
-
-def _read_scene(trimesh: Any, path: Path, recorded: FrameGeometry, name: str) -> Any:
-    """The mesh file as a trimesh scene of triangle meshes, or None (with a warning)."""
-    try:
-        scene = trimesh.load(str(path), force="scene")
-    except Exception as exc:
-        _warn(recorded, f"mesh {name!r} cannot be read ({type(exc).__name__}: {exc})")
-        return None
-    kept = [geometry for geometry in scene.geometry.values()
-            if len(getattr(geometry, "faces", ())) > 0]
-    if not kept:
-        kinds = {type(geometry).__name__ for geometry in scene.geometry.values()}
-        what = f"a {', '.join(sorted(kinds))}, points or lines only" if kinds else "empty"
-        _warn(recorded, f"mesh {name!r} has no triangles ({what})")
-        return None
-    return scene
-
-
-def _colours(mesh: Any, shape: Shape) -> np.ndarray:
-    """One RGBA colour for the mesh when it is uniform, else one per vertex (0..1): the
-    visual's URDF colour on a mesh coloured by face or vertex or not at all (as yourdfpy
-    paints it), else the mesh's own (a texture's, a material's), else grey."""
-    visual = mesh.visual
-    if shape.rgba is not None and visual.kind in ("face", "vertex", None):
-        return np.array(shape.rgba)
-    if visual.kind == "texture":
-        visual = visual.to_color()
-    if visual.kind not in ("face", "vertex"):
-        return np.array(_DEFAULT_RGBA)
-    colours = np.atleast_2d(np.asarray(visual.vertex_colors, dtype=float)) / 255.0
-    if np.all(colours == colours[0]):
-        return colours[0]
-    return colours
+    scale = np.array(shape.scale)
+    return [(part.vertices * scale, part.triangles, part.rgba) for part in mesh.parts]
 
 
 def _warn(recorded: FrameGeometry, problem: str, what: str = "mesh") -> None:

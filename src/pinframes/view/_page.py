@@ -22,7 +22,7 @@ import numpy as np
 
 from ..errors import InvalidTimeError, ReferenceTimeError, UnsupportedFeatureError
 from ..formats.atomic import atomic_write
-from ..formats.limits import Limits
+from ..formats.limits import Limits, checked_limits
 from ..formats.urdf import URDF_METADATA_KEY
 from ..tree import FrameTree
 from ..values.pose import Pose
@@ -106,6 +106,7 @@ def view_html(
     any pose is computed. Any frame name gives a working page.
     """
     relative_to = tree.root if relative_to is None else relative_to
+    limits = checked_limits(limits)
     frames = list(tree.frames if frames is None else frames)
     for frame in frames:
         tree.path(frame, relative_to)  # raises for unknown frames
@@ -145,7 +146,7 @@ def view_html(
     marked = None
     if clearance is not None:
         marked = _closest_pair(tree, clearance, clearance_exclude, package_dirs, relative_to,
-                               values, time_ref, seconds)
+                               values, time_ref, seconds, limits)
         scene.add_closest_pair(*marked[:2], seconds, 0.006 * extent[2])
     commands = list(scene.commands)
     if (animation := scene.animation_command()) is not None:
@@ -161,13 +162,13 @@ def view_html(
 def _closest_pair(tree: FrameTree, sides: tuple[Any, Any],
                   exclude: Iterable[tuple[str, str]],
                   package_dirs: Iterable[str | os.PathLike[str]], relative_to: str,
-                  values: Any, time_ref: Any, seconds: np.ndarray
+                  values: Any, time_ref: Any, seconds: np.ndarray, limits: Limits
                   ) -> tuple[np.ndarray, np.ndarray, dict[str, Any]]:
     """The clearance's closest points per page sample, in the drawing frame, and what the
     page shows beside the time: per sample the distance (mm) and the pair."""
     a, b = sides
     result = tree.clearance(a, b, times=values, time_ref=time_ref, exclude=list(exclude),
-                            package_dirs=package_dirs)
+                            package_dirs=package_dirs, limits=limits)
     root_in_drawing = _pose(tree, tree.root, relative_to, values, time_ref)
     # (T, 3): one point per time through a moving pose, or each point through a static one
     points = [root_in_drawing.transform_points(points, per_time=True)

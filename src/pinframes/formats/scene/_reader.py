@@ -7,7 +7,8 @@ The format is described in ``docs/scene-format.md``; in short::
     pinframes_scene: 1
     root: world
     layers:  [{file: cell.frames.yaml, mount: world}]
-    frames:  [{name: table, parent: world, xyz: [1, 0, 0.8], rpy: [0, 0, 0]}]
+    frames:  [{name: table, parent: world, xyz: [1, 0, 0.8], rpy: [0, 0, 0],
+               geometry: [{box: {size: [1.2, 0.8, 0.05]}}]}]
     robots:  [{urdf: robot.urdf, parent: table, prefix: "robot/", trajectory: motion.csv}]
     tools:   [{name: tcp, parent: robot/flange, xyz: [0, 0, 0.2]}]
 
@@ -36,6 +37,7 @@ from ..limits import Limits, reader_with_limits
 from ..reading import InputFile
 from ..trajectory_files import read_joint_trajectory
 from ..urdf import RobotDescription, mount_robot, parse_urdf
+from ._geometry import add_geometry, read_geometry
 from ._unit_check import UnitCheck
 
 __all__ = ["SCENE_FORMAT_KEY", "SCENE_FORMAT_VERSION", "is_scene", "read_scene",
@@ -54,9 +56,10 @@ _TOP_KEYS = {SCENE_FORMAT_KEY, "name", "root", "reference_time", "layers", "fram
 _POSE_KEYS = {"xyz", "rpy", "quaternion"}
 _ENTRY_KEYS = {
     "layers": {"file", "mount", "prefix", "key"},
-    "frames": {"name", "parent", "keyframes", "curve", "reference_time"} | _POSE_KEYS,
+    "frames": {"name", "parent", "keyframes", "curve", "reference_time",
+               "geometry"} | _POSE_KEYS,
     "robots": {"name", "urdf", "parent", "prefix", "trajectory"} | _POSE_KEYS,
-    "tools": {"name", "parent"} | _POSE_KEYS,
+    "tools": {"name", "parent", "geometry"} | _POSE_KEYS,
 }
 _FILE_KEYS = {"layers": ("file",), "robots": ("urdf", "trajectory")}
 """The keys of entries that name files (relative to the scene's folder)."""
@@ -269,16 +272,24 @@ class _Scene:
         elif "reference_time" in item:
             raise FileFormatError("a reference_time needs keyframes or a curve",
                                   file=self.path, frame=name, field=f"{field}.reference_time")
-        return _Entry(field, name, parent, f"{field}.parent",
-                      lambda tree: tree.add(name, parent, pose))
+        return self._inline(item, name, parent, pose, field)
 
     def _tool(self, index: int, item: Any) -> _Entry:
         field = f"tools[{index}]"
         name, parent = self._frame_names(item, "tools", field)
         rotation, translation = self._pose_parts(item, name, field)
-        pose = Pose(translation, rotation)
-        return _Entry(field, name, parent, f"{field}.parent",
-                      lambda tree: tree.add(name, parent, pose))
+        return self._inline(item, name, parent, Pose(translation, rotation), field)
+
+    def _inline(self, item: dict, name: str, parent: str, pose: Pose, field: str) -> _Entry:
+        """The entry that adds frame ``name`` at ``pose`` with the shapes of its
+        ``geometry``."""
+        shapes = read_geometry(item.get("geometry", []), self.path, name, f"{field}.geometry")
+
+        def add(tree: FrameTree) -> None:
+            tree.add(name, parent, pose)
+            add_geometry(tree, name, shapes)
+
+        return _Entry(field, name, parent, f"{field}.parent", add)
 
     def _robot(self, index: int, item: Any) -> _Entry:
         field = f"robots[{index}]"

@@ -5,12 +5,14 @@ Every frame becomes an inline frame with its pose in its parent: ``xyz`` in metr
 A link driven by a robot joint becomes a moving frame keyed at its joint's trajectory
 samples, which is exact: between two samples a revolute joint turns about a fixed axis, as
 SLERP does, and a prismatic joint slides, as linear interpolation does. Joint kinds, limits
-and the URDF itself are not kept; use ``write_urdf`` for those.
+and the URDF itself are not kept; use ``write_urdf`` for those. Every frame's shapes (its
+URDF link's and those of ``add_geometry``) are kept as its ``geometry`` entry.
 """
 
 from __future__ import annotations
 
 import os
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -23,6 +25,7 @@ from .._joint_steps import check_joint_steps
 from .._snapshot import one_instant
 from .._writable import check_writable_tree, refuse_attached_data
 from ..atomic import atomic_write
+from ._geometry import geometry_entries
 from ._reader import SCENE_FORMAT_KEY, SCENE_FORMAT_VERSION
 
 __all__ = ["write_scene"]
@@ -59,6 +62,8 @@ def write_scene(tree: FrameTree, path: str | os.PathLike[str], time: Any = None)
     if tree.reference_time is not None and time is None:
         document["reference_time"] = str(tree.reference_time)
     instant = None if time is None else one_instant(tree, time, path, "a scene at one time")
+    folder = Path(path).parent
+    geometry_entries(tree, tree.root, folder)  # refuses shapes on the root
     frames = []
     for name in tree.frames[1:]:
         parent = tree.parent(name)
@@ -68,7 +73,11 @@ def write_scene(tree: FrameTree, path: str | os.PathLike[str], time: Any = None)
             pose = tree.pose(name, relative_to=parent)
         else:
             pose = _at(tree.pose(name, relative_to=parent, times=[instant.time]), 0)
-        frames.append(_frame_entry(name, parent, pose, tree.reference_time))
+        entry = _frame_entry(name, parent, pose, tree.reference_time)
+        shapes = geometry_entries(tree, name, folder)
+        if shapes:
+            entry["geometry"] = shapes
+        frames.append(entry)
     if frames:
         document["frames"] = frames
     text = yaml.dump(document, Dumper=_FlowListDumper, sort_keys=False, width=100,

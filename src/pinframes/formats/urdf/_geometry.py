@@ -6,7 +6,8 @@ a ``<box size>``, ``<cylinder radius length>``, ``<sphere radius>`` or ``<mesh f
 ``<material>``. Poses never need geometry, so a malformed element does not stop the robot
 from mounting: it is recorded in :attr:`FrameGeometry.unreadable` with its field
 (``collision[0].geometry.box.size``) and problem, for whoever uses that geometry to report.
-Mesh files are not opened.
+Mesh files are not opened. :func:`shape_elements` writes recorded shapes back as such
+elements, for frames that are no URDF link (shapes given by ``FrameTree.add_geometry``).
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ from ...errors import FileFormatError
 from ...values.geometry import FrameGeometry, Shape
 from ._numbers import numbers
 
-__all__ = ["link_geometry", "named_colours"]
+__all__ = ["link_geometry", "named_colours", "shape_elements"]
 
 _SIZES = {"box": ("size",), "cylinder": ("radius", "length"), "sphere": ("radius",)}
 Colour = tuple[float, float, float, float]
@@ -103,3 +104,33 @@ def _colour(material: ET.Element, source: str, link: str | None, where: str) -> 
         return None
     values = numbers(colour, "rgba", 4, source, link, f"{where}.color.rgba", None)
     return (values[0], values[1], values[2], values[3])
+
+
+def shape_elements(recorded: FrameGeometry, frame: str) -> list[ET.Element]:
+    """``<collision>`` and ``<visual>`` elements of the recorded shapes (a visual's colour
+    as an inline material named ``FRAME_visual_INDEX``)."""
+    elements = []
+    for kind in ("collision", "visual"):
+        for index, shape in enumerate(recorded.shapes(kind)):
+            element = ET.Element(kind)
+            ET.SubElement(element, "origin", xyz=_text(shape.xyz), rpy=_text(shape.rpy))
+            geometry = ET.SubElement(element, "geometry")
+            if shape.kind == "box":
+                ET.SubElement(geometry, "box", size=_text(shape.dimensions))
+            elif shape.kind == "cylinder":
+                radius, length = shape.dimensions
+                ET.SubElement(geometry, "cylinder", radius=repr(radius), length=repr(length))
+            elif shape.kind == "sphere":
+                ET.SubElement(geometry, "sphere", radius=repr(shape.dimensions[0]))
+            else:
+                ET.SubElement(geometry, "mesh", filename=str(shape.mesh),
+                              scale=_text(shape.scale))
+            if kind == "visual" and shape.rgba is not None:
+                material = ET.SubElement(element, "material", name=f"{frame}_visual_{index}")
+                ET.SubElement(material, "color", rgba=_text(shape.rgba))
+            elements.append(element)
+    return elements
+
+
+def _text(values: tuple[float, ...]) -> str:
+    return " ".join(repr(float(value)) for value in values)

@@ -11,6 +11,7 @@ import numpy as np
 
 from ...kinematics import Snapshot
 from ...tree import FrameTree
+from ...values.geometry import GEOMETRY_METADATA_KEY, FrameGeometry
 from ...values.joint import Joint, mimic_chain
 from ...values.rotations import rpy_from_matrix
 from ...values.timeconv import format_timestamp_iso
@@ -18,6 +19,7 @@ from .._snapshot import moving_parts, one_instant
 from .._writable import check_writable_tree, refuse_attached_data
 from ..atomic import atomic_write
 from ..limits import Limits
+from ._geometry import shape_elements
 from ._mount import URDF_METADATA_KEY, mount_robot
 from ._parse import parse_urdf
 
@@ -55,7 +57,9 @@ def write_urdf(tree: FrameTree, path: str | os.PathLike[str], time: Any = None, 
     ``read_joint_trajectory`` reads it back), whenever a joint is driven. With
     ``freeze_joints`` every robot joint becomes a fixed joint at its value then instead,
     and no joint-state file is written. Link contents (visuals, inertials, ``package://``
-    URIs) and unread joint elements are written back as they were read. Data attached to
+    URIs) and unread joint elements are written back as they were read; a frame that is no
+    URDF link gets the shapes ``add_geometry`` gave it as ``<collision>`` and ``<visual>``
+    elements (shapes added to a URDF link are not written). Data attached to
     frames cannot go into a URDF: such a tree is an ``UnsupportedFeatureError`` naming it.
     """
     check_writable_tree(tree, path)
@@ -105,10 +109,16 @@ def _write_joint_state(tree: FrameTree, instant: Snapshot, urdf_path: str | os.P
 
 
 def _link(tree: FrameTree, frame: str) -> ET.Element:
+    """A URDF link's elements as read; a frame that is no link gets its shapes (those of
+    ``add_geometry``) as ``<collision>`` and ``<visual>`` elements."""
     link = ET.Element("link", name=frame)
-    kept = tree.frame_metadata(frame).get(URDF_METADATA_KEY, {})
+    metadata = tree.frame_metadata(frame)
+    kept = metadata.get(URDF_METADATA_KEY, {})
     for text in kept.get("link_xml", ()):
         link.append(ET.fromstring(text))
+    recorded = metadata.get(GEOMETRY_METADATA_KEY)
+    if "link_xml" not in kept and isinstance(recorded, FrameGeometry):
+        link.extend(shape_elements(recorded, frame))
     return link
 
 

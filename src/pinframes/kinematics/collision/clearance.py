@@ -30,7 +30,8 @@ from ...values.timed import Timed
 from .._description import TreeDescription
 from .._plan import QueryPlan, plan_query, prepare_path
 from ..poses import planned_poses
-from .coal_objects import CollisionShape, ShapeLoader
+from .coal_objects import LARGEST_COORDINATE, CollisionShape, ShapeLoader
+from .mesh_reader import DEFAULT_BOUNDS, MeshBounds
 
 __all__ = ["Clearance", "clearance_times", "evaluate_clearance"]
 
@@ -51,8 +52,11 @@ class Clearance(Timed):
     ----------
     distance : ndarray, shape (T,)
         Metres: the smallest distance over every pair of links (one of ``frames_a``, one of
-        ``frames_b``); negative when two primitives overlap (minus the penetration depth;
-        coal reports 0 for meshes that touch or overlap).
+        ``frames_b``); zero or negative when two shapes touch or overlap: minus the
+        penetration depth for two primitives (boxes, cylinders, spheres: solids); zero or
+        less for a mesh whose triangles cross another shape; for a shape wholly inside a
+        closed mesh (a solid), minus the distance between their surfaces, which is at most
+        the depth. An open mesh is a surface: a shape on either side of it is clear.
     closest : ndarray of str, shape (T, 2)
         The frames of that pair: one of ``frames_a``, then one of ``frames_b``.
     point_a, point_b : ndarray, shape (T, 3)
@@ -110,14 +114,15 @@ def evaluate_clearance(
     tree: TreeDescription, geometry: Mapping[str, FrameGeometry | None],
     frames_a: Sequence[str], frames_b: Sequence[str], excluded: Iterable[tuple[str, str]],
     kind: str, package_dirs: Iterable[str | os.PathLike[str]], times: Any, time_ref: Any,
-    extrapolation: str,
+    extrapolation: str, bounds: MeshBounds = DEFAULT_BOUNDS,
 ) -> Clearance:
     """``tree.clearance(...)`` for frames already named and checked.
 
     ``geometry`` holds the recorded geometry of every frame of ``frames_a`` and
-    ``frames_b``; ``excluded`` the frame pairs (either order) not to check.
+    ``frames_b``; ``excluded`` the frame pairs (either order) not to check;
+    ``bounds`` what reading each mesh file may cost.
     """
-    loader = _loader(tree, kind, package_dirs)
+    loader = _loader(tree, kind, package_dirs, bounds)
     frames = list(dict.fromkeys([*frames_a, *frames_b]))
     shapes = [shape for frame in frames for shape in loader.shapes(frame, geometry[frame])]
     skipped = {frozenset(pair) for pair in excluded}
@@ -141,6 +146,7 @@ def evaluate_clearance(
         if piece.offsets is None:
             rotation, translation = rotation[:, None], translation[:, None]
         rotation, translation = _placed_shapes(rotation, translation, shapes, owners)
+        _require_placed(shapes, translation, piece.offsets)
         _closest_pairs(shapes, pairs, rotation, translation, distance[part], closest[part],
                        point_a[part], point_b[part])
     names = np.array([shape.frame for shape in shapes], dtype=np.str_)
@@ -152,14 +158,15 @@ def evaluate_clearance(
 
 
 def _loader(tree: TreeDescription, kind: str,
-            package_dirs: Iterable[str | os.PathLike[str]]) -> ShapeLoader:
-    """The shape loader of this tree version for ``kind`` and these search folders (meshes
-    are read once per version)."""
+            package_dirs: Iterable[str | os.PathLike[str]], bounds: MeshBounds) -> ShapeLoader:
+    """The shape loader of this tree version for ``kind``, these search folders and this
+    bound (meshes are read once per version)."""
     folders = tuple(os.fspath(folder) for folder in package_dirs)
-    key = ("clearance shapes", kind, os.environ.get("ROS_PACKAGE_PATH", ""), *folders)
+    key = ("clearance shapes", kind, repr(bounds), os.environ.get("ROS_PACKAGE_PATH", ""),
+           *folders)
     loader = tree.cached(key)
     if loader is None:
-        loader = ShapeLoader(kind, folders)
+        loader = ShapeLoader(kind, folders, bounds)
         tree.store(key, loader)
     return loader
 
@@ -212,6 +219,34 @@ def _placed_shapes(rotation: FloatArray, translation: FloatArray, shapes: list[C
     return placed_rotation, placed_translation
 
 
+def _require_placed(shapes: list[CollisionShape], translation: FloatArray,
+                    offsets: NDArray[np.int64] | None) -> None:
+    """A :class:`GeometryError` naming the frame and time of a shape placed at a position
+    that is not finite or beyond :data:`LARGEST_COORDINATE` metres from the root."""
+    with np.errstate(invalid="ignore"):
+        wrong = ~(np.abs(translation) <= LARGEST_COORDINATE).all(axis=2)  # (S, n)
+    if wrong.any():
+        index, sample = (int(value[0]) for value in np.nonzero(wrong))
+        shape = shapes[index]
+        when = "" if offsets is None else f" at {offsets[sample] / 1e9:g} s"
+        raise GeometryError(
+            f"the shape is placed at {translation[index, sample].tolist()} m in the root"
+            f"{when}: positions must be finite and within {LARGEST_COORDINATE:g} m to be "
+            "measured", frame=shape.frame, field=shape.field)
+
+
+def _inside(shape: CollisionShape, rotation: FloatArray, translation: FloatArray,
+            solid_shape: CollisionShape, solid_rotation: FloatArray,
+            solid_translation: FloatArray) -> bool:
+    """Whether a point of each piece of ``shape`` (placed by ``rotation``, ``translation``)
+    lies in the solid of ``solid_shape`` (placed likewise): whether ``shape`` is inside it,
+    for shapes whose surfaces do not meet."""
+    if solid_shape.solid is None:
+        return False
+    in_root = shape.probes @ rotation.T + translation
+    return solid_shape.solid.contains((in_root - solid_translation) @ solid_rotation)
+
+
 def _closest_pairs(
     shapes: list[CollisionShape], pairs: NDArray[np.intp], rotation: FloatArray,
     translation: FloatArray, distance: FloatArray, closest: NDArray[np.intp],
@@ -243,6 +278,15 @@ def _closest_pairs(
                 geometries[i], coal.Transform3s(rotation[i, sample], translation[i, sample]),
                 geometries[j], coal.Transform3s(rotation[j, sample], translation[j, sample]),
                 request, result)
+            if not np.isfinite(found):
+                raise GeometryError(f"coal gives no finite distance to {shapes[j].frame!r} "
+                                    f"({shapes[j].field})", frame=shapes[i].frame,
+                                    field=shapes[i].field)
+            placed_i = rotation[i, sample], translation[i, sample]
+            placed_j = rotation[j, sample], translation[j, sample]
+            if found > 0 and (_inside(shapes[i], *placed_i, shapes[j], *placed_j)
+                              or _inside(shapes[j], *placed_j, shapes[i], *placed_i)):
+                found = -found  # wholly inside a closed mesh: as deep as the surfaces apart
             if found < best:
                 best, best_result, best_pair = found, result, pair
         assert best_result is not None  # the first pair is always computed

@@ -2,11 +2,15 @@
 
 Boxes, cylinders and spheres become coal's primitives, as Pinocchio's URDF reader makes them
 (``coal.Box`` of the full edge lengths, ``coal.Cylinder(radius, length)`` along z,
-``coal.Sphere``); meshes are read by coal's own mesh loader (assimp) into the same BVH models
-(``BVHModelOBBRSS``, the scale applied) that ``pinocchio.buildGeomFromUrdf`` builds, from the
-file :class:`~pinframes.kinematics.collision.mesh_files.MeshFiles` finds. So a distance
-computed here is the distance Pinocchio + coal compute on the same URDF. Every problem is a
-:class:`~pinframes.errors.GeometryError` naming the frame, the shape's field and the file.
+``coal.Sphere``); meshes are read by :func:`~.mesh_reader.read_mesh` (the reader the 3-D page
+uses too) from the file :class:`~.mesh_files.MeshFiles` finds, into the BVH models
+(``BVHModelOBBRSS``, the scale applied) that ``pinocchio.buildGeomFromUrdf`` builds. So a
+distance computed here is the distance Pinocchio + coal compute on the same URDF (for
+COLLADA meshes, once their unit is applied, which Pinocchio's loader does not do). A closed
+mesh also carries the solid it bounds (:mod:`.solid_meshes`). Sizes, origins and scaled
+vertices must be finite and within :data:`LARGEST_COORDINATE` metres, where coal's squared
+distances stay exact enough. Every problem is a :class:`~pinframes.errors.GeometryError`
+naming the frame, the shape's field and the file.
 """
 
 from __future__ import annotations
@@ -24,8 +28,14 @@ from numpy.typing import NDArray
 from ...errors import GeometryError
 from ...values.geometry import GEOMETRY_KINDS, FrameGeometry, Shape
 from .mesh_files import HOW_TO_SEARCH, MeshFiles, mesh_file_problem, package_search_dirs
+from .mesh_reader import DEFAULT_BOUNDS, MeshBounds, read_mesh
+from .solid_meshes import SolidMesh, solid_mesh
 
-__all__ = ["CollisionShape", "ShapeLoader"]
+__all__ = ["LARGEST_COORDINATE", "CollisionShape", "ShapeLoader"]
+
+LARGEST_COORDINATE = 1e9
+"""Metres: the largest size or vertex coordinate a shape may have (a million kilometres;
+coal squares distances, and far beyond this its answers lose every digit)."""
 
 
 @dataclass(frozen=True)
@@ -49,6 +59,13 @@ class CollisionShape:
         (metres): two shapes whose spheres are ``d`` apart are at least ``d`` apart.
     mesh_path : str or None
         The mesh file read, for a mesh.
+    solid : SolidMesh or None
+        For a closed mesh, the solid it bounds; None for primitives (coal measures them as
+        solids already) and open meshes.
+    probes : ndarray, shape (k, 3)
+        One point of each connected piece of the shape, in its own coordinates: if none of
+        them lies in another shape's solid and the surfaces do not meet, the shape is
+        outside that solid.
     """
 
     frame: str
@@ -60,6 +77,8 @@ class CollisionShape:
     centre: NDArray[np.float64]
     radius: float
     mesh_path: str | None
+    solid: SolidMesh | None
+    probes: NDArray[np.float64]
 
 
 class ShapeLoader:
@@ -72,23 +91,28 @@ class ShapeLoader:
     package_dirs : iterable of path
         Folders searched for ``package://`` and relative mesh names first (see
         :class:`~pinframes.kinematics.collision.mesh_files.MeshFiles`).
+    bounds : MeshBounds
+        The most triangles one mesh file may hold after instancing, and its most bytes.
     """
 
-    def __init__(self, kind: str, package_dirs: Iterable[str | os.PathLike[str]] = ()) -> None:
+    def __init__(self, kind: str, package_dirs: Iterable[str | os.PathLike[str]] = (),
+                 bounds: MeshBounds = DEFAULT_BOUNDS) -> None:
         if kind not in GEOMETRY_KINDS:
             raise GeometryError(f"expected one of {', '.join(GEOMETRY_KINDS)}, got {kind!r}",
                                 field="geometry")
         self.kind = kind
+        self.bounds = bounds
         self._search_dirs = package_search_dirs(package_dirs)
-        self._meshes: dict[tuple[str, tuple[float, ...]], Any] = {}
+        self._meshes: dict[tuple[str, tuple[float, ...]], _Mesh] = {}
 
     def shapes(self, frame: str, geometry: FrameGeometry | None) -> list[CollisionShape]:
         """The coal shapes of ``frame``, whose recorded geometry is ``geometry``."""
         kind = self.kind
         if geometry is None:
             raise GeometryError(
-                "has no geometry: only the links of attached URDFs have shapes (their "
-                f"<{kind}> elements)", frame=frame, field="geometry")
+                f"has no geometry: only the links of attached URDFs (their <{kind}> elements) "
+                "and frames given shapes by add_geometry have some", frame=frame,
+                field="geometry")
         for field, problem in geometry.unreadable_shapes(kind):
             raise GeometryError(f"link {geometry.link!r}: {problem}", file=geometry.urdf,
                                 frame=frame, field=field)
@@ -100,11 +124,13 @@ class ShapeLoader:
 
     def _shape(self, frame: str, field: str, shape: Shape,
                geometry: FrameGeometry) -> CollisionShape:
-        mesh_path = None
+        _check_sizes(frame, field, shape, geometry)
+        mesh_path, solid, probes = None, None, np.zeros((1, 3))
         if shape.kind == "mesh":
             assert shape.mesh is not None  # a mesh always names its file
             mesh_path = self._find(frame, field, shape.mesh, geometry)
-            made = self._mesh(frame, field, mesh_path, shape.scale)
+            mesh = self._mesh(frame, field, mesh_path, shape.scale)
+            made, solid, probes = mesh.model, mesh.solid, mesh.probes
         elif shape.kind == "box":
             made = coal.Box(*shape.dimensions)
         elif shape.kind == "cylinder":
@@ -118,7 +144,7 @@ class ShapeLoader:
             radius = float(np.linalg.norm(np.asarray(made.vertices()) - centre, axis=1).max())
         origin = shape.origin
         return CollisionShape(frame, field, shape, made, origin.rotation, origin.translation,
-                              centre, radius, mesh_path)
+                              centre, radius, mesh_path, solid, probes)
 
     def _find(self, frame: str, field: str, name: str, geometry: FrameGeometry) -> str:
         mesh_files = MeshFiles(None if geometry.urdf is None else Path(geometry.urdf),
@@ -131,28 +157,60 @@ class ShapeLoader:
                                 frame=frame, field=f"{field}.mesh")
         return str(found)
 
-    def _mesh(self, frame: str, field: str, path: str, scale: tuple[float, ...]) -> Any:
+    def _mesh(self, frame: str, field: str, path: str, scale: tuple[float, ...]) -> _Mesh:
         key = (path, scale)
         mesh = self._meshes.get(key)
         if mesh is None:
-            if (problem := mesh_file_problem(Path(path), None)) is not None:
-                raise GeometryError(f"mesh {problem}", file=path, frame=frame,
-                                    field=f"{field}.mesh")
+            where = {"file": path, "frame": frame, "field": f"{field}.mesh"}
+            if (problem := mesh_file_problem(Path(path), self.bounds.max_bytes)) is not None:
+                raise GeometryError(f"mesh {problem}", **where)
             try:
-                mesh = coal.MeshLoader().load(path, np.array(scale, dtype=float))
-            except (ValueError, RuntimeError) as exc:
-                raise GeometryError(f"mesh cannot be read: {_loader_message(exc)}", file=path,
-                                    frame=frame, field=f"{field}.mesh") from None
-            if mesh.num_tris == 0:
-                raise GeometryError("mesh has no triangles", file=path, frame=frame,
-                                    field=f"{field}.mesh")
+                vertices, triangles = read_mesh(
+                    Path(path), max_triangles=self.bounds.max_triangles).merged()
+            except GeometryError as exc:
+                raise GeometryError(f"mesh {exc.message}", **where) from None
+            with np.errstate(over="ignore", invalid="ignore"):
+                vertices = vertices * np.array(scale)
+            if not np.all(np.abs(vertices) <= LARGEST_COORDINATE):
+                raise GeometryError(
+                    f"mesh vertices (scale {' '.join(map(str, scale))} applied) must be finite "
+                    f"and within {LARGEST_COORDINATE:g} m", **where)
+            corners = vertices[triangles]
+            normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+            # coal measures a triangle of no area wrongly (a ball 0.9 m beside one reads
+            # -0.1 m): such triangles are left out
+            triangles = triangles[np.any(normals != 0.0, axis=1)]
+            if triangles.shape[0] == 0:
+                raise GeometryError("mesh has no triangle of non-zero area (with the scale "
+                                    f"{' '.join(map(str, scale))} applied)", **where)
+            model = coal.BVHModelOBBRSS()
+            model.beginModel(triangles.shape[0], vertices.shape[0])
+            model.addVertices(vertices)
+            model.addTriangles(triangles)
+            model.endModel()
+            mesh = _Mesh(model, *solid_mesh(vertices, triangles))
             self._meshes[key] = mesh
         return mesh
 
 
-def _loader_message(error: Exception) -> str:
-    """The reason in coal's loader error, without its C++ file and function lines."""
-    text = str(error)
-    _, found, reason = text.partition("message:")
-    lines = [line.strip() for line in (reason if found else text).splitlines() if line.strip()]
-    return "; ".join(lines[:3]) or type(error).__name__
+@dataclass(frozen=True)
+class _Mesh:
+    """A mesh file's coal model at one scale, its solid when closed, and one point of each
+    of its pieces."""
+
+    model: Any
+    solid: SolidMesh | None
+    probes: NDArray[np.float64]
+
+
+def _check_sizes(frame: str, field: str, shape: Shape, geometry: FrameGeometry) -> None:
+    """Sizes and the origin finite and within :data:`LARGEST_COORDINATE`, sizes not negative
+    (a mesh's scaled vertices are checked when it is read)."""
+    for name, values in (("dimensions", shape.dimensions), ("origin", (*shape.xyz, *shape.rpy))):
+        numbers = np.asarray(values, dtype=float)
+        if not np.all(np.abs(numbers) <= LARGEST_COORDINATE) or (
+                name == "dimensions" and np.any(numbers < 0)):
+            raise GeometryError(
+                f"{shape.describe()}: {name} must be finite and within "
+                f"{LARGEST_COORDINATE:g} m (sizes not negative), got {tuple(values)}",
+                file=geometry.urdf, frame=frame, field=f"{field}.{name}")
