@@ -264,6 +264,12 @@ class BrokenMimicWarning(UserWarning):
     independent joint (``strict=True`` refuses the file instead)."""
 
 
+class SrdfWarning(UserWarning):
+    """Parts of an SRDF that pinframes skips (one warning per file, naming them all): other
+    tools' elements, group states nested in groups, names of links, joints or groups that
+    the robot does not have."""
+
+
 class GeometryWarning(UserWarning):
     """Something left out of a drawing: a link's mesh that is missing, unreadable, empty,
     compressed or too large, a point cloud; on the 3-D page also geometry or a frame that is

@@ -19,7 +19,9 @@ from dataclasses import fields
 from .. import __version__
 from ..errors import PinframesError
 from ..formats.limits import Limits, using_limits
+from ..kinematics.collision.mesh_files import MODEL_PATH_VARIABLE, PACKAGE_PATH_VARIABLE
 from . import batch, clearance, convert, demo, info, plot, pose, process, solve, transform, view
+from ._files import xacro_argument
 
 __all__ = ["main"]
 
@@ -66,6 +68,7 @@ def _parser() -> argparse.ArgumentParser:
         options.add_argument("--robot-description", metavar="URDF", default=default,
                              help="for a ROS bag: the robot's URDF file (default: the last "
                              "message on the bag's /robot_description)")
+        _add_robot_file_options(options, default)
     subparsers = parser.add_subparsers(title="subcommands", metavar="SUBCOMMAND", required=True)
     for module in _SUBCOMMANDS:
         module.add_parser(subparsers, [verbose])
@@ -79,6 +82,22 @@ def _add_limit_options(parser: argparse.ArgumentParser, default: object) -> None
         parser.add_argument("--" + item.name.replace("_", "-"), type=int, default=default,
                             metavar="N", help=f"raise the reader limit {item.name} "
                             f"(default {getattr(Limits(), item.name):,}; see README)")
+
+
+def _add_robot_file_options(parser: argparse.ArgumentParser, default: object) -> None:
+    """``--package-dir``, ``--xacro-arg`` and ``--srdf``: robots as ROS packages hold them."""
+    parser.add_argument("--package-dir", action="append", default=default, metavar="DIR",
+                        help="folder of ROS packages or Gazebo models (or one of them) for "
+                        "$(find PKG) in xacro files and package:// and model:// meshes "
+                        f"(repeatable; searched before {PACKAGE_PATH_VARIABLE}, "
+                        f"{MODEL_PATH_VARIABLE} and the robot file's folders; default: none)")
+    parser.add_argument("--xacro-arg", action="append", default=default, type=xacro_argument,
+                        metavar="NAME:=VALUE", help="an argument of a xacro robot file "
+                        "(repeatable; default: the file's own defaults)")
+    parser.add_argument("--srdf", metavar="SRDF", default=default,
+                        help="the SRDF of a URDF or xacro robot file: its disabled collision "
+                        "pairs are left out of clearance, its groups and group states name "
+                        "joints and seeds (default: none)")
 
 
 def _limits(args: argparse.Namespace) -> Limits | None:

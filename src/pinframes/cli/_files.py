@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import argparse
 from pathlib import Path
 from typing import Any
 
@@ -12,19 +13,46 @@ from ..formats.rosbag import ROSBAG_METADATA_KEY
 from ..formats.urdf import URDF_METADATA_KEY
 from ..tree import FrameTree
 
-__all__ = ["read_tree", "require_frames", "write_tree"]
+__all__ = ["read_tree", "require_frames", "write_tree", "xacro_argument"]
+
+_ROBOT_FILE_FORMATS = ("urdf",)
+"""Formats whose reader takes ``--srdf`` and ``--xacro-arg`` (a scene names them per robot)."""
+_PACKAGE_DIR_FORMATS = ("urdf", "scene")
+"""Formats whose reader takes ``--package-dir`` (and remembers it with the robots)."""
 
 
-def read_tree(path: str | Path, robot_description: str | None = None) -> FrameTree:
-    """Read the tree in ``path``, in the format told from the file; ``robot_description``
-    (``--robot-description``) is the URDF of the robot in a ROS bag."""
-    if robot_description is None:
+def read_tree(path: str | Path, options: argparse.Namespace | None = None) -> FrameTree:
+    """Read the tree in ``path``, in the format told from the file, with the command line's
+    reading options: ``--robot-description`` (the URDF of the robot in a ROS bag),
+    ``--package-dir``, ``--xacro-arg`` and ``--srdf`` (for URDF and xacro files)."""
+    given: dict[str, Any] = {"robot_description": getattr(options, "robot_description", None),
+             "package_dirs": getattr(options, "package_dir", None) or [],
+             "xacro_args": dict(getattr(options, "xacro_arg", None) or []),
+             "srdf": getattr(options, "srdf", None)}
+    taken = {name: value for name, value in given.items() if value}
+    if not taken:
         tree: FrameTree = read(path)
         return tree
-    if detect_format(path) != "rosbag":
+    fmt = detect_format(path)
+    if "robot_description" in taken and fmt != "rosbag":
         raise FileFormatError("--robot-description is for ROS bags", file=path)
-    tree = read(path, robot_description=robot_description)
+    for name in ("xacro_args", "srdf"):
+        if name in taken and fmt not in _ROBOT_FILE_FORMATS:
+            flag = "--xacro-arg" if name == "xacro_args" else "--srdf"
+            raise FileFormatError(f"{flag} is for URDF and xacro files (a scene names it in "
+                                  f"its robots' entries: {name})", file=path)
+    if fmt not in _PACKAGE_DIR_FORMATS:
+        taken.pop("package_dirs", None)
+    tree = read(path, **taken)
     return tree
+
+
+def xacro_argument(text: str) -> tuple[str, str]:
+    """``NAME:=VALUE`` (``--xacro-arg``) as ``(NAME, VALUE)``."""
+    name, separator, value = text.partition(":=")
+    if not separator or not name:
+        raise argparse.ArgumentTypeError(f"expected NAME:=VALUE, got {text!r}")
+    return name, value
 
 
 def require_frames(tree: FrameTree, path: str | Path, *names: str | None) -> None:

@@ -13,7 +13,6 @@ import numpy as np
 from ..formats.clearance_files import CLEARANCE_FILE_FORMATS, clearance_text
 from ..formats.limits import current_limits
 from ..kinematics import Clearance
-from ..kinematics.collision.mesh_files import PACKAGE_PATH_VARIABLE
 from ..tree import FrameTree
 from ..values.geometry import GEOMETRY_KINDS
 from ..values.timeconv import TimeAxis
@@ -49,12 +48,11 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     parser.add_argument("--exclude", nargs=2, action="append", default=[],
                         metavar=("A", "B"), help="do not check the pairs of these frames or "
                         "patterns, either order (repeatable; default: none)")
+    parser.add_argument("--no-srdf-exclude", dest="srdf_exclude", action="store_false",
+                        help="check the link pairs the robots' SRDFs disable too (default: "
+                        "leave them out)")
     parser.add_argument("--geometry", choices=GEOMETRY_KINDS, default="collision",
                         help="which URDF geometry of the links (default: collision)")
-    parser.add_argument("--package-dir", action="append", default=[], metavar="DIR",
-                        help="folder to look for package:// and relative mesh files in "
-                        f"(repeatable; searched before {PACKAGE_PATH_VARIABLE} and the URDF's "
-                        "folder; default: none)")
     add_time_arguments(parser)
     add_extrapolation_argument(parser)
     parser.add_argument("--format", "-f", choices=CLEARANCE_FILE_FORMATS,
@@ -66,10 +64,11 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Evaluate, print the summary and write the table."""
-    tree = read_tree(args.file)
+    tree = read_tree(args.file, args)
     a, b = frame_names(tree, args.a), frame_names(tree, args.b)
-    options = {"geometry": args.geometry, "package_dirs": args.package_dir,
+    options = {"geometry": args.geometry, "package_dirs": args.package_dir or [],
                "exclude": [tuple(pair) for pair in args.exclude],
+               "srdf_exclude": args.srdf_exclude,
                "limits": current_limits()}  # --max-triangles (main() sets the limits)
     times = times_from_options(args, lambda: tree.clearance_times(a, b,
                                                                   geometry=args.geometry))

@@ -44,7 +44,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Read, then write."""
-    tree = read_tree(args.input, args.robot_description)
+    tree = read_tree(args.input, args)
     write_tree(tree, args.output, args.to, schema=args.schema, time=args.time,
                freeze_joints=args.freeze_joints, slash_replacement=args.slash_replacement)
     print(f"pinframes: wrote {args.output} ({len(tree)} frames)", file=sys.stderr)

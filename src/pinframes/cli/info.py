@@ -12,6 +12,7 @@ import numpy as np
 
 from ..formats.rosbag import ROSBAG_METADATA_KEY
 from ..tree import FrameTree
+from ..tree.robot_semantics import semantic_robots
 from ..values.timeconv import format_timestamp_iso
 from ..values.timeline import source_reference
 from ._files import read_tree
@@ -26,7 +27,8 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         description="Print the tree of frames in FILE with each frame's kind (static, "
         "moving, robot joint), the time span of its keyframes or joint samples (seconds "
         "after its reference time) and that reference time, then the subsystems (weldx) "
-        "merged into the tree; for a ROS bag, its topics (used and ignored), the time span "
+        "merged into the tree, the joint groups and group states of robots read with an "
+        "SRDF; for a ROS bag, its topics (used and ignored), the time span "
         "of the stamps used and the joint states no joint took.")
     parser.add_argument("file", metavar="FILE", help="scene, frames.yaml, ASDF or URDF file, "
                         "or a ROS bag (.bag, .mcap, .db3 or a ROS 2 bag folder)")
@@ -37,7 +39,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Print the description of the tree."""
-    tree = read_tree(args.file, args.robot_description)
+    tree = read_tree(args.file, args)
     if args.format == "json":
         sys.stdout.write(json.dumps(describe_json(tree), indent=1) + "\n")
     else:
@@ -81,9 +83,25 @@ def describe_json(tree: FrameTree) -> dict[str, Any]:
         "subsystems": [{"name": s.name, "root": s.root, "members": list(s.members),
                         "parent": s.parent} for s in tree.subsystems],
     }
+    robots = _srdf_robots(tree)
+    if robots:
+        described["srdf"] = robots
     if ROSBAG_METADATA_KEY in tree.metadata:
         described["rosbag"] = tree.metadata[ROSBAG_METADATA_KEY]
     return described
+
+
+def _srdf_robots(tree: FrameTree) -> list[dict[str, Any]]:
+    """Per robot read with an SRDF: its top frame, the file, each group's joints (tree
+    names), the group states and the number of link pairs never checked."""
+    return [{"frame": robot.top, "file": robot.semantics.source,
+             "groups": {group: [name for joint in joints
+                                if (name := robot.joint(tree, joint)) is not None]
+                        for group, joints in robot.semantics.groups.items()},
+             "group_states": {state: value.group
+                              for state, value in robot.semantics.states.items()},
+             "disabled_pairs": len(robot.semantics.disabled_pairs)}
+            for robot in semantic_robots(tree)]
 
 
 def _timestamp(stamp: np.datetime64 | None) -> str | None:
@@ -108,6 +126,12 @@ def describe(tree: FrameTree) -> str:
         inside = "" if subsystem.parent is None else f", merged into {subsystem.parent}"
         lines.append(f"subsystem {subsystem.name}: root {subsystem.root}, "
                      f"{len(subsystem.members)} frames{inside}")
+    for robot in _srdf_robots(tree):
+        groups = ", ".join(f"{name!r} ({len(joints)} joints)"
+                           for name, joints in robot["groups"].items()) or "none"
+        states = ", ".join(map(repr, robot["group_states"])) or "none"
+        lines.append(f"srdf of {robot['frame']!r}: groups {groups}; group states {states}; "
+                     f"{robot['disabled_pairs']} link pairs never checked")
     if ROSBAG_METADATA_KEY in tree.metadata:
         lines += _bag_lines(tree.metadata[ROSBAG_METADATA_KEY])
     return "\n".join(lines) + "\n"

@@ -37,7 +37,7 @@ def run(args: argparse.Namespace) -> int:
     """Draw and save."""
     figure = new_figure()
     figure_format(figure, args.output)  # a bad suffix fails before the work
-    tree = read_tree(args.file, args.robot_description)
+    tree = read_tree(args.file, args)
     require_frames(tree, args.file, args.relative_to, *(args.frames or []))
     ax = figure.add_subplot(projection="3d")
     plot_frames(tree, args.frames, args.relative_to, ax=ax,

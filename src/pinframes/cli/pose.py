@@ -51,7 +51,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 def run(args: argparse.Namespace) -> int:
     """Evaluate and write the poses."""
     fmt = output_format(args.format, args.output)  # a bad name fails before the work
-    tree = read_tree(args.file, args.robot_description)
+    tree = read_tree(args.file, args)
     require_frames(tree, args.file, args.frame, args.relative_to)
     relative_to = args.relative_to
     if relative_to is None:

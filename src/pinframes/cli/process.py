@@ -56,7 +56,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Evaluate, write the CSV, print the summary line."""
-    tree = read_tree(args.file)
+    tree = read_tree(args.file, args)
     require_frames(tree, args.file, args.torch, args.seam, args.workpiece, args.contact_tip)
     process = _evaluate(tree, args)
     write_text(process_text(process), args.output)

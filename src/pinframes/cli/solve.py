@@ -44,9 +44,10 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         "torch: z); only the position and that axis must match (default: the "
                         "whole pose)")
     parser.add_argument("--joints", nargs="+", metavar="J",
-                        help="the joints to solve for, as the tree names them (default: every "
-                        "robot joint between the tool and the lowest common ancestor of the "
-                        "two frames); may name a positioner's joints to solve both together")
+                        help="the joints to solve for, as the tree names them, or one joint "
+                        "group of a robot's SRDF (default: every robot joint between the tool "
+                        "and the lowest common ancestor of the two frames); may name a "
+                        "positioner's joints to solve both together")
     parser.add_argument("--position-tolerance", type=float, default=1e-6, metavar="M",
                         help="metres (default: 1e-6)")
     parser.add_argument("--orientation-tolerance", type=float, default=1e-6, metavar="RAD",
@@ -70,14 +71,15 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Solve, write the CSV, print the summary."""
-    tree = read_tree(args.file)
+    tree = read_tree(args.file, args)
     require_frames(tree, args.file, args.frame, args.target)
     times = requested_times(args, tree, args.frame, args.target)
     if args.target != tree.root:  # the target's own motion (the solved joints have none)
         check_extrapolation(args, tree, [(args.target, tree.root)], times, args.time_ref)
     solution = tree.solve_joints(
         args.frame, args.target, times=None if times is None else times.as_numpy(),
-        time_ref=args.time_ref, joints=args.joints, seed=_seed(tree, args.seed),
+        time_ref=args.time_ref, joints=_joints_or_group(tree, args.joints),
+        seed=_seed(tree, args.seed),
         free_axis=args.free_axis, position_tolerance=args.position_tolerance,
         orientation_tolerance=args.orientation_tolerance, strict=args.strict)
     # timestamps when the solution has a reference time, else seconds (it has a time per sample)
@@ -89,6 +91,14 @@ def run(args: argparse.Namespace) -> int:
                args.output)
     print(f"pinframes: {summary(tree, solution)}", file=sys.stderr)
     return 0
+
+
+def _joints_or_group(tree: FrameTree, joints: list[str] | None) -> list[str] | str | None:
+    """``--joints``: joint names, or the name of an SRDF group when it is one name that no
+    joint has."""
+    if joints is not None and len(joints) == 1 and joints[0] not in tree.joints:
+        return joints[0]
+    return joints
 
 
 def _seed_value(text: str) -> tuple[str, float]:

@@ -62,7 +62,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 def run(args: argparse.Namespace) -> int:
     """Transform the data and write them."""
     require_suffix(args.output, (".csv",), "CSV")
-    tree = read_tree(args.file, args.robot_description)
+    tree = read_tree(args.file, args)
     require_frames(tree, args.file, args.frame, args.relative_to)
     names, times, data = _read_data(args.data)
     if not np.all(np.isfinite(data)):

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..view import PACKAGE_PATH_VARIABLE, write_view
+from ..view import write_view
 from ._evaluate import add_time_arguments, requested_times
 from ._files import read_tree, require_frames
 from ._output import require_suffix
@@ -34,10 +34,6 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     parser.add_argument("--collision", action="store_true",
                         help="draw the URDF collision geometry instead of the visual one "
                         "(default: off, the visual geometry)")
-    parser.add_argument("--package-dir", action="append", default=[], metavar="DIR",
-                        help="folder to look for package:// and relative mesh files in "
-                        f"(repeatable; searched before {PACKAGE_PATH_VARIABLE} and the URDF's "
-                        "folder; default: none)")
     parser.add_argument("--clearance", nargs=2, metavar=("A", "B"),
                         help="mark the closest pair between the collision geometry of A and B "
                         "at every time (as pinframes clearance; several names or patterns "
@@ -55,7 +51,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 def run(args: argparse.Namespace) -> int:
     """Build and write the page."""
     require_suffix(args.output, (".html", ".htm"), "an HTML page")
-    tree = read_tree(args.file, args.robot_description)
+    tree = read_tree(args.file, args)
     paths = None if args.path is None else dict(args.path)
     require_frames(tree, args.file, args.relative_to, *(args.frames or []),
                    *(paths or {}), *(paths or {}).values())
@@ -67,7 +63,7 @@ def run(args: argparse.Namespace) -> int:
         frame_names(tree, args.clearance[0]), frame_names(tree, args.clearance[1]))
     size = write_view(tree, args.output, times=times, time_ref=args.time_ref,
                       relative_to=relative_to, frames=args.frames, paths=paths,
-                      collision=args.collision, package_dirs=args.package_dir,
+                      collision=args.collision, package_dirs=args.package_dir or [],
                       clearance=clearance,
                       clearance_exclude=[tuple(pair) for pair in args.exclude])
     print(f"pinframes: wrote {args.output} ({size / 1e6:.1f} MB)", file=sys.stderr)

@@ -71,6 +71,7 @@ def planned_transforms(tree: TreeDescription, plan: QueryPlan) -> Transform:
 
 
 def default_times(tree: TreeDescription, frame: str, relative_to: str) -> TimeAxis | None:
-    """The times ``tree.pose(frame, relative_to)`` evaluates at when given none."""
+    """The times ``tree.pose(frame, relative_to)`` evaluates at when given none (a copy: the
+    plan they come from is kept with the path, and the caller may write the copy)."""
     plan = plan_query(tree, frame, relative_to, None, None, "clamp")
-    return None if plan.offsets is None else TimeAxis(plan.offsets, plan.reference_time)
+    return None if plan.offsets is None else TimeAxis(plan.offsets.copy(), plan.reference_time)

@@ -54,6 +54,7 @@ from ..values.pose import Pose
 from ..values.pose_stack import PoseStack
 from ..values.timeconv import TimeAxis
 from ._structure import EditableTree
+from .robot_semantics import disabled_frame_pairs, group_joints, group_state_values
 
 __all__ = ["TreeQueries"]
 
@@ -297,7 +298,7 @@ class TreeQueries(EditableTree):
 
     def solve_joints(
         self, frame: str, target: str | Pose, *, relative_to: str | None = None,
-        times: Any = None, time_ref: Any = None, joints: Sequence[str] | None = None,
+        times: Any = None, time_ref: Any = None, joints: str | Sequence[str] | None = None,
         free_axis: str | None = None, seed: Any = None, position_tolerance: float = 1e-6,
         orientation_tolerance: float = 1e-6, strict: bool = False,
     ) -> JointSolution:
@@ -318,9 +319,11 @@ class TreeQueries(EditableTree):
             As for :meth:`pose`. Default: every keyframe and joint sample of what moves on
             the path from ``frame`` to the target (a ``Pose`` target's times too), except
             the samples of the solved joints themselves.
-        joints : sequence of str, optional
+        joints : str or sequence of str, optional
             The actuated joints to solve for (default: every robot joint between ``frame``
-            and the lowest common ancestor of the two frames). May name joints on the
+            and the lowest common ancestor of the two frames), or the name of a joint group
+            of a robot's SRDF (``"manipulator"``: its chains, joints, links and subgroups
+            as MoveIt expands them). May name joints on the
             target's side, e.g. a positioner attached as a URDF: then robot and positioner
             are solved together. Mimic joints follow their primaries; every other joint
             keeps its trajectory.
@@ -330,7 +333,8 @@ class TreeQueries(EditableTree):
             smallest joint motion, so the freedom keeps the motion continuous.
         seed : mapping or sequence, optional
             Joint values (radians or metres) the first sample starts from, by name (may
-            name some joints only) or one per solved joint. Default: the joints'
+            name some joints only) or one per solved joint, or the name of a group state of
+            a robot's SRDF (``"home"``). Default: the joints'
             trajectories at the first time, else their rest values.
         position_tolerance, orientation_tolerance : float
             A sample is reached when the tool's origin is within this many metres of the
@@ -358,6 +362,13 @@ class TreeQueries(EditableTree):
             self._require(target, "target")
         if relative_to is not None:
             self._require(relative_to, "relative_to")
+        near = [frame] + ([target] if isinstance(target, str) else [])
+        if isinstance(joints, str) and joints not in self.joints:  # one joint: a list, please
+            joints = group_joints(self, joints, near)
+        if isinstance(seed, str):
+            seed = group_state_values(self, seed, near)
+            if joints is not None:  # a state of a larger group seeds the joints solved for
+                seed = {name: value for name, value in seed.items() if name in joints}
         return evaluate_solve_joints(
             self._frozen(), frame, target, relative_to=relative_to, times=times,
             time_ref=time_ref, joints=joints, free_axis=free_axis, seed=seed,
@@ -401,7 +412,7 @@ class TreeQueries(EditableTree):
         self, a: str | Sequence[str], b: str | Sequence[str], *, times: Any = None,
         time_ref: Any = None, package_dirs: Iterable[str | os.PathLike[str]] = (),
         geometry: str = "collision", exclude: Iterable[tuple[str, str]] = (),
-        extrapolation: str = "clamp", limits: Any = None,
+        extrapolation: str = "clamp", srdf_exclude: bool = True, limits: Any = None,
     ) -> Clearance:
         """The smallest distance between the shapes of the frames ``a`` and ``b``, per sample.
 
@@ -421,13 +432,18 @@ class TreeQueries(EditableTree):
             As for :meth:`pose`; ``times=None`` takes every keyframe and joint sample time
             on the paths from the root to the frames of ``a`` and ``b``.
         package_dirs : iterable of path
-            Folders searched first for ``package://`` and relative mesh names (then
-            ``ROS_PACKAGE_PATH``, then the URDF's folder and its ancestors).
+            Folders searched first for ``package://``, ``model://`` and relative mesh names
+            (then those given when the robot was read, ``ROS_PACKAGE_PATH``, for
+            ``model://`` ``GAZEBO_MODEL_PATH``, then the URDF's folder and its ancestors).
         geometry : {"collision", "visual"}
             Which geometry of the links.
         exclude : iterable of (str, str)
             Pairs of frame names or patterns not to check, in either order (a torch that
             works at the seam, a robot standing on its base).
+        srdf_exclude : bool
+            Also leave out the link pairs whose collisions the robots' SRDFs disable
+            (``srdf=`` when the robot was read; default True). The pairs left out are in
+            :attr:`Clearance.excluded`.
         limits : pinframes.Limits or None
             Its ``max_triangles`` bounds the triangles of each mesh file after
             instancing, its ``max_decompressed_bytes`` the file's size (None: 1,000,000
@@ -457,6 +473,8 @@ class TreeQueries(EditableTree):
         excluded = [(first, second) for pattern_a, pattern_b in exclude
                     for first in self._frames_matching(pattern_a, "exclude")
                     for second in self._frames_matching(pattern_b, "exclude")]
+        if srdf_exclude:
+            excluded += disabled_frame_pairs(self, [*frames_a, *frames_b])
         recorded = {frame: self._recorded_geometry(frame) for frame in [*frames_a, *frames_b]}
         bounds = DEFAULT_BOUNDS if limits is None else MeshBounds(
             limits.max_triangles, limits.max_decompressed_bytes)

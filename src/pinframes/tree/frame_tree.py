@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 import os
-from collections.abc import Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -51,13 +51,17 @@ class FrameTree(TreeQueries):
     def attach_urdf(
         self, urdf: str | os.PathLike[str], parent: str, pose: Pose | None = None,
         prefix: str = "", *, strict: bool = False, limits: Any = None,
+        package_dirs: Iterable[str | os.PathLike[str]] = (),
+        xacro_args: Mapping[str, Any] | None = None,
+        srdf: str | os.PathLike[str] | None = None,
     ) -> list[str]:
         """Mount a robot: its root link at ``parent`` (at ``pose``), every link a frame.
 
         Parameters
         ----------
         urdf : path or str
-            A URDF file, or its XML text. Meshes are never needed.
+            A URDF or xacro file, or URDF XML text. Meshes are never needed. A xacro file
+            (told by its content) is expanded with the ``xacro`` package.
         parent : str
             The frame the robot's root link is placed on.
         pose : Pose or None
@@ -70,6 +74,15 @@ class FrameTree(TreeQueries):
         limits : pinframes.Limits or None
             Bounds on the XML elements and their nesting (None: those of the read in
             progress, e.g. a scene's, else the defaults).
+        package_dirs : iterable of path
+            Folders for xacro's ``$(find PKG)`` and the robot's ``package://`` and
+            ``model://`` meshes, searched before ``ROS_PACKAGE_PATH`` and the file's
+            ancestor folders; remembered with the robot (clearance and the 3-D page use them).
+        xacro_args : mapping, optional
+            ``$(arg NAME)`` values of a xacro file.
+        srdf : path, optional
+            The robot's SRDF: its joint groups and group states for :meth:`solve_joints`,
+            its disabled collision pairs for :meth:`clearance`.
 
         Returns
         -------
@@ -81,7 +94,8 @@ class FrameTree(TreeQueries):
             leaves the tree unchanged.
         """
         return robot_mounter("urdf")(self, urdf, parent, pose, prefix, strict=strict,
-                                     limits=limits)
+                                     limits=limits, package_dirs=package_dirs,
+                                     xacro_args=xacro_args, srdf=srdf)
 
     def add_geometry(self, frame: str, shape: ShapeLike, *, origin: Pose | None = None,
                      kind: str = "both",

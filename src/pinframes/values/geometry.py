@@ -102,6 +102,7 @@ class FrameGeometry:
     collision: tuple[Shape, ...] = field(default=())
     visual: tuple[Shape, ...] = field(default=())
     unreadable: tuple[tuple[str, str], ...] = field(default=())
+    package_dirs: tuple[str, ...] = field(default=())
 
     def shapes(self, kind: str) -> tuple[Shape, ...]:
         """The ``"collision"`` or ``"visual"`` shapes."""

@@ -16,7 +16,6 @@ from __future__ import annotations
 import os
 from collections.abc import Iterable
 from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -27,7 +26,7 @@ from ..kinematics.collision.mesh_files import (
     HOW_TO_SEARCH,
     MeshFiles,
     mesh_file_problem,
-    package_search_dirs,
+    mesh_files_of,
 )
 from ..kinematics.collision.mesh_reader import TriangleMesh, read_mesh
 from ..tree import FrameTree
@@ -78,8 +77,9 @@ def load_geometry(
 ) -> list[LinkGeometry]:
     """The visual (or, with ``collision=True``, collision) geometry of every robot link.
 
-    Mesh names (``package://``, ``file://``, absolute or relative to the URDF) are looked up
-    in ``package_dirs``, then in the folders of ``ROS_PACKAGE_PATH``, then beside the URDF
+    Mesh names (``package://``, ``model://``, ``file://``, absolute or relative to the URDF)
+    are looked up in ``package_dirs``, then in the folders given when the robot was read,
+    then in the folders of ``ROS_PACKAGE_PATH``, then beside the URDF
     and in its ancestors (a robot attached from an XML string has no folder: only the first
     two). A mesh that is missing, unreadable or empty, and a shape the URDF does not
     describe well, is a :class:`GeometryWarning` naming the link, the file and how to give a
@@ -91,7 +91,6 @@ def load_geometry(
     "pinframes[view]"``).
     """
     kind = "collision" if collision else "visual"
-    search_dirs = package_search_dirs(package_dirs)
     # mesh file -> its triangles, None: unreadable or not found (key: name and places searched)
     meshes: dict[str, TriangleMesh | None] = {}
     pieces: list[LinkGeometry] = []
@@ -101,8 +100,7 @@ def load_geometry(
             continue
         for field, problem in recorded.unreadable_shapes(kind):
             _warn(recorded, f"{field}: {problem}", "geometry")
-        mesh_files = MeshFiles(None if recorded.urdf is None else Path(recorded.urdf),
-                               search_dirs)
+        mesh_files = mesh_files_of(recorded, package_dirs)
         for shape in recorded.shapes(kind):
             with np.errstate(over="ignore", invalid="ignore"):  # 1e308 m: left out on the page
                 parts = _triangles(shape, recorded, mesh_files, meshes)

@@ -9,7 +9,8 @@ The format is described in ``docs/scene-format.md``; in short::
     layers:  [{file: cell.frames.yaml, mount: world}]
     frames:  [{name: table, parent: world, xyz: [1, 0, 0.8], rpy: [0, 0, 0],
                geometry: [{box: {size: [1.2, 0.8, 0.05]}}]}]
-    robots:  [{urdf: robot.urdf, parent: table, prefix: "robot/", trajectory: motion.csv}]
+    robots:  [{urdf: robot.urdf, parent: table, prefix: "robot/", trajectory: motion.csv,
+               srdf: robot.srdf, package_dirs: [meshes], xacro_args: {ur_type: ur5e}}]
     tools:   [{name: tcp, parent: robot/flange, xyz: [0, 0, 0.2]}]
 
 Paths inside a scene are relative to the scene file. Lengths in metres, angles in radians.
@@ -18,7 +19,7 @@ Paths inside a scene are relative to the scene file. Lengths in metres, angles i
 from __future__ import annotations
 
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -58,10 +59,11 @@ _ENTRY_KEYS = {
     "layers": {"file", "mount", "prefix", "key"},
     "frames": {"name", "parent", "keyframes", "curve", "reference_time",
                "geometry"} | _POSE_KEYS,
-    "robots": {"name", "urdf", "parent", "prefix", "trajectory"} | _POSE_KEYS,
+    "robots": {"name", "urdf", "parent", "prefix", "trajectory", "srdf", "package_dirs",
+               "xacro_args"} | _POSE_KEYS,
     "tools": {"name", "parent", "geometry"} | _POSE_KEYS,
 }
-_FILE_KEYS = {"layers": ("file",), "robots": ("urdf", "trajectory")}
+_FILE_KEYS = {"layers": ("file",), "robots": ("urdf", "trajectory", "srdf")}
 """The keys of entries that name files (relative to the scene's folder)."""
 _KEYFRAME_KEYS = {"time"} | _POSE_KEYS
 _CURVE_KEYS = {"points", "normals", "arc", "speed", "duration", "times"}
@@ -81,10 +83,13 @@ class _Entry:
 
 
 @reader_with_limits
-def read_scene(path: str | os.PathLike[str], *, limits: Limits | None = None) -> FrameTree:
+def read_scene(path: str | os.PathLike[str], *, limits: Limits | None = None,
+               package_dirs: Iterable[str | os.PathLike[str]] = ()) -> FrameTree:
     """Read a scene file into a new :class:`FrameTree`.
 
     ``limits`` (:class:`pinframes.Limits`) bounds the scene file and every file it names.
+    ``package_dirs`` are searched for every robot's ``$(find PKG)``, ``package://`` and
+    ``model://`` names, after the folders its entry names (``package_dirs:``).
 
     Entries are added as soon as the frame they hang from exists, so their order in the
     file does not matter (a tool may name a robot link, a robot a frame of a layer).
@@ -99,7 +104,7 @@ def read_scene(path: str | os.PathLike[str], *, limits: Limits | None = None) ->
     ReadError
         The scene file (or a file it names) is missing, a folder, unreadable or not text.
     """
-    scene = _Scene(InputFile.of(path))
+    scene = _Scene(InputFile.of(path), tuple(os.fspath(folder) for folder in package_dirs))
     return scene.build()
 
 
@@ -149,9 +154,10 @@ class _Scene:
     aliases, say): a trajectory, a URDF, a layer (with its key).
     """
 
-    def __init__(self, source: InputFile) -> None:
+    def __init__(self, source: InputFile, package_dirs: tuple[str, ...] = ()) -> None:
         path = source.path
         self.path = path
+        self.package_dirs = package_dirs
         self._read: dict[tuple[str, Path, str], Any] = {}
         require_format(source, "scene")
         content = source.yaml()
@@ -300,6 +306,9 @@ class _Scene:
         prefix = self._prefix(item, label, field)
         rotation, translation = self._pose_parts(item, label, field)
         pose = Pose(translation, rotation)
+        srdf = self._file(item, "srdf", label, field) if "srdf" in item else None
+        package_dirs = [*self._folders(item, label, field), *self.package_dirs]
+        xacro_args = self._xacro_args(item, label, field)
         trajectory, path = None, urdf
         if "trajectory" in item:
             path = self._file(item, "trajectory", label, field)
@@ -311,13 +320,16 @@ class _Scene:
 
         def attach(tree: FrameTree) -> None:
             try:
-                robot: RobotDescription = self._once("urdf", urdf, None,
-                                                     lambda: parse_urdf(str(urdf)))
+                robot: RobotDescription = self._once(
+                    "urdf", urdf, (srdf, package_dirs, xacro_args),
+                    lambda: parse_urdf(str(urdf), package_dirs=package_dirs,
+                                       xacro_args=xacro_args, srdf=srdf))
                 mount_robot(tree, robot, parent, pose, prefix)  # FrameTree.attach_urdf
             except PinframesError as exc:
                 if exc.file is None:
                     raise  # a clash with the scene, located at this entry by _apply
-                raise self._referenced(exc, f"{field}.urdf") from None
+                named = "srdf" if srdf is not None and exc.file == str(srdf) else "urdf"
+                raise self._referenced(exc, f"{field}.{named}") from None
             if trajectory is not None:
                 self._drive(tree, trajectory, prefix, path, label, f"{field}.trajectory")
 
@@ -512,6 +524,36 @@ class _Scene:
             raise FileFormatError(f"expected a string, got {prefix!r}", file=self.path,
                                   frame=frame, field=f"{field}.prefix")
         return prefix
+
+    def _folders(self, item: dict, frame: str | None, field: str) -> list[str]:
+        """A robot's ``package_dirs``: folders relative to the scene's."""
+        value = item.get("package_dirs", [])
+        if not isinstance(value, list):
+            raise FileFormatError(f"expected a list of folders, got {type(value).__name__}",
+                                  file=self.path, frame=frame, field=f"{field}.package_dirs")
+        folders = []
+        for index, entry in enumerate(value):
+            name = self._name(entry, frame, f"{field}.package_dirs[{index}]")
+            folder = self.path.parent / name
+            if not folder.is_dir():
+                raise FileFormatError(f"no such folder: {folder}", file=self.path, frame=frame,
+                                      field=f"{field}.package_dirs[{index}]")
+            folders.append(str(folder))
+        return folders
+
+    def _xacro_args(self, item: dict, frame: str | None, field: str) -> dict[str, str] | None:
+        """A robot's ``xacro_args``: names to text, numbers or booleans."""
+        value = item.get("xacro_args")
+        if value is None:
+            return None
+        if not isinstance(value, dict) or not all(
+                isinstance(key, str) and isinstance(text, (str, int, float, bool))
+                for key, text in value.items()):
+            raise FileFormatError("expected a mapping of argument names to text, numbers or "
+                                  "booleans", file=self.path, frame=frame,
+                                  field=f"{field}.xacro_args")
+        return {key: ("true" if text else "false") if isinstance(text, bool) else str(text)
+                for key, text in value.items()}
 
     def _file(self, item: dict, key: str, frame: str | None, field: str) -> Path:
         if key not in item:

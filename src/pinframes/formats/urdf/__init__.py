@@ -1,10 +1,14 @@
-"""URDF in and out: robots as frames and joints of a :class:`~pinframes.FrameTree`, and
-the URDF format of the registry (a URDF with its joint values beside it)."""
+"""URDF in and out: robots as frames and joints of a :class:`~pinframes.FrameTree`, from
+URDF or xacro files with their SRDF, and the URDF format of the registry (a URDF with its
+joint values beside it)."""
 
 from ._format import URDF_FORMAT, read_urdf
 from ._mount import DRIVEN_JOINT_TYPES, URDF_METADATA_KEY, mount_robot, mount_urdf
-from ._parse import JointDescription, RobotDescription, is_urdf, parse_urdf
+from ._parse import is_urdf, parse_urdf
 from ._read_write import joint_state_path, read_robot, write_urdf
+from ._robot_description import JointDescription, RobotDescription
+from ._srdf import read_srdf
+from ._xacro import expand_xacro, is_xacro
 
 __all__ = [
     "DRIVEN_JOINT_TYPES",
@@ -12,12 +16,15 @@ __all__ = [
     "URDF_METADATA_KEY",
     "JointDescription",
     "RobotDescription",
+    "expand_xacro",
     "is_urdf",
+    "is_xacro",
     "joint_state_path",
     "mount_robot",
     "mount_urdf",
     "parse_urdf",
     "read_robot",
+    "read_srdf",
     "read_urdf",
     "write_urdf",
 ]

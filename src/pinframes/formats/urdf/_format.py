@@ -9,7 +9,9 @@ format's entry (:data:`URDF_FORMAT`) in the formats' registry.
 from __future__ import annotations
 
 import os
+from collections.abc import Iterable, Mapping
 from pathlib import Path
+from typing import Any
 
 from ...errors import PinframesError
 from ...tree import FrameTree
@@ -24,8 +26,20 @@ __all__ = ["URDF_FORMAT", "read_urdf"]
 
 
 def read_urdf(path: str | os.PathLike[str], *, strict: bool = False,
-              limits: Limits | None = None, joint_state: bool = True) -> FrameTree:
+              limits: Limits | None = None, joint_state: bool = True,
+              package_dirs: Iterable[str | os.PathLike[str]] = (),
+              xacro_args: Mapping[str, Any] | None = None,
+              srdf: str | os.PathLike[str] | None = None) -> FrameTree:
     """A robot file as a tree: its root is the robot's root link, named after the robot.
+
+    A xacro file (told by its content, whatever its name) is expanded with the ``xacro``
+    package (``pip install "pinframes[ros]"``): ``xacro_args`` give its ``$(arg NAME)``
+    values, and ``$(find PKG)`` is looked for in ``package_dirs``, then
+    ``ROS_PACKAGE_PATH``, then the file's ancestor folders. ``package_dirs`` are remembered
+    with the robot: clearance and the 3-D page look for its ``package://`` and ``model://``
+    meshes there without being told again. ``srdf``, the robot's SRDF file, names its joint
+    groups and group states (``solve_joints(joints="arm", seed="home")``) and the link pairs
+    that :meth:`~pinframes.FrameTree.clearance` leaves out.
 
     ``strict`` refuses a mimic of a joint the file does not have (by default such a joint
     stays independent, with a :class:`~pinframes.urdf.BrokenMimicWarning`). ``limits``
@@ -37,7 +51,8 @@ def read_urdf(path: str | os.PathLike[str], *, strict: bool = False,
     the time the file was written, so the robot stands where it stood then.
     ``joint_state=False`` leaves every joint at its rest value.
     """
-    tree = read_robot(path, strict=strict, limits=limits)
+    tree = read_robot(path, strict=strict, limits=limits, package_dirs=package_dirs,
+                      xacro_args=xacro_args, srdf=srdf)
     beside = _joint_state_file(path)
     if joint_state and beside is not None and beside.is_file():
         times, positions, names = read_joint_trajectory(beside, limits=limits)
@@ -60,7 +75,7 @@ def _files_read(source: InputFile) -> list[Path]:
     return [joint_state_path(source.path)]
 
 
-URDF_FORMAT = FileFormat("urdf", "URDF", (".urdf",), read_urdf, write_urdf,
+URDF_FORMAT = FileFormat("urdf", "URDF", (".urdf", ".xacro"), read_urdf, write_urdf,
                          ("time", "freeze_joints"), head_test=is_urdf, looks_like="a URDF file",
                          files_read=_files_read)
 """The URDF format: XML whose root element is ``<robot>``, with the joint values beside it."""

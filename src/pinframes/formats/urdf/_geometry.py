@@ -36,9 +36,10 @@ def named_colours(root: ET.Element, source: str) -> dict[str, Colour]:
     return colours
 
 
-def link_geometry(link: ET.Element, name: str, source: str,
-                  colours: dict[str, Colour]) -> FrameGeometry:
-    """The shapes of ``link`` (a ``<link>`` element named ``name``) of the URDF ``source``."""
+def link_geometry(link: ET.Element, name: str, source: str, colours: dict[str, Colour],
+                  package_dirs: tuple[str, ...] = ()) -> FrameGeometry:
+    """The shapes of ``link`` (a ``<link>`` element named ``name``) of the URDF ``source``;
+    ``package_dirs``, absolute, are kept to look for its meshes in."""
     urdf = None if source == "<urdf string>" else os.path.abspath(source)
     shapes: dict[str, list[Shape]] = {"collision": [], "visual": []}
     unreadable = []
@@ -49,7 +50,7 @@ def link_geometry(link: ET.Element, name: str, source: str,
             except FileFormatError as exc:
                 unreadable.append((exc.field or kind, exc.message))
     return FrameGeometry(name, urdf, tuple(shapes["collision"]), tuple(shapes["visual"]),
-                         tuple(unreadable))
+                         tuple(unreadable), package_dirs)
 
 
 def _shape(element: ET.Element, where: str, link: str, source: str,

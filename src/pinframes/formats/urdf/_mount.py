@@ -3,14 +3,17 @@
 from __future__ import annotations
 
 import os
+from collections.abc import Iterable, Mapping
 from typing import TYPE_CHECKING, Any
 
 from ...errors import ArgumentTypeError, FrameExistsError, FrameNotFoundError, near_misses
 from ...values.geometry import GEOMETRY_METADATA_KEY
 from ...values.joint import Joint, Mimic
 from ...values.pose import Pose
+from ...values.robot_semantics import SEMANTICS_METADATA_KEY, LinkSemantics
 from ..limits import Limits
-from ._parse import RobotDescription, parse_urdf
+from ._parse import parse_urdf
+from ._robot_description import RobotDescription
 
 if TYPE_CHECKING:
     from ...tree import FrameTree
@@ -27,10 +30,13 @@ DRIVEN_JOINT_TYPES = ("revolute", "continuous", "prismatic")
 def mount_urdf(
     tree: FrameTree, urdf: str | os.PathLike[str], parent: str, pose: Pose | None, prefix: str,
     *, strict: bool = False, limits: Limits | None = None,
+    package_dirs: Iterable[str | os.PathLike[str]] = (),
+    xacro_args: Mapping[str, Any] | None = None, srdf: str | os.PathLike[str] | None = None,
 ) -> list[str]:
     """Parse ``urdf`` (a path or the XML text) and mount it: ``FrameTree.attach_urdf``."""
-    return mount_robot(tree, parse_urdf(urdf, strict=strict, limits=limits), parent, pose,
-                       prefix)
+    robot = parse_urdf(urdf, strict=strict, limits=limits, package_dirs=package_dirs,
+                       xacro_args=xacro_args, srdf=srdf)
+    return mount_robot(tree, robot, parent, pose, prefix)
 
 
 def mount_robot(
@@ -109,3 +115,5 @@ def _keep_link(tree: FrameTree, frame: str, robot: RobotDescription, link: str, 
     metadata = tree.frame_metadata(frame)
     metadata[URDF_METADATA_KEY] = kept
     metadata[GEOMETRY_METADATA_KEY] = robot.geometry[link]
+    if robot.semantics is not None:
+        metadata[SEMANTICS_METADATA_KEY] = LinkSemantics(link, robot.semantics)

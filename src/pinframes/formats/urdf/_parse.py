@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import os
 import xml.etree.ElementTree as ET
-from dataclasses import dataclass, field, replace
+from collections.abc import Iterable, Mapping
+from dataclasses import replace
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from ...errors import BrokenMimicWarning, FileFormatError, warn_at_caller
-from ...values.geometry import FrameGeometry
 from ...values.pose import Pose
 from .._content import xml_root
 from ..limits import Limits, current_limits, exceeded, reader_with_limits
@@ -18,49 +19,15 @@ from ..reading import InputFile, read_text
 from ._bounded_xml import parse_bounded_xml
 from ._geometry import link_geometry, named_colours
 from ._numbers import numbers
+from ._robot_description import JointDescription, RobotDescription
+from ._srdf import looks_like_srdf, read_srdf
+from ._xacro import expand_xacro, is_xacro
 
-__all__ = ["URDF_JOINT_TYPES", "JointDescription", "RobotDescription", "is_urdf", "parse_urdf"]
+__all__ = ["URDF_JOINT_TYPES", "is_urdf", "parse_urdf"]
 
 URDF_JOINT_TYPES = ("revolute", "continuous", "prismatic", "fixed", "floating", "planar")
 _DRIVEN_TYPES = ("revolute", "continuous", "prismatic")
 _JOINT_FIELDS_READ = {"parent", "child", "origin", "axis", "limit", "mimic"}
-
-
-@dataclass(frozen=True)
-class JointDescription:
-    """One ``<joint>`` of a URDF, names not yet prefixed.
-
-    ``origin`` is the child link's pose in the parent link at joint value 0; ``extra_xml``
-    keeps the elements pinframes does not interpret (``<dynamics>``, ``<calibration>``,
-    ``<safety_controller>``) as written, for export.
-    """
-
-    name: str
-    type: str
-    parent: str
-    child: str
-    origin: Pose
-    axis: tuple[float, float, float]
-    lower: float | None = None
-    upper: float | None = None
-    effort: float | None = None
-    velocity: float | None = None
-    mimic: tuple[str, float, float] | None = None
-    extra_xml: tuple[str, ...] = ()
-
-
-@dataclass(frozen=True)
-class RobotDescription:
-    """A parsed URDF: its links (with their XML kept as written) and joints, root first,
-    and the collision and visual geometry of every link."""
-
-    name: str
-    source: str
-    root_link: str
-    links: dict[str, tuple[str, ...]]
-    joints: tuple[JointDescription, ...]
-    extra_xml: tuple[str, ...] = field(default=())
-    geometry: dict[str, FrameGeometry] = field(default_factory=dict)
 
 
 def is_urdf(source: InputFile) -> bool:
@@ -71,8 +38,17 @@ def is_urdf(source: InputFile) -> bool:
 
 @reader_with_limits
 def parse_urdf(urdf: str | os.PathLike[str], *, strict: bool = False,
-               limits: Limits | None = None) -> RobotDescription:
+               limits: Limits | None = None,
+               package_dirs: Iterable[str | os.PathLike[str]] = (),
+               xacro_args: Mapping[str, Any] | None = None,
+               srdf: str | os.PathLike[str] | None = None) -> RobotDescription:
     """Parse a URDF file path or XML string and check that it describes one tree of links.
+
+    A xacro file (told by :func:`~pinframes.formats.urdf.is_xacro`, whatever its name) is
+    expanded first (:func:`~pinframes.formats.urdf.expand_xacro`, with ``xacro_args`` and
+    ``$(find PKG)`` looked up in ``package_dirs``); ``package_dirs`` are also kept with
+    every link's geometry (absolute), for its meshes. ``srdf`` (a file) is read against the
+    robot into :attr:`RobotDescription.semantics`.
 
     Raises :class:`~pinframes.errors.FileFormatError` naming the file (or ``<urdf string>``),
     the link or joint and the field for malformed XML, missing or duplicate names, unknown
@@ -84,10 +60,26 @@ def parse_urdf(urdf: str | os.PathLike[str], *, strict: bool = False,
     ``<!DOCTYPE>`` (and with it any entity definition) is refused.
     """
     text, source = _read_source(urdf)
+    folders = tuple(os.path.abspath(os.fspath(folder)) for folder in package_dirs)
+    macros_only = False
+    if is_xacro(text):
+        macros_only = "xacro:macro" in text
+        if source == "<urdf string>":
+            raise FileFormatError("xacro text: give the xacro file's path, whose folder its "
+                                  "includes are relative to", file=source, field="xacro")
+        text = expand_xacro(source, args=xacro_args, package_dirs=folders)
+    elif xacro_args:
+        raise FileFormatError("xacro_args were given, but this is no xacro file",
+                              file=source, field="xacro_args")
     root = parse_bounded_xml(text, source)
     if root.tag != "robot":
         raise FileFormatError(f"the root element is <{root.tag}>, expected <robot>",
                               file=source, field="robot")
+    if looks_like_srdf(root):
+        raise FileFormatError(
+            "this is an SRDF (MoveIt's semantic description: groups, group states, disabled "
+            "collision pairs), not a URDF: give it beside its URDF, as srdf= (Python), "
+            "'srdf:' of a scene robot or --srdf (command line)", file=source, field="robot")
     name = root.get("name")
     if not name:
         name = Path(source).stem if source != "<urdf string>" else "robot"
@@ -96,14 +88,22 @@ def parse_urdf(urdf: str | os.PathLike[str], *, strict: bool = False,
         links, joints, extra = _elements(root, source)
     except RecursionError:
         raise FileFormatError("XML elements nested too deeply to keep", file=source) from None
+    if not links:
+        hint = (": it defines xacro macros only; read the xacro file that calls them"
+                if macros_only else "")
+        raise FileFormatError(f"no <link>: a robot has at least one{hint}", file=source,
+                              field="link")
     ordered, root_link = _check_tree(links, joints, source)
     ordered = _without_broken_mimics(ordered, source, strict)
     _check_mimics(ordered, source)
     colours = named_colours(root, source)
-    geometry = {link: link_geometry(element, link, source, colours)
+    geometry = {link: link_geometry(element, link, source, colours, folders)
                 for link, element in _link_elements(root)}
-    return RobotDescription(name, source, root_link, links, tuple(ordered), tuple(extra),
-                            geometry)
+    robot = RobotDescription(name, source, root_link, links, tuple(ordered), tuple(extra),
+                             geometry)
+    if srdf is None:
+        return robot
+    return replace(robot, semantics=read_srdf(srdf, robot))
 
 
 def _link_elements(root: ET.Element) -> list[tuple[str, ET.Element]]:

@@ -70,7 +70,7 @@ class Clearance(Timed):
     frames_a, frames_b : tuple of str
         The frames whose geometry was checked on each side.
     excluded : tuple of (str, str)
-        The pairs of frames left out (``exclude=``).
+        The pairs of frames left out: ``exclude=``, and those the robots' SRDFs disable.
     geometry : {"collision", "visual"}
         Which URDF geometry was used.
     """
@@ -129,7 +129,9 @@ def evaluate_clearance(
     pairs = _shape_pairs(shapes, set(frames_a), set(frames_b), skipped)
     if not len(pairs):
         raise GeometryError("a and b leave no pair of two different frames to check (a frame "
-                            "is never checked against itself; see also exclude)", field="b")
+                            "is never checked against itself; see also exclude, and the pairs "
+                            "an SRDF disables: srdf_exclude=False, --no-srdf-exclude)",
+                            field="b")
     plan = _plan(tree, frames, times, time_ref, extrapolation)
     count = plan.count
     frame_index = {frame: position for position, frame in enumerate(frames)}

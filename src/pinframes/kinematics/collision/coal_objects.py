@@ -27,7 +27,7 @@ from numpy.typing import NDArray
 
 from ...errors import GeometryError
 from ...values.geometry import GEOMETRY_KINDS, FrameGeometry, Shape
-from .mesh_files import HOW_TO_SEARCH, MeshFiles, mesh_file_problem, package_search_dirs
+from .mesh_files import HOW_TO_SEARCH, mesh_file_problem, mesh_files_of
 from .mesh_reader import DEFAULT_BOUNDS, MeshBounds, read_mesh
 from .solid_meshes import SolidMesh, solid_mesh
 
@@ -89,8 +89,9 @@ class ShapeLoader:
     kind : {"collision", "visual"}
         Which geometry of the URDF links.
     package_dirs : iterable of path
-        Folders searched for ``package://`` and relative mesh names first (see
-        :class:`~pinframes.kinematics.collision.mesh_files.MeshFiles`).
+        Folders searched for ``package://``, ``model://`` and relative mesh names first,
+        before those given when each robot was read (see
+        :func:`~pinframes.kinematics.collision.mesh_files.mesh_files_of`).
     bounds : MeshBounds
         The most triangles one mesh file may hold after instancing, and its most bytes.
     """
@@ -102,7 +103,7 @@ class ShapeLoader:
                                 field="geometry")
         self.kind = kind
         self.bounds = bounds
-        self._search_dirs = package_search_dirs(package_dirs)
+        self._package_dirs = tuple(package_dirs)
         self._meshes: dict[tuple[str, tuple[float, ...]], _Mesh] = {}
 
     def shapes(self, frame: str, geometry: FrameGeometry | None) -> list[CollisionShape]:
@@ -147,8 +148,7 @@ class ShapeLoader:
                               centre, radius, mesh_path, solid, probes)
 
     def _find(self, frame: str, field: str, name: str, geometry: FrameGeometry) -> str:
-        mesh_files = MeshFiles(None if geometry.urdf is None else Path(geometry.urdf),
-                               self._search_dirs)
+        mesh_files = mesh_files_of(geometry, self._package_dirs)
         found = mesh_files.find(name)
         if found is None:
             raise GeometryError(f"link {geometry.link!r}: mesh {name!r} not found "

@@ -1,16 +1,20 @@
-"""Where the mesh files named in a URDF are: ``package://``, ``file://`` and relative names.
+"""Where the files named in a URDF are: ``package://``, ``model://``, ``file://``, relative names.
 
 A URDF names its meshes as ROS does: ``package://PKG/path/in/package.stl``, ``file:///abs.stl``,
-an absolute path, or a path relative to the URDF's folder. :class:`MeshFiles` resolves them
+an absolute path, or a path relative to the URDF's folder; Gazebo's ``model://MODEL/path``
+names a model folder as ``package://`` names a package. :class:`MeshFiles` resolves them
 against, in this order,
 
 1. the search folders given by the caller (Python ``package_dirs=``, CLI ``--package-dir``),
+   then those given when the robot was read (remembered with its links),
 2. the folders in the ``ROS_PACKAGE_PATH`` environment variable (``os.pathsep``-separated),
+   and for ``model://`` those in ``GAZEBO_MODEL_PATH``,
 3. the URDF's own folder and its ancestors.
 
 A search folder may be a package itself (its name is ``PKG``) or hold packages as its
 sub-folders (``folder/PKG``), as ``ROS_PACKAGE_PATH`` entries do. The clearance query and
-the 3-D page find their meshes here.
+the 3-D page find their meshes here, and xacro's ``$(find PKG)`` its packages
+(:func:`find_package`).
 
 :func:`mesh_file_problem` tells why a found mesh file must not be opened: mesh readers inflate
 compressed files and archives without bound (trimesh opens ``.zip``, ``.tar.gz``, ``.bz2`` by
@@ -26,10 +30,19 @@ import stat
 from collections.abc import Iterable
 from pathlib import Path
 
-__all__ = ["PACKAGE_PATH_VARIABLE", "MeshFiles", "mesh_file_problem", "package_search_dirs"]
+from ...values.geometry import FrameGeometry
+
+__all__ = ["MODEL_PATH_VARIABLE", "PACKAGE_PATH_VARIABLE", "MeshFiles", "find_package",
+           "mesh_file_problem", "mesh_files_of", "package_search_dirs"]
 
 PACKAGE_PATH_VARIABLE = "ROS_PACKAGE_PATH"
 """Environment variable with extra search folders, as ROS users set it."""
+
+MODEL_PATH_VARIABLE = "GAZEBO_MODEL_PATH"
+"""Environment variable with folders of Gazebo models, searched for ``model://`` names."""
+
+_SCHEMES = ("package://", "model://")
+"""URI schemes whose first path part names a folder to look for (a package, a model)."""
 
 HOW_TO_SEARCH = (f"give the folder that holds it with package_dirs=[...] (Python), "
                  f"--package-dir DIR (command line) or {PACKAGE_PATH_VARIABLE}")
@@ -81,6 +94,34 @@ def package_search_dirs(package_dirs: Iterable[str | os.PathLike[str]] = ()) -> 
     return [Path(folder) for folder in [*package_dirs, *from_environment] if str(folder)]
 
 
+def _model_dirs() -> list[Path]:
+    """The folders of ``GAZEBO_MODEL_PATH``."""
+    return [Path(folder) for folder in os.environ.get(MODEL_PATH_VARIABLE, "").split(os.pathsep)
+            if folder]
+
+
+def find_package(name: str, search_dirs: list[Path], start: Path | None) -> Path | None:
+    """The folder of package ``name`` (what ``$(find name)`` gives): the first of
+    ``search_dirs`` named ``name`` or holding a folder ``name``, else the first such among
+    ``start``'s ancestors (``start``: the file that asks); None if there is none."""
+    ancestors = [] if start is None else list(start.resolve().parents)
+    for folder in _package_candidates(name, [*search_dirs, *ancestors]):
+        if folder.is_dir():
+            return folder
+    return None
+
+
+def _package_candidates(name: str, folders: list[Path]) -> list[Path]:
+    """Where package (or model) ``name`` may be: each folder itself when it bears the name,
+    then its sub-folder of that name."""
+    found = []
+    for folder in folders:
+        if folder.name == name:
+            found.append(folder)
+        found.append(folder / name)
+    return found
+
+
 class MeshFiles:
     """Resolves the mesh names of one URDF file.
 
@@ -115,17 +156,24 @@ class MeshFiles:
 
     def candidates(self, fname: str) -> list[Path]:
         """Every path where ``fname`` is looked for, in order."""
-        if fname.startswith("package://"):
-            package, _, inside = fname[len("package://"):].partition("/")
-            found = []
-            for folder in [*self._search_dirs, *self._urdf_dirs]:
-                if folder.name == package:
-                    found.append(folder / inside)
-                found.append(folder / package / inside)
-            return found
+        scheme = next((scheme for scheme in _SCHEMES if fname.startswith(scheme)), None)
+        if scheme is not None:
+            package, _, inside = fname[len(scheme):].partition("/")
+            models = _model_dirs() if scheme == "model://" else []
+            folders = [*self._search_dirs, *models, *self._urdf_dirs]
+            return [folder / inside for folder in _package_candidates(package, folders)]
         if fname.startswith("file://"):
             return [Path(fname[len("file://"):])]
         if os.path.isabs(fname):
             return [Path(fname)]
         folders = self._urdf_dirs[:1] + self._search_dirs
         return [folder / fname for folder in folders] or [Path(fname)]
+
+
+def mesh_files_of(geometry: FrameGeometry,
+                  package_dirs: Iterable[str | os.PathLike[str]] = ()) -> MeshFiles:
+    """The mesh names of one recorded link: looked for in ``package_dirs`` (the caller's),
+    then in the folders given when its robot was read (:attr:`FrameGeometry.package_dirs`),
+    then as :class:`MeshFiles` says."""
+    return MeshFiles(None if geometry.urdf is None else Path(geometry.urdf),
+                     package_search_dirs([*package_dirs, *geometry.package_dirs]))
