@@ -3,7 +3,9 @@ deserialiser (issue 29's goal: at most 2x, and linear in the transforms).
 
 Cases: bags of 10^5 and 10^6 transforms (10 frames moving in ``world``, one
 ``geometry_msgs/TransformStamped`` per ``tf2_msgs/TFMessage`` as a ``TransformBroadcaster``
-sends them, 100 Hz per frame), written by rosbags as a ROS 2 MCAP bag and a ROS 1 bag.
+sends them, 100 Hz per frame), written by rosbags as a ROS 2 MCAP bag and a ROS 1 bag; at
+10^5 also with compressed chunks (MCAP zstd, ROS 1 bz2), which pinframes inflates itself,
+a piece at a time within ``max_decompressed_bytes``.
 pinframes reads the whole tree (messages, decoding, tf2's rules, the moving frames);
 the reference is rosbags alone, ``AnyReader`` + ``deserialize`` of every message, keeping the
 message objects (no tree). Per transform the two sizes should cost the same (linear). Both
@@ -26,7 +28,7 @@ from pathlib import Path
 import numpy as np
 from rosbags.highlevel import AnyReader
 from rosbags.rosbag1 import Writer as Ros1Writer
-from rosbags.rosbag2 import StoragePlugin
+from rosbags.rosbag2 import CompressionFormat, CompressionMode, StoragePlugin
 from rosbags.rosbag2 import Writer as Ros2Writer
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
@@ -40,8 +42,9 @@ REFERENCE = "rosbags read+deserialise"
 PINFRAMES = "pinframes.read_rosbag"
 
 
-def write_bags(folder: Path, transforms: int) -> dict[str, Path]:
-    """An MCAP (ROS 2) and a ROS 1 bag of ``transforms`` transforms; their paths."""
+def write_bags(folder: Path, transforms: int, compressed: bool = False) -> dict[str, Path]:
+    """An MCAP (ROS 2) and a ROS 1 bag of ``transforms`` transforms, their chunks compressed
+    (zstd, bz2) or not; their paths by storage."""
     rng = np.random.default_rng(transforms)
     translations = rng.normal(size=(transforms, 3))
     quaternions = rng.normal(size=(transforms, 4))
@@ -52,13 +55,17 @@ def write_bags(folder: Path, transforms: int) -> dict[str, Path]:
         if storage == "ros1":
             store = get_typestore(Stores.ROS1_NOETIC)
             store.register(get_types_from_msg("geometry_msgs/TransformStamped[] transforms", TF))
-            path = folder / f"tf_{transforms}.bag"
+            path = folder / f"tf_{transforms}{'_bz2' if compressed else ''}.bag"
             writer = Ros1Writer(path)
+            if compressed:
+                writer.set_compression(Ros1Writer.CompressionFormat.BZ2)
             serialise = store.serialize_ros1
         else:
             store = get_typestore(Stores.ROS2_HUMBLE)
-            path = folder / f"tf_{transforms}_mcap"
+            path = folder / f"tf_{transforms}{'_zstd' if compressed else ''}_mcap"
             writer = Ros2Writer(path, version=9, storage_plugin=StoragePlugin.MCAP)
+            if compressed:
+                writer.set_compression(CompressionMode.STORAGE, CompressionFormat.ZSTD)
             serialise = store.serialize_cdr
         types = store.types
         header_fields = types["std_msgs/msg/Header"].__dataclass_fields__
@@ -77,7 +84,8 @@ def write_bags(folder: Path, transforms: int) -> dict[str, Path]:
                         translation=types["geometry_msgs/msg/Vector3"](*translations[index]),
                         rotation=types["geometry_msgs/msg/Quaternion"](*quaternions[index])))])
                 writer.write(connection, stamp, serialise(message, TF))
-        bags[storage] = path
+        bags[f"{storage}, {'zstd' if storage == 'mcap' else 'bz2'} chunks" if compressed
+             else storage] = path
     return bags
 
 
@@ -148,6 +156,8 @@ def main() -> None:
         table = {}
         for transforms in SIZES[:1] if quick else SIZES:
             bags = write_bags(Path(scratch), transforms)
+            if transforms == SIZES[0]:
+                bags |= write_bags(Path(scratch), transforms, compressed=True)
             table[str(transforms)] = {storage: str(path) for storage, path in bags.items()}
         arguments = ["--bags", json.dumps(table)] + (["--quick"] if quick else [])
         print_table(run_in_settings(__file__, arguments), reference=REFERENCE)

@@ -139,7 +139,7 @@ def readers(shared_data: Path | None = None) -> dict[str, Reader]:
         "read_asdf": Reader(pinframes.read_asdf, "asdf", _asdf_samples(shared_data)),
         "read_rosbag": Reader(pinframes.read_rosbag, None, (Sample(
             "cell_run.mcap", (MODELS / "welding_cell" / "cell_run.mcap").read_bytes(),
-            "run.mcap"),)),
+            "run.mcap"), *_ros1_bag_samples())),
     }
 
 
@@ -186,6 +186,40 @@ def _npz_samples() -> tuple[Sample, ...]:
         buffer = io.BytesIO()
         save(buffer, **arrays)
         samples.append(Sample(name, buffer.getvalue(), "motion.npz"))
+    return tuple(samples)
+
+
+def _ros1_bag_samples() -> tuple[Sample, ...]:
+    """A tool moving in ``world``, 40 TFMessages in ROS 1 bags written by rosbags, their
+    chunks stored plainly and compressed with bz2 and lz4 (bytes mutations only)."""
+    from rosbags.rosbag1 import Writer
+    from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+
+    kind = "tf2_msgs/msg/TFMessage"
+    store = get_typestore(Stores.ROS1_NOETIC)
+    store.register(get_types_from_msg("geometry_msgs/TransformStamped[] transforms", kind))
+    types = store.types
+    samples = []
+    with tempfile.TemporaryDirectory() as folder:
+        for compression in (None, "BZ2", "LZ4"):
+            path = Path(folder) / f"tool-{compression or 'plain'}.bag"
+            writer = Writer(path)
+            if compression:
+                writer.set_compression(Writer.CompressionFormat[compression])
+            with writer:
+                connection = writer.add_connection("/tf", kind, typestore=store)
+                for index in range(40):
+                    stamp = 1_700_000_000 * 10**9 + index * 10**8
+                    header = types["std_msgs/msg/Header"](seq=index, stamp=types[
+                        "builtin_interfaces/msg/Time"](sec=stamp // 10**9, nanosec=stamp % 10**9),
+                        frame_id="world")
+                    transform = types["geometry_msgs/msg/Transform"](
+                        translation=types["geometry_msgs/msg/Vector3"](0.01 * index, 0.0, 0.5),
+                        rotation=types["geometry_msgs/msg/Quaternion"](0.0, 0.0, 0.0, 1.0))
+                    message = types[kind](transforms=[types["geometry_msgs/msg/TransformStamped"](
+                        header=header, child_frame_id="tool", transform=transform)])
+                    writer.write(connection, stamp, store.serialize_ros1(message, kind))
+            samples.append(Sample(path.name, path.read_bytes(), "run.bag"))
     return tuple(samples)
 
 

@@ -117,6 +117,10 @@ RESOURCE_CASES = [
         "FileFormatError", "contains itself"),
     ResourceCase("decompression-bomb", "npz", forged_npz(3 * 1024**3), "FileFormatError",
                  "max_decompressed_bytes"),
+    ResourceCase("arc-of-10^8-points", "scene", (  # 3.2 GB, then a MemoryError
+        b"pinframes_scene: 1\nframes:\n  - {name: seam, parent: world, curve: {arc: {centre: "
+        b"[0, 0, 0], axis: [0, 0, 1], start: [1, 0, 0], angle: 1, count: 100000000}, "
+        b"speed: 1}}\n"), "FileFormatError", "max_samples"),
     *(ResourceCase(f"{kind}-entity-bomb", reader, entity_bomb(kind == "element").encode(),
                    "FileFormatError", "DOCTYPE")
       for kind in ("text", "element") for reader in ("urdf", "attach_urdf")),

@@ -7,9 +7,11 @@ and returns the path to read.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+import contextlib
+from collections.abc import Iterable, Iterator, Sequence
 from functools import cache
 from pathlib import Path
+from types import SimpleNamespace
 from typing import Any, NamedTuple
 
 import pytest
@@ -19,7 +21,10 @@ rosbags = pytest.importorskip("rosbags")
 from rosbags.rosbag1 import Writer as Ros1Writer  # noqa: E402
 from rosbags.rosbag2 import CompressionFormat, CompressionMode, StoragePlugin  # noqa: E402
 from rosbags.rosbag2 import Writer as Ros2Writer  # noqa: E402
+from rosbags.rosbag2 import writer as rosbag2_writer  # noqa: E402
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore  # noqa: E402
+
+zstd = rosbag2_writer.zstd  # the zstd module rosbags writes with
 
 TF = "tf2_msgs/msg/TFMessage"
 JOINT_STATE = "sensor_msgs/msg/JointState"
@@ -115,10 +120,12 @@ def ros_version_of(storage: str) -> int:
 
 
 def write_bag(path: Path, storage: str, messages: Iterable[Message],
-              compression: str | None = None) -> Path:
+              compression: str | None = None, padding: int = 0) -> Path:
     """Write ``messages`` with rosbags' writer for ``storage``; the bag's path.
     ``compression``: ROS 1 ``"bz2"`` or ``"lz4"`` chunks; ROS 2 zstd by ``"file"``,
-    ``"message"`` or (MCAP) ``"storage"``."""
+    ``"message"`` or (MCAP) ``"storage"``. ``padding`` makes a hostile bag: each compressed
+    part (chunk, message, file) holds that many zero bytes after its content, which its
+    header does not count, compressed by the writer's own compressor."""
     version = ros_version_of(storage)
     store = typestore(version)
     messages = list(messages)
@@ -127,13 +134,16 @@ def write_bag(path: Path, storage: str, messages: Iterable[Message],
         writer: Any = Ros1Writer(path)
         if compression:
             writer.set_compression(Ros1Writer.CompressionFormat[compression.upper()])
+            writer.compressor = _padded(writer.compressor, padding)
     else:
         plugin = StoragePlugin.MCAP if storage == "mcap" else StoragePlugin.SQLITE3
         writer = Ros2Writer(path, version=9, storage_plugin=plugin)
         if compression:
             writer.set_compression(CompressionMode[compression.upper()],
                                    CompressionFormat.ZSTD)
-    with writer:
+    with writer, _padded_messages(padding if compression == "message" else 0):
+        if compression == "storage":
+            writer.storage.compressor = _padded(writer.storage.compressor, padding)
         connections: dict[str, Any] = {}
         for message in messages:
             if message.topic not in connections:
@@ -141,7 +151,29 @@ def write_bag(path: Path, storage: str, messages: Iterable[Message],
                     message.topic, message.msgtype, typestore=store)
             writer.write(connections[message.topic], message.received_ns,
                          serialise(version, message.message, message.msgtype))
+    if compression == "file" and padding:
+        for part in path.glob("*.zstd"):
+            part.write_bytes(zstd.compress(zstd.decompress(part.read_bytes()) + bytes(padding)))
     return path
+
+
+def _padded(compress: Any, padding: int) -> Any:
+    return lambda data: compress(bytes(data) + bytes(padding)) if padding else compress(data)
+
+
+@contextlib.contextmanager
+def _padded_messages(padding: int) -> Iterator[None]:
+    """rosbags' ROS 2 writer compresses each message with ``padding`` zero bytes added."""
+    if not padding:
+        yield
+        return
+    real = rosbag2_writer.zstd
+    rosbag2_writer.zstd = SimpleNamespace(
+        compress=lambda data: real.compress(bytes(data) + bytes(padding)), open=real.open)
+    try:
+        yield
+    finally:
+        rosbag2_writer.zstd = real
 
 
 def tf_messages(ros_version: int, transforms: Iterable[Transform], topic: str = "/tf",

@@ -74,3 +74,21 @@ def test_robot_description_option(tmp_path):
     result = _run("info", ROOT / "models" / "welding_cell" / "scene.yaml",
                   "--robot-description", urdf)
     assert result.returncode == 1 and "--robot-description is for ROS bags" in result.stderr
+
+
+def test_info_shows_names_that_would_act_on_the_terminal_escaped(tmp_path):
+    # tf2 takes any frame name; the names are kept, their control characters shown escaped
+    names = ["clear\x1b[2J", "nul\x00byte", "two\nlines", "rlo\u202eelif", "back\\slash"]
+    bag = write_bag(tmp_path / "names", "mcap", tf_messages(2, [
+        Transform("world", name, START + k) for k, name in enumerate(names)]))
+    result = _run("info", bag)
+    assert result.returncode == 0, result.stderr
+    shown = result.stdout
+    assert not any(char in shown for char in "\x1b\x00\u202e\r")
+    for name in ("clear\\x1b[2J", "nul\\x00byte", "two\\nlines", "rlo\\u202eelif",
+                 "back\\slash"):
+        assert f"-- {name}  " in shown, shown
+    rows = [line for line in shown.splitlines() if line.startswith(("|-- ", "`-- "))]
+    assert len(rows) == len(names)  # one line per frame: no name broke its row
+    described = json.loads(_run("info", bag, "-f", "json").stdout)
+    assert [frame["name"] for frame in described["frames"]][1:] == names

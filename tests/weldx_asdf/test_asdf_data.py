@@ -12,6 +12,7 @@ from asdf.tagged import tag_object
 
 from conftest import SHARED_DATA
 from pinframes import (
+    FileFormatError,
     FrameTree,
     Pose,
     SpatialData,
@@ -197,6 +198,53 @@ def test_data_pinframes_cannot_hold_is_an_error_naming_node_and_tag(tmp_path, na
     assert caught.value.frame == "probe"
     assert caught.value.field.startswith(f"attributes.data.{name}")
     assert tag in str(caught.value)
+
+
+@pytest.mark.parametrize(("points", "attributes", "field"), [
+    ([[1e306, 0.0, 0.0]], {}, "points"),  # infinite once in millimetres
+    ([[1.0, 0.0, 0.0]], {"note": np.array([{"a": 1}], dtype=object)}, "attributes.note")])
+def test_data_asdf_cannot_hold_is_refused_before_writing(tmp_path, points, attributes, field):
+    tree = FrameTree("base")
+    tree.add("probe", "base")
+    tree.assign_data("scan", SpatialData(points, attributes=attributes), "probe")
+    path = tmp_path / "odd.asdf"
+    with pytest.raises(UnsupportedFeatureError) as caught:
+        write_asdf(tree, path)
+    assert caught.value.frame == "probe" and caught.value.file == str(path)
+    assert caught.value.field == f"attributes.data.scan.{field}"
+    assert not path.exists()
+
+
+def test_points_up_to_1e305_m_and_string_attributes_are_written_and_read_back(tmp_path):
+    tree = FrameTree("base")
+    tree.add("probe", "base")
+    tree.assign_data("scan", SpatialData([[1e305, -1e305, 0.0]],
+                                         attributes={"label": np.array(["seam start"])}),
+                     "probe")
+    write_asdf(tree, tmp_path / "far.asdf")
+    back = read_asdf(tmp_path / "far.asdf").get_data("scan")
+    np.testing.assert_allclose(back.points, [[1e305, -1e305, 0.0]], rtol=1e-15)
+    assert back.attributes["label"].tolist() == ["seam start"]
+
+
+def test_times_that_are_not_whole_nanoseconds_are_an_error_naming_the_field(tmp_path):
+    import asdf
+
+    tree = FrameTree("base")
+    tree.add("probe", "base")
+    tree.assign_data("scan", SpatialData(np.zeros((2, 1, 3)), times=[0.0, 1.0]), "probe")
+    write_asdf(tree, tmp_path / "timed.asdf")
+    with open_raw_tree(tmp_path / "timed.asdf") as raw:
+        scan = raw["coordinate_system_hierarchy"]["graph"]["root_node"]["edges"][0][
+            "target_node"]["attributes"]["data"]["scan"]
+        time = next(c for c in scan["coordinates"]["coordinates"] if c["name"] == "time")
+        time["data"] = np.array(["0 s", "1 s"])
+        asdf.AsdfFile({"csm": raw["coordinate_system_hierarchy"]}).write_to(
+            tmp_path / "strings.asdf")
+    with pytest.raises(FileFormatError, match="whole nanoseconds") as caught:
+        read_asdf(tmp_path / "strings.asdf")
+    assert caught.value.frame == "probe"
+    assert caught.value.field.endswith("scan.coordinates.coordinates.time.data")
 
 
 # -- read then write: every shared weldx file keeps its meaning ---------------------------

@@ -16,6 +16,7 @@ from ..tree.robot_semantics import semantic_robots
 from ..values.timeconv import format_timestamp_iso
 from ..values.timeline import source_reference
 from ._files import read_tree
+from ._terminal_text import printable
 
 __all__ = ["add_parser", "describe", "describe_json", "run"]
 
@@ -109,31 +110,32 @@ def _timestamp(stamp: np.datetime64 | None) -> str | None:
 
 
 def describe(tree: FrameTree) -> str:
-    """A text table of the tree: one line per frame, children indented under parents."""
+    """A text table of the tree: one line per frame, children indented under parents; names
+    with characters that do not print show them escaped."""
     reference = "none" if tree.reference_time is None else str(tree.reference_time)
     header = (f"tree {tree.name or '(unnamed)'}: {len(tree)} frames, "
               f"{sum(tree.is_moving(f) for f in tree.frames[1:])} moving, "
               f"{len(tree.joints)} robot joints; reference time {reference}")
-    rows = [("FRAME", "KIND", "TIME SPAN", "REFERENCE TIME")]
+    rows = [["FRAME", "KIND", "TIME SPAN", "REFERENCE TIME"]]
     for prefix, name in _walk(tree, tree.root, "", ""):
-        rows.append((prefix + name, *_frame_columns(tree, name)))
+        rows.append([printable(cell) for cell in (prefix + name, *_frame_columns(tree, name))])
     widths = [max(len(row[column]) for row in rows) for column in range(3)]
-    lines = [header]
+    lines = [printable(header)]
     for row in rows:
         cells = [cell.ljust(width) for cell, width in zip(row[:3], widths, strict=True)]
         lines.append("  ".join([*cells, row[3]]).rstrip())
     for subsystem in tree.subsystems:
         inside = "" if subsystem.parent is None else f", merged into {subsystem.parent}"
-        lines.append(f"subsystem {subsystem.name}: root {subsystem.root}, "
-                     f"{len(subsystem.members)} frames{inside}")
+        lines.append(printable(f"subsystem {subsystem.name}: root {subsystem.root}, "
+                               f"{len(subsystem.members)} frames{inside}"))
     for robot in _srdf_robots(tree):
         groups = ", ".join(f"{name!r} ({len(joints)} joints)"
                            for name, joints in robot["groups"].items()) or "none"
         states = ", ".join(map(repr, robot["group_states"])) or "none"
-        lines.append(f"srdf of {robot['frame']!r}: groups {groups}; group states {states}; "
-                     f"{robot['disabled_pairs']} link pairs never checked")
+        lines.append(printable(f"srdf of {robot['frame']!r}: groups {groups}; group states "
+                               f"{states}; {robot['disabled_pairs']} link pairs never checked"))
     if ROSBAG_METADATA_KEY in tree.metadata:
-        lines += _bag_lines(tree.metadata[ROSBAG_METADATA_KEY])
+        lines += map(printable, _bag_lines(tree.metadata[ROSBAG_METADATA_KEY]))
     return "\n".join(lines) + "\n"
 
 

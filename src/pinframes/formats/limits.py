@@ -48,7 +48,8 @@ class Limits:
     max_decompressed_bytes : int
         Bytes of all arrays of one NPZ file once decompressed, or of all that the arrays of
         an ASDF file's hierarchy decode to: each binary block once, at its decompressed
-        size, and each array read from it; bytes of the messages read from a ROS bag.
+        size, and each array read from it; bytes of the messages read from a ROS bag, and
+        (counted apart) all that its compressed chunks, messages or files inflate to.
     max_depth : int
         Nesting depth of a YAML document (lists and mappings inside each other), path
         segments of a frames.yaml key (``a/b/c`` has 3), and nesting depth of the XML

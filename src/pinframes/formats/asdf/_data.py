@@ -116,7 +116,11 @@ def _data_array(node: Any, field: str) -> tuple[Any, Any, Any]:
         raise FileFormatError("points along time need a 'time' coordinate",
                               field=f"{field}.coordinates")
     values = _array(required(time, "data", f"{field}.coordinates.time"),
-                    f"{field}.coordinates.time.data").astype(np.int64)
+                    f"{field}.coordinates.time.data")
+    if values.dtype.kind not in "iu":
+        raise FileFormatError(f"expected whole nanoseconds (int64), got values of dtype "
+                              f"{values.dtype}", field=f"{field}.coordinates.time.data")
+    values = values.astype(np.int64)
     dtype = str(time.get("dtype", ""))
     if "M8" in dtype:  # timestamps: the first one becomes the reference time
         stamps = values.astype("datetime64[ns]")

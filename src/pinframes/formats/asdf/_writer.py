@@ -84,6 +84,7 @@ def write_asdf(tree: FrameTree, path: str | os.PathLike[str], schema: str = "0.1
         refuse_attached_data(tree, path, "schema '1.0.0'", field="schema")
         hierarchy = _legacy_hierarchy(tree)
     else:
+        _check_data(tree, path)
         deepest, depth = deepest_frame((name, tree.parent(name) or "") for name in tree.frames[1:])
         if depth > MAX_GRAPH_DEPTH:
             raise too_deep(deepest, depth, path)
@@ -126,6 +127,29 @@ def _frame_poses(tree: FrameTree) -> dict[str, Pose]:
                 "a translation over 1e305 m overflows in millimetres; read_asdf would refuse "
                 "the file", frame=name, field="coordinates")
     return poses
+
+
+_WRITABLE_KINDS = "biufcUS"
+"""The dtype kinds of ASDF arrays: booleans, numbers and fixed-width strings."""
+
+
+def _check_data(tree: FrameTree, path: str | os.PathLike[str]) -> None:
+    """Refuse attached data that ASDF cannot hold or :func:`read_asdf` would refuse: points
+    that overflow in millimetres, attributes of a dtype ASDF has no array type for."""
+    for name in tree.data_names:
+        data = tree.get_data(name)
+        located = {"file": os.fspath(path), "frame": tree.data_frame(name)}
+        field = f"attributes.data.{name}"
+        if data.points.size and np.max(np.abs(data.points)) > _LARGEST_METRES:
+            raise UnsupportedFeatureError(
+                "a point over 1e305 m overflows in millimetres; read_asdf would refuse the "
+                "file", field=f"{field}.points", **located)
+        for attribute, values in data.attributes.items():
+            if values.dtype.kind not in _WRITABLE_KINDS:
+                raise UnsupportedFeatureError(
+                    f"values of dtype {values.dtype} cannot be written to ASDF (booleans, "
+                    "numbers and strings can)", field=f"{field}.attributes.{attribute}",
+                    **located)
 
 
 def _name(tree: FrameTree) -> str:

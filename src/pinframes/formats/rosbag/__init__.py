@@ -1,7 +1,9 @@
 """ROS bags (ROS 1 ``.bag``, ROS 2 folders, ``.db3`` and MCAP files) as frame trees, read with
 rosbags and tf2's semantics (docs/ros-bags.md).
 
-Modules: ``_storage`` (which kind of bag, its raw messages), ``_tf_messages`` (TFMessage
+Modules: ``_storage`` (which kind of bag, its raw messages), ``_inflation`` (compressed
+parts inflated within ``max_decompressed_bytes``), ``_sqlite_schema`` (a ``.db3`` whose
+values SQLite would compute on reading refused), ``_tf_messages`` (TFMessage
 bytes decoded in bulk), ``_messages`` (the types read; JointState and String through
 rosbags), ``_tf_tracks`` (tf2's rules: one track per frame), ``_joint_states`` (samples per
 joint), ``_assembly`` (tracks, robot and joints into a tree), ``_reader`` (``read_rosbag``).

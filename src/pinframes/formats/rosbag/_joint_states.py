@@ -2,10 +2,12 @@
 
 Each message names the joints it carries (``name[]``, ``position[]`` in radians or metres)
 at ``header.stamp``; messages may name a subset. Each joint is sampled at the stamps of the
-messages that name it, sorted by stamp; of two samples of a joint at one stamp the later
-received wins. A message whose ``position`` is empty or not as long as ``name`` is skipped
-(``robot_state_publisher`` skips it too), and so is a position that is NaN or infinite
-(the transforms made from it would be refused by tf2): one warning for each kind.
+messages that name it, sorted by stamp; of two samples of a joint at one stamp the one
+tf2 would keep of the transforms ``robot_state_publisher`` makes of them (ROS 1: the first
+received; ROS 2: the later). A message whose ``position`` is empty or not as long as
+``name`` is skipped (``robot_state_publisher`` skips it too), and so is a position that is
+NaN or infinite (the transforms made from it would be refused by tf2): one warning for
+each kind.
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ from numpy.typing import NDArray
 
 from ...errors import BagWarning, warn_at_caller
 from ..limits import current_limits, exceeded
+from ._tf_tracks import kept_of_repeated_stamps, repeated_stamp_rule
 
 __all__ = ["JointSamples", "joint_samples"]
 
@@ -33,9 +36,10 @@ class JointSamples:
     positions: NDArray[np.float64]
 
 
-def joint_samples(messages: Iterable[object], file: Path) -> dict[str, JointSamples]:
+def joint_samples(messages: Iterable[object], file: Path, ros_version: int
+                  ) -> dict[str, JointSamples]:
     """The samples of every joint named in ``messages`` (deserialised JointStates in
-    receive order), joints in order of first appearance."""
+    receive order) of a bag of ``ros_version``, joints in order of first appearance."""
     stamps: dict[str, list[int]] = {}
     positions: dict[str, list[float]] = {}
     skipped = 0
@@ -67,7 +71,7 @@ def joint_samples(messages: Iterable[object], file: Path) -> dict[str, JointSamp
         values = np.asarray(positions[name], np.float64)
         order = np.argsort(times, kind="stable")
         times, values = times[order], values[order]
-        last = np.flatnonzero(np.append(times[1:] != times[:-1], True))
+        last = kept_of_repeated_stamps(times, ros_version)
         if last.shape[0] < times.shape[0]:
             repeated.append(name)
         if last.shape[0] > current_limits().max_samples:
@@ -76,6 +80,6 @@ def joint_samples(messages: Iterable[object], file: Path) -> dict[str, JointSamp
         samples[name] = JointSamples(times[last], values[last])
     if repeated:
         warn_at_caller(f"{file}: {len(repeated)} joints with two samples at one "
-                       f"stamp (the later received is kept): "
+                       f"stamp {repeated_stamp_rule(ros_version)}: "
                        + ", ".join(map(repr, repeated[:5])), BagWarning)
     return samples

@@ -42,11 +42,14 @@ def read_rosbag(
         A URDF file or its XML text; None: the last message on ``description_topic``.
     tf_topics : sequence of str
         Topics of ``tf2_msgs/TFMessage``; those whose names end in ``_static`` hold static
-        transforms (they hold for all time), the others keyframes at ``header.stamp``.
+        transforms (they hold for all time), the others keyframes at ``header.stamp``. Of
+        two transforms of a frame at one stamp, a ROS 1 bag keeps the first received and a
+        ROS 2 bag the later, as their versions of tf2 do (one ``BagWarning``).
     joint_states_topic : str or None
         ``sensor_msgs/JointState`` that drive the robot's joints (radians, metres).
     description_topic : str or None
-        ``std_msgs/String`` holding the robot's URDF.
+        ``std_msgs/String`` holding the robot's URDF as XML text (never taken for a path:
+        other text is an error).
     limits : pinframes.Limits or None
         ``max_samples`` bounds the keyframes of a frame and the samples of a joint,
         ``max_decompressed_bytes`` the bytes of the messages read; the URDF is read
@@ -98,7 +101,8 @@ def _read(bag: OpenBag, robot_description: str | os.PathLike[str] | None,
               if uses[topic] in ("tf", "tf static")]
     columns = _decoded(bag, tf_raw)
     static_messages = np.array([uses[topic] == "tf static" for topic, _, _ in tf_raw], bool)
-    tracks = frame_tracks(columns, static_messages[columns.message_index], bag.path)
+    tracks = frame_tracks(columns, static_messages[columns.message_index], bag.path,
+                          bag.ros_version)
     robot = _robot(bag, robot_description, [(topic, received, data) for topic, received, data
                                             in raw if uses[topic] == "robot description"])
     if not tracks and robot is None:
@@ -107,7 +111,7 @@ def _read(bag: OpenBag, robot_description: str | os.PathLike[str] | None,
             f"description; the bag's topics: {', '.join(bag.topics) or 'none'}", file=bag.path)
     states = [_deserialised(bag, topic, received, data) for topic, received, data in raw
               if uses[topic] == "joint states"]
-    joints = joint_samples(states, bag.path)
+    joints = joint_samples(states, bag.path, bag.ros_version)
     tree = assemble_tree(bag.path.stem if bag.path.suffix else bag.path.name, tracks, robot,
                          joints if robot is not None else {}, bag.path)
     tree.metadata[ROSBAG_METADATA_KEY] = _summary(bag, uses, tracks, joints, tree,
@@ -155,6 +159,10 @@ def _robot(bag: OpenBag, given: str | os.PathLike[str] | None,
         return None
     topic, received, data = recorded[-1]
     text = _deserialised(bag, topic, received, data).data
+    if not text.lstrip().startswith("<"):  # parse_urdf would take the text for a path
+        shown = text.strip()[:60] + ("..." if len(text.strip()) > 60 else "")
+        raise FileFormatError(f"the robot description is not a URDF: expected its XML text, "
+                              f"got {shown!r}", file=bag.path, field=topic)
     try:
         return parse_urdf(text)
     except PinframesError as exc:

@@ -4,14 +4,18 @@ Four kinds (docs/ros-bags.md): a ROS 1 ``.bag`` file, a ROS 2 bag folder (``meta
 its ``.db3`` or ``.mcap`` files), and the two ROS 2 storage files on their own (an MCAP
 file, a SQLite ``.db3`` file). Files are told by their first bytes, never by their names.
 Whatever rosbags raises on a truncated or corrupt bag becomes a
-:class:`~pinframes.errors.FileFormatError` naming the bag.
+:class:`~pinframes.errors.FileFormatError` naming the bag. Compressed chunks, messages and
+files are inflated within ``max_decompressed_bytes`` (:mod:`._inflation`), and a ``.db3``
+file's schema is checked before rosbags reads a row (:mod:`._sqlite_schema`).
 """
 
 from __future__ import annotations
 
+import contextlib
 import importlib
 import os
 import struct
+import tempfile
 import zlib
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
@@ -19,9 +23,13 @@ from pathlib import Path
 from types import TracebackType
 from typing import Any
 
-from ...errors import FileFormatError, ReadError, UnsupportedFeatureError
+import yaml
+
+from ...errors import FileFormatError, PinframesError, ReadError, UnsupportedFeatureError
 from .._paths import path_argument
 from ..reading import InputFile
+from ._inflation import InflationBudget, bound_rosbags_chunks
+from ._sqlite_schema import check_stored_values
 
 __all__ = ["BAG_KINDS", "BagTopic", "OpenBag", "bag_files", "bag_kind", "bag_kind_of_head",
            "rosbags_missing"]
@@ -123,9 +131,11 @@ class OpenBag:
         self.path = Path(path_argument(path))
         self.kind = bag_kind(self.path)
         self.ros_version = 1 if self.kind == ROS1 else 2
-        if self.kind == FOLDER:
-            _check_folder(self.path)
+        self._folder = _check_folder(self.path) if self.kind == FOLDER else None
         self._reader: Any = None
+        self._message_codec: str | None = None
+        self._budget = InflationBudget(self.path)
+        self._cleanup = contextlib.ExitStack()
         self.topics: dict[str, BagTopic] = {}
 
     def __enter__(self) -> OpenBag:
@@ -133,15 +143,14 @@ class OpenBag:
             from rosbags import rosbag1, rosbag2
         except ImportError:
             raise rosbags_missing() from None
-        with self._translated_errors("cannot open it"):
-            if self.kind == ROS1:
-                self._reader = rosbag1.Reader(self.path)
-            elif self.kind == FOLDER:
-                self._reader = rosbag2.Reader(self.path)
-            else:  # a storage file on its own, whatever its name
-                suffix = ".mcap" if self.kind == MCAP else ".db3"
-                self._reader = rosbag2.Reader.STORAGE_PLUGINS[suffix](self.path)
-            self._reader.open()
+        bound_rosbags_chunks()
+        self._cleanup.enter_context(self._budget.active())
+        try:
+            with self._translated_errors("cannot open it"):
+                self._reader = self._opened(rosbag1, rosbag2)
+        except BaseException:
+            self._cleanup.close()
+            raise
         topics: dict[str, BagTopic] = {}
         for connection in self._reader.connections:
             known = topics.get(connection.topic)
@@ -151,15 +160,61 @@ class OpenBag:
         self.topics = dict(sorted(topics.items()))
         return self
 
+    def _opened(self, rosbag1: Any, rosbag2: Any) -> Any:
+        """rosbags' reader of the bag, open; a compressed folder's files inflated first,
+        its compressed messages left for :meth:`messages` to inflate."""
+        if self.kind == ROS1:
+            reader = rosbag1.Reader(self.path)
+        elif self.kind == FOLDER:
+            reader = rosbag2.Reader(self._uncompressed_folder())
+        else:  # a storage file on its own, whatever its name
+            if self.kind == SQLITE3:
+                check_stored_values(self.path, self.path)
+            suffix = ".mcap" if self.kind == MCAP else ".db3"
+            reader = rosbag2.Reader.STORAGE_PLUGINS[suffix](self.path)
+        reader.open()
+        self._cleanup.callback(reader.close)
+        if self.kind == FOLDER and reader.storage.metadata.compression_mode == "message":
+            self._message_codec = "zstd"
+            reader.storage.metadata = reader.storage.metadata._replace(compression_mode=None)
+        return reader
+
+    def _uncompressed_folder(self) -> Path:
+        """The bag folder, or (``compression_mode: file``) a temporary copy of it whose
+        files are inflated within the budget."""
+        assert self._folder is not None
+        names = _storage_names(self.path, self._folder)
+        if str(self._folder.get("compression_mode", "")).lower() != "file":
+            if self._folder.get("storage_identifier") == "sqlite3":
+                for name in names:
+                    check_stored_values(self.path / name, self.path)
+            return self.path
+        codec = str(self._folder.get("compression_format", ""))
+        if codec != "zstd":
+            raise FileFormatError(f"files compressed with {codec!r}; ROS 2 compresses them "
+                                  "with zstd", file=self.path / METADATA_FILE,
+                                  field="rosbag2_bagfile_information.compression_format")
+        copy = Path(self._cleanup.enter_context(
+            tempfile.TemporaryDirectory(prefix="pinframes-bag-")))
+        inflated = [Path(name).stem for name in names]
+        for name, target in zip(names, inflated, strict=True):
+            self._budget.inflate_file(self.path / name, copy / target, codec)
+            if self._folder.get("storage_identifier") == "sqlite3":
+                check_stored_values(copy / target, self.path)
+        metadata = {**self._folder, "relative_file_paths": inflated, "compression_mode": "",
+                    "compression_format": ""}
+        (copy / METADATA_FILE).write_text(
+            yaml.safe_dump({"rosbag2_bagfile_information": metadata}), encoding="utf-8")
+        return copy
+
     def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
                  traceback: TracebackType | None) -> None:
-        reader, self._reader = self._reader, None
-        if reader is not None:
-            try:
-                reader.close()
-            except Exception:  # closing a corrupt bag may fail too; the first error counts
-                if kind is None:
-                    raise
+        self._reader = None
+        try:
+            self._cleanup.close()
+        except Exception:  # closing a corrupt bag may fail too; the first error counts
+            if kind is None:
+                raise
 
     def messages(self, topics: Sequence[str]) -> Iterator[tuple[str, int, bytes]]:
         """``(topic, receive time in ns, serialised message)`` of ``topics``, in the bag's
@@ -169,6 +224,8 @@ class OpenBag:
             return
         with self._translated_errors("a corrupt message"):
             for connection, received_ns, raw in self._reader.messages(connections):
+                if self._message_codec is not None:
+                    raw = self._budget.inflate(raw, self._message_codec)
                 yield connection.topic, received_ns, bytes(raw)
 
     def _translated_errors(self, what: str) -> _TranslatedErrors:
@@ -187,13 +244,17 @@ class _TranslatedErrors:
 
     def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
                  traceback: TracebackType | None) -> None:
-        if error is None or not isinstance(error, _broken_bag_errors()):
+        if (error is None or isinstance(error, PinframesError)
+                or not isinstance(error, _broken_bag_errors())):
             return
         if isinstance(error, FileNotFoundError):
             raise ReadError(f"a file of the bag is missing: {error}", file=self.path) from None
         detail = str(error).strip() or type(error).__name__
         if isinstance(error, MemoryError):
             detail = "a record length larger than the memory (corrupt length?)"
+        if isinstance(error, AssertionError):  # rosbags asserts its records match the index
+            detail = ("a record disagrees with the bag's index (a corrupt time, size or "
+                      "field)")
         raise FileFormatError(f"{self.what} (truncated or corrupt bag?): {detail}",
                               file=self.path) from None
 
@@ -208,6 +269,7 @@ def _broken_bag_errors() -> tuple[type[BaseException], ...]:
         Ros1ReaderError, Ros2ReaderError, OSError, EOFError, ValueError, KeyError, IndexError,
         ArithmeticError, TypeError, AttributeError, struct.error, zlib.error,
         RuntimeError,  # lz4's decompression errors
+        AssertionError,  # rosbags' ROS 1 reader checks records against its index by assert
         MemoryError]  # rosbags reads a record whose corrupt length asks for terabytes
     for module, name in (("apsw", "Error"), ("backports.zstd", "ZstdError"),
                          ("compression.zstd", "ZstdError")):  # rosbags' SQLite and zstd
@@ -238,8 +300,9 @@ def _storage_names(folder: Path, information: dict[str, Any]) -> list[str]:
     return [Path(name).name for name in names]
 
 
-def _check_folder(folder: Path) -> None:
-    """A bag folder whose metadata names a storage rosbags reads and files that exist."""
+def _check_folder(folder: Path) -> dict[str, Any]:
+    """The metadata of a bag folder that names a storage rosbags reads and files that
+    exist."""
     information = _folder_metadata(folder)
     storage = information.get("storage_identifier")
     if storage not in _STORAGES:
@@ -251,3 +314,4 @@ def _check_folder(folder: Path) -> None:
                if not (folder / name).is_file()]
     if missing:
         raise ReadError(f"the bag's files {', '.join(missing)} are missing", file=folder)
+    return information

@@ -6,8 +6,11 @@
   are skipped with one :class:`~pinframes.errors.BagWarning`, as tf2 skips them; the
   others' quaternions are normalised.
 - A frame of a static topic holds its last received transform for all time; a frame of
-  the other topics is keyframed at its stamps, sorted (bags keep receive order); of two
-  transforms of a frame at one stamp the later received wins (one warning for the read).
+  the other topics is keyframed at its stamps, sorted (bags keep receive order). Of two
+  transforms of a frame at one stamp, the bag's ROS version decides, as its tf2 does: in a
+  ROS 1 bag the first received is kept (ROS 1's tf2 ignores the second, warning
+  ``TF_REPEATED_DATA``), in a ROS 2 bag the later received (ROS 2's tf2 stores both and
+  looks up the later); one warning for the read.
 - A frame published under two parents (tf2 allows re-parenting, a tree cannot) or on both a
   static and a dynamic topic is a :class:`~pinframes.errors.TreeStructureError`.
 """
@@ -25,7 +28,8 @@ from ...values.timeconv import format_timestamp_iso
 from ..limits import current_limits, exceeded
 from ._tf_messages import TransformColumns
 
-__all__ = ["FrameTrack", "frame_tracks", "stamp_iso"]
+__all__ = ["FrameTrack", "frame_tracks", "kept_of_repeated_stamps", "repeated_stamp_rule",
+           "stamp_iso"]
 
 QUATERNION_TOLERANCE = 0.01
 """tf2 refuses a quaternion whose squared norm differs from 1 by more than this."""
@@ -57,10 +61,11 @@ class FrameTrack:
     quaternions: NDArray[np.float64]
 
 
-def frame_tracks(columns: TransformColumns, static: NDArray[np.bool_], file: Path
-                 ) -> dict[str, FrameTrack]:
+def frame_tracks(columns: TransformColumns, static: NDArray[np.bool_], file: Path,
+                 ros_version: int) -> dict[str, FrameTrack]:
     """The tracks of the frames in ``columns`` (``static``: per transform, whether it came
-    from a static topic), in order of first appearance."""
+    from a static topic) of a bag of ``ros_version`` (1 or 2), in order of first
+    appearance."""
     names, parents, children = _without_leading_slash(columns)
     kept = _accepted_by_tf2(names, parents, children, columns, file)
     parents, children, static = parents[kept], children[kept], static[kept]
@@ -69,7 +74,8 @@ def frame_tracks(columns: TransformColumns, static: NDArray[np.bool_], file: Pat
     quaternions = columns.quaternions[kept]
     quaternions = quaternions / np.linalg.norm(quaternions, axis=1, keepdims=True)
     _check_one_parent(names, parents, children, static, stamps, file)
-    # stable: equal stamps keep receive order, so the last of a run is the later received
+    # stable: equal stamps keep receive order, so a run of one stamp starts with the first
+    # received and ends with the last
     order = np.lexsort((stamps, children))
     children, parents, static, stamps = (children[order], parents[order], static[order],
                                          stamps[order])
@@ -92,8 +98,7 @@ def frame_tracks(columns: TransformColumns, static: NDArray[np.bool_], file: Pat
                     or np.ptp(quaternions[rows], axis=0).any()):
                 changed_static.append(child)
         else:
-            run = stamps[start:stop]
-            last = start + np.flatnonzero(np.append(run[1:] != run[:-1], True))
+            last = start + kept_of_repeated_stamps(stamps[start:stop], ros_version)
             if last.shape[0] < stop - start:
                 repeated.append(child)
             if last.shape[0] > current_limits().max_samples:
@@ -101,8 +106,8 @@ def frame_tracks(columns: TransformColumns, static: NDArray[np.bool_], file: Pat
                                frame=child).located(file=file)
         tracks[child] = FrameTrack(child, names[int(parents[start])], bool(static[start]),
                                    stamps[last], translations[last], quaternions[last])
-    _warn_once(repeated, "frames with two transforms at one stamp (the later received "
-               "is kept)", file)
+    _warn_once(repeated, "frames with two transforms at one stamp "
+               + repeated_stamp_rule(ros_version), file)
     _warn_once(changed_static, "static frames published with different transforms (the "
                "last received holds)", file)
     first_seen = {names[int(code)]: None for code in columns.children[kept]}
@@ -173,6 +178,25 @@ def _check_one_parent(names: list[str], parents: NDArray[np.int64],
     if both.size:
         raise TreeStructureError("published on both a static and a dynamic tf topic",
                        file=file, frame=names[int(kinds[both[0]] // 2)])
+
+
+def kept_of_repeated_stamps(stamps_ns: NDArray[np.int64], ros_version: int
+                            ) -> NDArray[np.int64]:
+    """Positions in ``stamps_ns`` (sorted, equal stamps in receive order) of the samples
+    tf2 of ``ros_version`` keeps: of each run of one stamp the first (ROS 1) or the last
+    (ROS 2)."""
+    changes = stamps_ns[1:] != stamps_ns[:-1]
+    if ros_version == 1:
+        return np.flatnonzero(np.insert(changes, 0, True))
+    return np.flatnonzero(np.append(changes, True))
+
+
+def repeated_stamp_rule(ros_version: int) -> str:
+    """Which of two samples at one stamp :func:`kept_of_repeated_stamps` keeps, for
+    warnings."""
+    if ros_version == 1:
+        return "(the first received is kept, as ROS 1's tf2 keeps it: TF_REPEATED_DATA)"
+    return "(the later received is kept, as ROS 2's tf2 looks it up)"
 
 
 def stamp_iso(stamp_ns: int) -> str:

@@ -34,7 +34,7 @@ from ...values.rotations import matrix_from_axis_angle
 from ...values.timeconv import parse_timestamp
 from .._paths import regular_file_problem
 from .._registry import detect_format, files_read, read, require_format
-from ..limits import Limits, reader_with_limits
+from ..limits import Limits, current_limits, exceeded, reader_with_limits
 from ..reading import InputFile
 from ..trajectory_files import read_joint_trajectory
 from ..urdf import RobotDescription, mount_robot, parse_urdf
@@ -466,6 +466,9 @@ class _Scene:
         if isinstance(count, bool) or not isinstance(count, int) or count < 2:
             raise FileFormatError(f"expected a whole number of points >= 2, got {count!r}",
                                   file=self.path, frame=frame, field=f"{field}.count")
+        if count > current_limits().max_samples:
+            raise exceeded("max_samples", f"an arc of {count:,} points", frame=frame,
+                           field=f"{field}.count").located(file=self.path)
         if not np.linalg.norm(axis) > 0.0:
             raise FileFormatError("the axis must not be zero", file=self.path, frame=frame,
                                   field=f"{field}.axis")
