@@ -1,7 +1,8 @@
 """Inverse kinematics along a path: ``FrameTree.solve_joints`` against a per-sample pink loop.
 
-For the UR5 (6 axes, tool0) and the Panda (7 axes, panda_hand) of example-robot-data, a
-smooth joint trajectory inside the limits is sampled at 100 Hz; Pinocchio (called directly)
+For the UR5 (6 axes, tool0) and the Panda (7 axes, panda_hand) of example-robot-data and
+UFACTORY's xArm7 (7 axes, link_eef; its kinematics in tests/data), a smooth joint trajectory
+inside the limits is sampled at 100 Hz; Pinocchio (called directly)
 gives the tool poses, which become the targets. ``solve_joints`` tracks them from the first
 configuration; the reference is pink (``pink.solve_ik`` with a ``FrameTask``, QP solver daqp
 or quadprog) in the loop people write: per sample, steps from the previous solution until
@@ -38,12 +39,16 @@ TOLERANCE = 1e-6  # metres and radians, for both solvers
 PINK_SAMPLES = 1_000
 PINK_MAX_STEPS = 50
 SAMPLE_RATE_HZ = 100.0
-ROBOTS = {  # name: (URDF below example-robot-data's robots folder, tool frame, home, swing)
+TESTS_DATA = Path(__file__).resolve().parents[1] / "tests" / "data"
+ROBOTS = {  # name: (URDF below example-robot-data's robots folder or a path, tool frame,
+    #              home, swing)
     "UR5": ("ur_description/urdf/ur5_robot.urdf", "tool0",
             [0.0, -1.2, 1.5, -1.8, -1.571, 0.0], [0.8, 0.3, 0.4, 0.4, 0.4, 0.8]),
     "Panda": ("panda_description/urdf/panda.urdf", "panda_hand",
               [0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785, 0.02, 0.02],
               [0.6, 0.4, 0.6, 0.4, 0.6, 0.4, 0.6, 0.0, 0.0]),
+    "xArm7": (str(TESTS_DATA / "xarm7" / "xarm7.urdf"), "link_eef",
+              [0.0, -0.3, 0.0, 1.0, 0.0, 1.3, 0.0], [0.6, 0.4, 0.6, 0.4, 0.6, 0.4, 0.6]),
 }
 
 
@@ -125,9 +130,10 @@ def measure(quick: bool) -> list[dict]:
     folder = robots_folder()
     rows = []
     for robot, (urdf, tool, home, swing) in ROBOTS.items():
-        model = pin.buildModelFromUrdf(str(folder / urdf))
+        path = folder / urdf  # an absolute path stays as it is
+        model = pin.buildModelFromUrdf(str(path))
         tree = pinframes.FrameTree("floor")
-        tree.attach_urdf(str(folder / urdf), "floor")
+        tree.attach_urdf(str(path), "floor")
         support = model.supports[model.frames[model.getFrameId(tool)].parentJoint]
         arm = [model.names[joint] for joint in list(support)[1:]]  # the joints moving the tool
         for count in counts:
@@ -154,13 +160,16 @@ def measure(quick: bool) -> list[dict]:
                                                    solution.joint_names, solution.positions)
             columns = [model.idx_qs[model.getJointId(name)] for name in solution.joint_names]
             returned = float(np.abs(solution.positions - configurations[:, columns]).max())
+            steps = np.linalg.norm(np.diff(solution.positions, axis=0), axis=1).max() / (
+                np.linalg.norm(np.diff(configurations[:, columns], axis=0), axis=1).max())
             case = f"{robot}, {count:,} samples"
             ours = timings["solve_joints"]
             rows.append({"case": case, "method": "solve_joints",
                          "seconds": statistics.median(ours), "ratio": 1.0,
                          "note": f"reached {int(solution.reached.sum()):,}/{count:,}; max "
                                  f"error {position:.1e} m, {orientation:.1e} rad; max "
-                                 f"|q - trajectory| {returned:.1e}"})
+                                 f"|q - trajectory| {returned:.1e}; largest step "
+                                 f"{steps:.2f}x the trajectory's"})
             for method in ("pink + daqp", "pink + quadprog"):
                 rows.append({"case": case, "method": method + f" ({len(pink_targets):,})",
                              "seconds": statistics.median(timings[method]),

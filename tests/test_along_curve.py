@@ -3,16 +3,18 @@
 import numpy as np
 import pytest
 
-from pinframes import InvalidPoseError, Pose
+from pinframes import InvalidPoseError, Pose, read_scene
+from pinframes.errors import FileFormatError
 
 
-def parabola_direction(points):
-    """Unit direction at ``points[0]`` of the parabola through three points, parametrised by
-    the length along their chords: numpy's quadratic fit, differentiated at 0."""
+def parabola_direction(points, at=0):
+    """Unit direction at ``points[at]`` of the parabola through three points, parametrised
+    by the length along their chords: numpy's quadratic fit, differentiated there."""
     points = np.asarray(points, dtype=float)
     lengths = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0),
                                                               axis=1))])
-    slope = np.array([np.polyfit(lengths, points[:, axis], 2)[1] for axis in range(3)])
+    fits = [np.polyfit(lengths, points[:, axis], 2) for axis in range(3)]
+    slope = np.array([2 * fit[0] * lengths[at] + fit[1] for fit in fits])
     return slope / np.linalg.norm(slope)
 
 
@@ -28,16 +30,19 @@ def test_axes_and_times_of_a_bent_line_by_hand():
     pose = Pose.along_curve(points, [[0, 0, 1], [0, 0, 1], [1, 0, 0]], speed=2.0)
     np.testing.assert_allclose(pose.seconds, [0.0, 2.5, 8.5], atol=1e-12)
     np.testing.assert_allclose(pose.translation, points, atol=0)
-    # x inside: the neighbours' difference (3, 4, 12) / 13; at the ends the parabola through
-    # the three points, by hand (66, 88, -25) at the start and (-36, -48, 145) at the end
+    # x everywhere the parabola through the three points, by hand: inside 12 d1 + 5 d2 for
+    # the unit chords d1 = (3, 4, 0) / 5 and d2 = (0, 0, 1), that is (36, 48, 25) / 65 (not
+    # the neighbours' chord (3, 4, 12) / 13); (66, 88, -25) at the start and (-36, -48, 145)
+    # at the end
     first_x = np.array([66.0, 88.0, -25.0]) / np.sqrt(66**2 + 88**2 + 25**2)
-    middle_x = np.array([3.0, 4.0, 12.0]) / 13
+    middle_x = np.array([36.0, 48.0, 25.0]) / 65
+    np.testing.assert_allclose(middle_x, parabola_direction(points, at=1), atol=1e-12)
     last_x = np.array([-36.0, -48.0, 145.0]) / np.sqrt(36**2 + 48**2 + 145**2)
     np.testing.assert_allclose(first_x, parabola_direction(points), atol=1e-12)
     np.testing.assert_allclose(-last_x, parabola_direction(points[::-1]), atol=1e-12)
     np.testing.assert_allclose(pose.rotation[:, :, 0], [first_x, middle_x, last_x], atol=1e-15)
     # z: the normal without its part along x; y = z x x
-    middle_z = np.array([-36.0, -48.0, 25.0]) / 65  # (0,0,1) - (12/13) x, made unit
+    middle_z = np.array([-3.0, -4.0, 12.0]) / 13  # (0,0,1) - (25/65) x, made unit
     np.testing.assert_allclose(pose.rotation[1, :, 2], middle_z, atol=1e-15)
     for index, (x, normal) in enumerate([(first_x, [0, 0, 1]), (last_x, [1, 0, 0])]):
         z = across(normal, x)
@@ -136,6 +141,8 @@ def test_times_may_be_absolute_and_points_and_speed_pint_quantities():
         ([[0, 0, 0], [1, 0, 0]], [0, 0, 1], {"speed": True}, "speed", "positive"),
         ([[0, 0, 0], [1, 0, 0]], [0, 0, 1], {"speed": "1"}, "speed", "positive"),
         ([[0, 0, 0], [np.nan, 0, 0]], [0, 0, 1], {"speed": 1.0}, "points", "finite"),
+        ([[0, 0, 0], [1e308, 0, 0], [-1e308, 1, 0]], [0, 0, 1], {"times": [0, 1, 2]},
+         "points[2]", "overflows"),
         ([0, 0, 0], [0, 0, 1], {"speed": 1.0}, "points", "(N, 3)"),
     ],
 )
@@ -154,3 +161,67 @@ def test_a_normal_nearly_along_the_travel_direction_is_refused():
     np.testing.assert_allclose(pose.rotation[0, :, 2], [0, 1, 0], atol=1e-12)
     with pytest.raises(InvalidPoseError, match="parallel"):
         Pose.along_curve([[0, 0, 0], [1, 0, 0]], [1, 1e-7, 0], speed=1.0)
+
+
+def test_a_helix_sampled_unevenly_gets_its_tangent():
+    """A helix of radius 0.1 m rising 0.02 m per radian, sampled at 0, 1, 16 and 31 degrees:
+    at the 1-degree point the chord of the neighbours is 6.9 degrees off the tangent, the
+    three-point non-uniform difference within 0.01 degrees (the tangent by hand:
+    (-r sin t, r cos t, c))."""
+    radius, rise = 0.1, 0.02
+    angles = np.radians([0.0, 1.0, 16.0, 31.0])
+    points = np.column_stack([radius * np.cos(angles), radius * np.sin(angles),
+                              rise * angles])
+    normals = np.column_stack([np.cos(angles), np.sin(angles), np.zeros(4)])
+    pose = Pose.along_curve(points, normals, speed=0.01)
+    tangent = np.array([-radius * np.sin(angles[1]), radius * np.cos(angles[1]), rise])
+    tangent /= np.linalg.norm(tangent)
+    chord = (points[2] - points[0]) / np.linalg.norm(points[2] - points[0])
+    assert np.degrees(np.arccos(chord @ tangent)) > 6.8
+    assert np.degrees(np.arccos(np.clip(pose.rotation[1, :, 0] @ tangent, -1, 1))) < 0.01
+    np.testing.assert_allclose(pose.rotation[1, :, 0], parabola_direction(points[:3], at=1),
+                               atol=1e-12)
+
+
+def test_points_1e_170_m_apart_keep_their_directions():
+    """Chords (1, 0, 0) then (1, 1, 0), times 1e-170 m: lengths 1 and sqrt 2, so inside
+    sqrt(2) (1, 0, 0) + (1, 1, 0) / sqrt(2), that is (3, 1, 0) / sqrt(10), by hand."""
+    points = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 1.0, 0.0]]) * 1e-170
+    pose = Pose.along_curve(points, [0, 0, 1], times=[0.0, 1.0, 2.0])
+    np.testing.assert_allclose(pose.rotation[1, :, 0], np.array([3.0, 1.0, 0.0]) / np.sqrt(10),
+                               atol=1e-15)
+    assert np.all(np.isfinite(pose.rotation))
+    with pytest.raises(InvalidPoseError) as caught:  # at a speed, no time between them
+        Pose.along_curve(points, [0, 0, 1], speed=0.01)
+    assert caught.value.field == "times[1]"
+
+
+@pytest.mark.parametrize("lengths", [(1.0, 1.0), (1.0, 0.5), (0.2, 3.0)])
+def test_a_turn_within_a_hundredth_of_a_degree_of_straight_back_is_refused(lengths):
+    """179.99994 degrees is refused like 180; 179.98 degrees is a (sharp) turn."""
+    def turned_by(degrees):
+        back = np.radians(180.0 - degrees)
+        return [[0, 0, 0], [lengths[0], 0, 0],
+                [lengths[0] - lengths[1] * np.cos(back), lengths[1] * np.sin(back), 0]]
+    for degrees in (180.0, 179.99994, 179.995):
+        with pytest.raises(InvalidPoseError) as caught:
+            Pose.along_curve(turned_by(degrees), [0, 0, 1], speed=1.0)
+        assert caught.value.field == "points[1]" and "turns back" in caught.value.message
+    sharp = Pose.along_curve(turned_by(179.98), [0, 0, 1], speed=1.0)
+    np.testing.assert_allclose(sharp.rotation[1, :, 0],
+                               parabola_direction(turned_by(179.98), at=1), atol=1e-9)
+
+
+@pytest.mark.parametrize(("angle", "count"), [(4 * np.pi, 3), (-2 * np.pi, 2),
+                                              (6 * np.pi, 4), (7.0, 3)])
+def test_a_scene_arc_stepping_by_half_a_turn_or_more_is_refused_naming_the_arc(
+        tmp_path, angle, count):
+    """Whole turns from point to point would give a seam standing still."""
+    path = tmp_path / "arc.yaml"
+    path.write_text("pinframes_scene: 1\nframes:\n- name: c\n  parent: world\n  curve:\n"
+                    f"    arc: {{centre: [0, 0, 0], axis: [0, 0, 1], start: [0.1, 0, 0], "
+                    f"angle: {angle!r}, count: {count}}}\n    speed: 0.01\n")
+    with pytest.raises(FileFormatError) as caught:
+        read_scene(path)
+    assert caught.value.field == "frames[0].curve.arc" and caught.value.frame == "c"
+    assert "half a turn or more" in caught.value.message

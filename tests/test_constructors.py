@@ -202,3 +202,12 @@ def test_pint_is_not_imported_for_plain_numbers():
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                           check=True)
     assert done.stdout.strip() == "False"
+
+
+def test_joint_limits_with_lower_above_upper_name_the_joint():
+    """Issue 36 item 12 for joints made in code: refused, not swapped later; a continuous
+    joint's limits are not read."""
+    with pytest.raises(JointError, match=r"lower limit 1 is above the upper limit -1") as raised:
+        Joint("wrist", "revolute", (0.0, 0.0, 1.0), lower=1.0, upper=-1.0)
+    assert raised.value.joint == "wrist" and raised.value.field == "limit"
+    assert Joint("spin", "continuous", (0.0, 0.0, 1.0), lower=1.0, upper=-1.0).kind == "continuous"

@@ -9,13 +9,13 @@ follow.
 from __future__ import annotations
 
 import warnings
-from importlib import metadata
 from pathlib import Path
 
 import numpy as np
 import pinocchio as pin
 import pytest
 
+from ik_paths import POSITIONER, as_pose, errors, example_robot, frame_poses
 from pinframes import FrameTree, JointSolution, Pose, TargetNotReachedError
 from pinframes.errors import (
     ArgumentTypeError,
@@ -34,42 +34,11 @@ RATE_HZ = 100.0
 TOLERANCE = 1e-6
 
 
-def example_robot(name: str) -> Path:
-    for file in metadata.files("example-robot-data") or []:
-        if file.name == name:
-            return Path(str(file.locate()))
-    pytest.skip("example-robot-data is not installed")
-
-
 def swinging(home: np.ndarray, swing: np.ndarray, count: int) -> np.ndarray:
     """A smooth joint trajectory (count, n) at 100 Hz: each joint swings about ``home``."""
     times = np.arange(count)[:, None] / RATE_HZ
     joint = np.arange(home.shape[0])[None, :]
     return home + swing * np.sin(0.6 * times * (1 + 0.2 * joint) + joint)
-
-
-def frame_poses(model: pin.Model, frame: str, configurations: np.ndarray) -> list[pin.SE3]:
-    """Placements of ``frame`` in the model's root, by Pinocchio."""
-    data = model.createData()
-    frame_id = model.getFrameId(frame)
-    poses = []
-    for q in configurations:
-        pin.framesForwardKinematics(model, data, q)
-        poses.append(data.oMf[frame_id].copy())
-    return poses
-
-
-def as_pose(placements: list[pin.SE3], times: np.ndarray) -> Pose:
-    return Pose(np.array([p.translation for p in placements]),
-                np.array([p.rotation for p in placements]), times=times)
-
-
-def errors(placements: list[pin.SE3], targets: list[pin.SE3]) -> tuple[np.ndarray, np.ndarray]:
-    """Position (m) and orientation (rad) errors of ``placements`` in ``targets``."""
-    offsets = [target.actInv(placement) for placement, target in zip(placements, targets,
-                                                                       strict=True)]
-    return (np.array([np.linalg.norm(o.translation) for o in offsets]),
-            np.array([np.linalg.norm(pin.log3(o.rotation)) for o in offsets]))
 
 
 def robot_tree() -> FrameTree:
@@ -309,24 +278,13 @@ def test_a_pose_target_relative_to_another_frame():
 
 
 # -- coordinated motion ----------------------------------------------------------------------
-POSITIONER_URDF = """<?xml version="1.0"?>
-<robot name="positioner">
-  <link name="base"/>
-  <link name="faceplate"/>
-  <joint name="turn" type="revolute">
-    <parent link="base"/><child link="faceplate"/>
-    <origin xyz="0 0 0.4"/><axis xyz="0 0 1"/>
-    <limit lower="-3.0" upper="3.0" velocity="1.0" effort="100"/>
-  </joint>
-</robot>
-"""
 
 
 def test_robot_and_positioner_solved_together(tmp_path):
     """A seam point runs round the faceplate; solving the robot and the positioner's turn
     together, both move, and the torch stays on the seam."""
     urdf = tmp_path / "positioner.urdf"
-    urdf.write_text(POSITIONER_URDF)
+    urdf.write_text(POSITIONER)
     robot_model, positioner_model = welding_robot(), pin.buildModelFromUrdf(str(urdf))
     tool_at_start = frame_poses(robot_model, "flange", HOME[None])[0]
     mount = pin.SE3(np.eye(3), tool_at_start.translation - [0.1, 0.0, 0.4])

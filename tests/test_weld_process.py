@@ -11,9 +11,9 @@ import pytest
 import yaml
 
 from pinframes import FrameTree, Pose, read_scene
-from pinframes.errors import FrameNotFoundError, InvalidTimeError, TreeStructureError
+from pinframes.errors import FrameNotFoundError, InvalidDataError, TreeStructureError
 
-from geometry import rot_x, rot_z
+from geometry import rot_x, rot_y, rot_z
 
 MODELS = Path(__file__).resolve().parents[1] / "models"
 
@@ -78,7 +78,11 @@ def test_turning_the_torch_about_its_wire_changes_nothing(bench):
     for name in ("travel_speed", "travel_angle", "work_angle", "offset", "ctwd"):
         np.testing.assert_allclose(getattr(spinning, name), getattr(plain, name), atol=1e-14,
                                    err_msg=name)
-    np.testing.assert_allclose(plain.travel_speed, 0.02, atol=1e-15)  # 0.08 m in 4 s
+    # the weld point (where the wire meets the seam's plane) moves 0.08 m with the torch
+    # and, as the torch rises by 2 mm, slides ahead by 0.002 a_x / -a_z, in 4 s
+    wire = torch_rotation(0.2, 1.4)[:, 2]
+    np.testing.assert_allclose(plain.travel_speed, (0.08 + 0.002 * wire[0] / -wire[2]) / 4,
+                               atol=1e-15)
     np.testing.assert_allclose(plain.travel_angle, 0.2, atol=1e-12)
     np.testing.assert_allclose(plain.work_angle, 1.4, atol=1e-12)
 
@@ -106,8 +110,10 @@ def test_contact_tip_to_work_distance_by_hand(bench):
 
 def test_seam_on_a_tilted_moving_table():
     """The table slides and turns about its own tilted z axis; the torch slides through the
-    world with a fixed orientation. The speed is the torch's velocity relative to the table,
-    differentiated by hand: d/dt R^T (q - p) = R^T (dq/dt - dp/dt - w x (q - p))."""
+    world with a fixed orientation. The speed is that of the weld point w = q + s A (where
+    the wire meets the seam's plane, through o with normal n) relative to the table,
+    differentiated by hand: s = n.(o - q) / n.A, and d/dt R^T (w - p) = R^T (dw/dt - dp/dt -
+    omega x (w - p))."""
     tilt = rot_x(0.3)
     table_start, table_end = np.array([1.0, 0.0, 0.5]), np.array([1.5, 0.3, 0.6])
     torch_start, torch_end = np.array([1.2, 0.1, 0.7]), np.array([1.4, 0.5, 0.75])
@@ -134,15 +140,29 @@ def test_seam_on_a_tilted_moving_table():
         np.testing.assert_allclose(
             process.offset[index],
             seam_in_world.T @ (torch_at - table_at - table_axes @ seam_origin), atol=1e-12)
-        relative = table_axes.T @ ((torch_end - torch_start) / 10 - (table_end - table_start)
-                                   / 10 - np.cross(omega, torch_at - table_at))
+        table_rate, torch_rate = (table_end - table_start) / 10, (torch_end - torch_start) / 10
+        wire_world, normal = torch_axes[:, 2], seam_in_world[:, 2]
+        seam_at = table_at + table_axes @ seam_origin
+        reach = normal @ (seam_at - torch_at) / (normal @ wire_world)
+        seam_rate = table_rate + np.cross(omega, seam_at - table_at)
+        reach_rate = (np.cross(omega, normal) @ (seam_at - torch_at)
+                      + normal @ (seam_rate - torch_rate)
+                      - reach * np.cross(omega, normal) @ wire_world) / (normal @ wire_world)
+        weld_at = torch_at + reach * wire_world
+        weld_rate = torch_rate + reach_rate * wire_world
+        relative = table_axes.T @ (weld_rate - table_rate - np.cross(omega, weld_at - table_at))
         assert process.travel_speed[index] == pytest.approx(seam_axes[:, 0] @ relative,
                                                             abs=1e-12)
-    # relative to the world instead, the table's own motion counts too
-    in_world = tree.weld_process("torch", "seam", times=times, workpiece="world")
+    # relative to the world, a torch on the seam's plane: the torch's own velocity
+    tree.add("torch_on_seam", "seam", Pose([0.01, 0.0, 0.0], rot_x(np.pi)))
+    on_seam = tree.weld_process("torch_on_seam", "seam", times=times, workpiece="world")
+    np.testing.assert_allclose(on_seam.offset[:, 2], 0.0, atol=1e-15)
     seam_x_in_world = np.array([tilt @ rot_z(0.05 * t) @ seam_axes[:, 0] for t in times])
-    np.testing.assert_allclose(in_world.travel_speed,
-                               seam_x_in_world @ ((torch_end - torch_start) / 10), atol=1e-12)
+    tip_rates = [table_end / 10 - table_start / 10 + np.cross(
+        omega, tilt @ rot_z(0.05 * t) @ (seam_origin + seam_axes @ [0.01, 0.0, 0.0]))
+        for t in times]
+    np.testing.assert_allclose(on_seam.travel_speed,
+                               np.einsum("ti,ti->t", seam_x_in_world, tip_rates), atol=1e-12)
 
 
 def test_curve_seam_on_a_turning_pipe():
@@ -174,13 +194,19 @@ def test_curve_seam_on_a_turning_pipe():
     np.testing.assert_allclose(process.offset[inside], [[0.0, 0.0, stand_off]] * 19, atol=1e-12)
     np.testing.assert_allclose(process.ctwd[inside], stand_off / np.cos(push) + 0.015,
                                atol=1e-12)
-    # the torch sits at radius + stand_off from the axis: its speed relative to the pipe
-    np.testing.assert_allclose(process.travel_speed[inside], omega * (radius + stand_off),
-                               atol=1e-12)
+    # the weld point, stand_off tan(push) ahead on the seam's plane, moves at omega * r
+    # relative to the pipe, plus what the plane's dip between points (chords inside the
+    # circle: the seam origin sinks at omega r (1 - cos step) / step) moves it along the
+    # leaning wire
+    step = angles[1] - angles[0]
+    dip = omega * radius * (1 - np.cos(step)) / step
+    # (the last segment ends at the parabola's axes, turned by step**3 / 4: 6e-9 m/s off)
+    expected_speed = omega * radius + dip * np.tan(push)
+    np.testing.assert_allclose(process.travel_speed[1:-2], expected_speed, atol=1e-12)
+    assert process.travel_speed[-2] == pytest.approx(expected_speed, abs=1e-8)
     # at the two ends the seam's x is the parabola's through the last three points, which
     # misses the tangent by step**3 / 4 (about the pipe axis: the travel angle only)
     miss = np.abs(process.travel_angle[[0, -1]] - push)
-    step = angles[1] - angles[0]
     assert np.all((0.95 * step**3 / 4 < miss) & (miss < 1.05 * step**3 / 4))
     np.testing.assert_allclose(process.work_angle[[0, -1]], work, atol=1e-12)
 
@@ -240,9 +266,66 @@ def test_bad_frames_are_named():
     with pytest.raises(TreeStructureError) as caught:
         tree.weld_process("torch", "world")
     assert caught.value.field == "workpiece"
-    # nothing moves between torch and seam, but the torch moves on a moving workpiece
-    tree.add("table", "world", Pose([[0, 0, 0], [1, 0, 0]], times=[0.0, 1.0]))
-    with pytest.raises(InvalidTimeError, match="give times"):
-        tree.weld_process("torch", "seam", workpiece="table")
-    moved = tree.weld_process("torch", "seam", workpiece="table", times=[0.5])
-    np.testing.assert_allclose(moved.travel_speed, [-1.0])  # seam x = world x
+    for up in ([0, 0, 0], [1, 2], [0, np.nan, 1]):
+        with pytest.raises(InvalidDataError) as caught:
+            tree.weld_process("torch", "seam", up=up)
+        assert caught.value.field == "up"
+
+
+def test_travel_speed_is_the_weld_points_on_a_turning_pipe():
+    """A pipe of radius r turns at omega under a seam frame held at its top; the tool centre
+    point is 15 mm up the wire, which leans 10 degrees ahead. The weld point lies on the
+    pipe's tangent plane, stand_off tan(push) ahead of the top: the pipe's surface there
+    moves at omega r along the seam (the torch origin: omega (r + stand_off), 14 % more)."""
+    radius, omega, stand_off, push = 0.10955, 0.1, 0.015, np.radians(10)
+    tree = FrameTree("world")
+    tree.add("pipe", "world", Pose([0.0, 0.0, 1.0], [rot_x(0.0), rot_x(-1.0)],
+                                   times=[0.0, 10.0]))
+    seam_at_top = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    tree.add("seam", "world", Pose([0.0, 0.0, 1.0 + radius], seam_at_top))
+    tree.add("torch", "seam", Pose([-stand_off * np.tan(push), 0.0, stand_off],
+                                   torch_rotation(push, np.pi / 2)))
+    process = tree.weld_process("torch", "seam", workpiece="pipe")
+    np.testing.assert_allclose(process.seconds, [0.0, 10.0])
+    np.testing.assert_allclose(process.travel_speed, omega * radius, atol=1e-15)
+    np.testing.assert_allclose(process.offset[:, 2], stand_off, atol=1e-15)
+
+
+def test_without_times_every_sample_that_moves_torch_or_seam_on_the_workpiece():
+    """The torch rides the seam (nothing moves between them); the workpiece slides under
+    both: its keyframes are the samples, and the weld point moves backwards on it."""
+    tree = FrameTree("world")
+    tree.add("seam", "world", Pose())
+    tree.add("torch", "seam", Pose([0, 0, 0.01], rot_x(np.pi)))
+    tree.add("table", "world", Pose([[0, 0, 0], [1, 0, 0], [3, 0, 0]], times=[0.0, 1.0, 2.0]))
+    moved = tree.weld_process("torch", "seam", workpiece="table")
+    np.testing.assert_allclose(moved.seconds, [0.0, 1.0, 2.0])
+    np.testing.assert_allclose(moved.travel_speed, [-1.0, -2.0, -2.0])  # seam x = world x
+    assert len(tree.weld_process("torch", "seam")) == 1  # nothing moves on the seam's parent
+
+
+def test_work_angle_of_a_wire_along_the_travel_direction_is_nan(bench):
+    bench.add("along", "seam", Pose([0.0, 0.0, 0.01], rot_y(np.pi / 2)))  # z = seam x
+    bench.add("nearly", "seam", Pose([0.0, 0.0, 0.01], rot_y(np.pi / 2) @ rot_x(1e-6)))
+    assert np.isnan(bench.weld_process("along", "seam").work_angle).all()
+    nearly = bench.weld_process("nearly", "seam")
+    # z = (cos 1e-6, -sin 1e-6, 0): seen from the work, straight along -y
+    np.testing.assert_allclose(nearly.work_angle, [np.arctan2(0.0, np.sin(1e-6))], atol=1e-9)
+
+
+def test_a_cell_far_from_the_root_keeps_its_micrometres():
+    """Torch and seam under a cell 5,000 km from the root (map coordinates), the cell
+    turned on its side: the offset is exact, computed in the cell, and the position is that
+    of the turned seam (face sideways: PC)."""
+    tree = FrameTree("map")
+    tree.add("cell", "map", Pose([5.0e5, 5.0e6, 30.0], rot_x(np.pi / 2)))
+    tree.add("seam", "cell", Pose.along_curve([[0, 0, 0], [0.1, 0, 0]], [0, 0, 1],
+                                              times=[0.0, 10.0]))
+    offset = np.array([1e-6, -2e-6, 0.012])
+    tree.add("torch", "cell", Pose([[0, 0, 0], [0.1, 0, 0]], rot_x(np.pi),
+                                   times=[0.0, 10.0]))
+    tree.add("tip", "torch", Pose(offset * [1, -1, -1]))  # the torch's y and z turn over
+    process = tree.weld_process("tip", "seam")
+    # composed through the map's origin, the cell's 5e6 m left 7.6e-12 m of rounding
+    np.testing.assert_allclose(process.offset, [offset] * 2, atol=1e-15)
+    assert process.position.tolist() == ["PC", "PC"]

@@ -58,6 +58,7 @@ from .values.shapes import Box, Cylinder, Mesh, Sphere
 from .values.spatial_data import SpatialData
 from .values.subsystem import Subsystem
 from .values.timeconv import TimeAxis
+from .values.weave import Weave
 
 __version__ = "0.1.0"
 
@@ -114,6 +115,7 @@ __all__ = [
     "UnitWarning",
     "UnsupportedFeatureError",
     "Velocity",
+    "Weave",
     "WeldProcess",
     "WriteError",
     "__version__",

@@ -1,8 +1,9 @@
 """Reader limits travel with each run to the Dask workers, and decide re-runs.
 
 A real LocalCluster (2 worker processes on 127.0.0.1), and ``pinframes batch --max-samples``
-as users start it. Two runs of the welding cell: ``run_0000``'s trajectory has 200 rows,
-``run_0001``'s is cut to 100, so ``max_samples=150`` refuses the first and reads the second.
+as users start it. Two runs of the welding cell: ``run_0000``'s trajectory has 2,500 rows,
+``run_0001``'s is cut to 100, so ``max_samples=2100`` refuses the first and reads the second
+(the cell's seam curve has 2,001 points, which the limit bounds too).
 """
 
 from __future__ import annotations
@@ -34,7 +35,7 @@ def scheduler():
 @pytest.fixture
 def campaign(tmp_path, make_campaign) -> Path:
     folder = tmp_path / "campaign"
-    make_campaign(folder, runs=2, samples=200, seed=5)
+    make_campaign(folder, runs=2, samples=2500, seed=5)
     motion = folder / SMALL / "motion.csv"
     lines = motion.read_text(encoding="utf-8").splitlines()
     motion.write_text("\n".join(lines[:101]) + "\n", encoding="utf-8")  # header, 100 rows
@@ -57,12 +58,12 @@ def _check_poses(out: Path, campaign: Path, run: str) -> None:
 def test_limits_reach_the_workers_and_changed_limits_rerun_what_they_change(
         campaign, scheduler, tmp_path):
     out = tmp_path / "out"
-    strict = Limits(max_samples=150)
+    strict = Limits(max_samples=2100)
     summary, records = _batch(campaign, out, scheduler, strict)
     assert records[BIG]["status"] == "error" and records[SMALL]["status"] == "ok"
-    assert "200 samples, over the limit max_samples=150" in records[BIG]["error"]
+    assert "2,500 samples, over the limit max_samples=2,100" in records[BIG]["error"]
     assert str(campaign / BIG / "motion.csv") in records[BIG]["error"]
-    assert records[BIG]["limits"]["max_samples"] == 150
+    assert records[BIG]["limits"]["max_samples"] == 2100
     _check_poses(out, campaign, SMALL)
 
     # the same limits: nothing to do
@@ -87,15 +88,15 @@ def test_the_command_line_max_samples_reaches_the_workers(campaign, tmp_path):
     command = [sys.executable, "-m", "pinframes.cli", "batch", str(campaign / BIG / "scene.yaml"),
                "--frame", FRAME, "--relative-to", RELATIVE_TO, "--workers", "2"]
     limited = subprocess.run([*command, "--out", str(tmp_path / "limited"), "--max-samples",
-                              "150"], capture_output=True, text=True, env=env, timeout=300,
+                              "2100"], capture_output=True, text=True, env=env, timeout=300,
                              check=False)
     assert limited.returncode == 1, limited.stderr
     # one file given: the run is named after it
     assert f"pinframes: run scene: {campaign / BIG / 'motion.csv'}" in limited.stderr
-    assert "over the limit max_samples=150" in limited.stderr
+    assert "over the limit max_samples=2,100" in limited.stderr
     manifest = pd.read_json(tmp_path / "limited" / "manifest.jsonl", lines=True)
     assert list(manifest["status"]) == ["error"]
-    assert "max_samples=150" in manifest["error"][0]
+    assert "max_samples=2,100" in manifest["error"][0]
     free = subprocess.run([*command, "--out", str(tmp_path / "free")], capture_output=True,
                           text=True, env=env, timeout=300, check=False)
     assert free.returncode == 0, free.stderr

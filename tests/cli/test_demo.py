@@ -138,6 +138,15 @@ def test_demo_prints_summary_and_writes_csv_and_png(run_cli, tmp_path):
     assert span("work angle", "deg") == (90.0, 90.0)
     for name in ("offset along", "offset across", "offset normal"):
         assert span(name, "mm") == (0.0, 0.0)
+    # the welding positions: up (the world's z) in seam_point's axes, by numpy
+    seam_axes = read_scene(MODELS / "welding_cell" / "scene.yaml").pose(
+        "seam_point", relative_to="world").rotation
+    up = seam_axes[:, 2, :]  # rows of R^T e_z: the world's z in seam axes
+    slope = np.degrees(np.arctan2(up[:, 0], np.hypot(up[:, 1], up[:, 2])))
+    turned = np.degrees(np.arctan2(up[:, 1], up[:, 2]))
+    assert np.abs(slope).max() < 45 and np.abs(turned).max() < 22.5  # flat: PA throughout
+    assert span("slope", "deg") == (round(slope.min(), 2), round(slope.max(), 2))
+    assert summary["positions"] == "PA 2001 of 2001"
 
     text = (tmp_path / "results" / "torch_poses.csv").read_text()
     assert text.startswith("time_s,x_m,y_m,z_m,qx,qy,qz,qw\n")

@@ -173,7 +173,8 @@ def test_curve_frames_from_points_and_from_an_arc(tmp_path):
     tree = read_scene(path)
     bend = tree.local_pose("bend")
     np.testing.assert_allclose(bend.seconds, [0.0, 2.5, 8.5], atol=1e-12)
-    np.testing.assert_allclose(bend.rotation[1, :, 0], np.array([3, 4, 12]) / 13, atol=1e-15)
+    # chords of 5 and 12 m: 12 (3, 4, 0) / 5 + 5 (0, 0, 1), made unit
+    np.testing.assert_allclose(bend.rotation[1, :, 0], np.array([36, 48, 25]) / 65, atol=1e-15)
     flat = tree.pose("flat", times=[np.datetime64("2024-03-01T08:00:11")])
     np.testing.assert_allclose(flat.translation, [[0.25, 0.0, 0.0]], atol=1e-15)
     np.testing.assert_allclose(flat.rotation[0], np.eye(3), atol=1e-15)

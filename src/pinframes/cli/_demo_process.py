@@ -10,7 +10,7 @@ import numpy as np
 from ..kinematics import WeldProcess
 from ..tree import FrameTree
 from ._files import require_frames
-from .process import process_ranges
+from .process import process_summary
 
 __all__ = ["DEFAULT_SEAM", "demo_process", "plot_process", "process_table"]
 
@@ -31,8 +31,9 @@ def demo_process(tree: FrameTree, scene: Path, tool: str, workpiece: str,
 
 
 def process_table(process: WeldProcess, width: int) -> str:
-    """The ranges of the process as rows of the demo's two-column summary."""
-    return "".join(f"{name.ljust(width)}  {span}\n" for name, span in process_ranges(process))
+    """The ranges of the process and the welding positions met, as rows of the demo's
+    two-column summary."""
+    return "".join(f"{name.ljust(width)}  {span}\n" for name, span in process_summary(process))
 
 
 def plot_process(figure: Any, speed_axes: Any, angle_slot: Any, offset_slot: Any,

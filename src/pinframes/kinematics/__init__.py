@@ -23,7 +23,7 @@ from .pose import default_times, evaluate_pose
 from .poses import evaluate_poses
 from .snapshot import Snapshot, snapshot
 from .velocity import Velocity, evaluate_velocity
-from .weld_process import WeldProcess, evaluate_weld_process
+from .weld_process import WeldProcess, evaluate_weld_process, welding_positions
 
 __all__ = [
     "Clearance",
@@ -45,4 +45,5 @@ __all__ = [
     "evaluate_weld_process",
     "paths_to_common_ancestor",
     "snapshot",
+    "welding_positions",
 ]

@@ -1,18 +1,21 @@
 """``FrameTree.weld_process``: the welding process a torch produces along a seam, per sample.
 
-The terms are the welders' own (docs/welding-process.md). The seam frame sits at the weld point: x
-along the travel direction, z the work surface's normal pointing out of the material,
-y = z x x. The torch frame is the tool centre point; its z axis is the wire axis, from the
-torch toward the work. With ``a`` the torch z axis and ``p`` the torch origin, both in seam
-axes:
+The terms are the welders' own; docs/welding-process.md defines each. The seam frame sits
+at the weld point: x along the travel direction, z the work surface's normal pointing out
+of the material, y = z x x. The torch frame is the tool centre point; its z axis is the
+wire axis, from the torch toward the work. With ``a`` the torch z axis, ``p`` the torch
+origin and ``u`` the unit upward direction, all in seam axes:
 
 - travel angle = asin(a_x): positive pushing (the wire leans ahead), negative dragging;
 - work angle = atan2(-a_z, -a_y): across the seam, from the seam's +y axis to the torch axis
-  seen from the work; pi/2 is square to the surface;
+  seen from the work; pi/2 is square to the surface; NaN where the wire lies along x;
 - offset = p: along, across and normal to the seam, metres;
-- travel speed: the velocity of the torch origin relative to the workpiece, along seam x;
-- CTWD: from the contact tip's origin ``c`` (seam axes) along the wire axis to the plane
-  through the seam point normal to z, c_z / (-a_z).
+- weld point w = p + s a with s = -p_z / a_z: where the wire axis meets the seam's plane;
+- travel speed: the velocity of the weld point relative to the workpiece, along seam x;
+- CTWD: from the contact tip's origin ``c`` (seam axes) along the wire axis to the seam's
+  plane, c_z / (-a_z);
+- slope = atan2(u_x, hypot(u_y, u_z)), rotation = atan2(u_y, u_z) and the ISO 6947 welding
+  position they give (:func:`welding_positions`).
 
 None of them changes when the torch turns about its own axis.
 """
@@ -23,18 +26,28 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
-from ..errors import InvalidTimeError
+from ..errors import InvalidDataError
+from ..values.numbers import float_array
+from ..values.se3 import compose, inverse, samples_first, samples_last
 from ..values.timed import Timed
-from ._description import TreeDescription
-from ._plan import plan_query
+from ._description import TreeDescription, paths_to_common_ancestor
+from ._plan import plan_query, prepare_path
 from .pose import planned_transforms
 from .velocity import planned_velocity
 
-__all__ = ["WeldProcess", "evaluate_weld_process"]
+__all__ = ["ALONG_TRAVEL_RAD", "WeldProcess", "evaluate_weld_process", "welding_positions"]
 
 FloatArray = NDArray[np.float64]
+
+ALONG_TRAVEL_RAD = 1e-9
+"""A direction closer than this (radians) to the seam's x axis has no angle across the seam:
+the work angle of such a wire, the rotation of such an upward direction, are NaN."""
+
+_QUARTER = np.pi / 4
+_POSITION_BOUNDS = np.radians([22.5, 67.5, 112.5, 157.5])
+_FACE_POSITIONS = np.array(["PA", "PB", "PC", "PD", "PE"])
 
 
 @dataclass(frozen=True)
@@ -44,23 +57,36 @@ class WeldProcess(Timed):
     Attributes
     ----------
     travel_speed : ndarray, shape (T,)
-        Speed of the torch origin relative to ``workpiece`` along the seam's x axis, m/s
-        (negative: backwards).
+        Speed of the weld point (where the wire axis meets the seam's x-y plane) relative to
+        ``workpiece`` along the seam's x axis, m/s (negative: backwards); NaN where the wire
+        does not point toward that plane.
     travel_angle : ndarray, shape (T,)
         asin(a_x), radians: positive push (the wire leans ahead along the travel direction),
         negative drag.
     work_angle : ndarray, shape (T,)
         atan2(-a_z, -a_y), radians: in the plane across the seam, from the seam's +y axis to
-        the torch axis seen from the work; pi/2 is square to the surface.
+        the torch axis seen from the work; pi/2 is square to the surface. NaN where the wire
+        lies along the travel direction (within :data:`ALONG_TRAVEL_RAD`).
     offset : ndarray, shape (T, 3)
         The torch origin in seam axes, metres: along, across and normal to the seam.
     ctwd : ndarray, shape (T,), or None
         Contact tip to work distance, metres, when a contact tip frame was given: along the
         wire axis from the contact tip's origin to the plane through the seam point normal
         to the seam's z axis. NaN where the wire does not point toward that plane (a_z >= 0).
+    slope : ndarray, shape (T,)
+        Angle of the travel direction above the horizontal, radians, positive uphill:
+        atan2(u_x, hypot(u_y, u_z)) with ``u`` the unit upward direction in seam axes.
+    rotation : ndarray, shape (T,)
+        atan2(u_y, u_z), radians: how far the seam's face (its z axis) is turned from looking
+        up, about the travel direction; 0 face up, +-pi face down. NaN where the travel
+        direction is vertical (within :data:`ALONG_TRAVEL_RAD`).
+    position : ndarray of str, shape (T,)
+        The ISO 6947 welding position of each sample, from ``slope`` and ``rotation``
+        (:func:`welding_positions`).
     times : ndarray of timedelta64[ns] or None
-        Sample times after :attr:`reference_time` (as ``pose()``); None for a static path
-        queried without times (then T is 1).
+        Sample times after :attr:`reference_time`; None when, queried without times, nothing
+        moves the torch or the seam relative to the workpiece or the seam in the root (then
+        T is 1).
     reference_time : numpy.datetime64 or None
         What :attr:`times` count from.
     torch, seam, workpiece : str
@@ -74,6 +100,9 @@ class WeldProcess(Timed):
     work_angle: FloatArray
     offset: FloatArray
     ctwd: FloatArray | None
+    slope: FloatArray
+    rotation: FloatArray
+    position: NDArray[np.str_]
     times: NDArray[np.timedelta64] | None
     reference_time: np.datetime64 | None
     torch: str
@@ -85,44 +114,82 @@ class WeldProcess(Timed):
         return int(self.travel_speed.shape[0])
 
 
+def welding_positions(slope: ArrayLike, rotation: ArrayLike) -> NDArray[np.str_]:
+    """ISO 6947 welding positions from the seam's ``slope`` and face ``rotation`` (radians).
+
+    "PF" (vertical up) where slope >= 45 degrees, "PG" (vertical down) where slope <= -45
+    degrees; otherwise by |rotation|: below 22.5 degrees "PA" (flat), 67.5 "PB"
+    (horizontal-vertical), 112.5 "PC" (horizontal), 157.5 "PD" (horizontal-overhead), else
+    "PE" (overhead).
+    """
+    slope_array = np.asarray(slope, dtype=float)
+    turned = np.abs(np.asarray(rotation, dtype=float))
+    face = _FACE_POSITIONS[np.searchsorted(_POSITION_BOUNDS, np.nan_to_num(turned),
+                                           side="right")]
+    return np.where(slope_array >= _QUARTER, "PF",
+                    np.where(slope_array <= -_QUARTER, "PG", face)).astype("<U2")
+
+
 def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: Any,
                           time_ref: Any, extrapolation: str, workpiece: str,
-                          contact_tip: str | None) -> WeldProcess:
+                          contact_tip: str | None, up: Any = None) -> WeldProcess:
     """``tree.weld_process(...)``; frame names already checked.
 
-    The times are those of ``pose(torch, relative_to=seam, times, time_ref)``; the velocity
-    and the contact tip are evaluated at exactly those times.
+    Five queries on one plan: the seam and the torch in their lowest common ancestor (the
+    torch in the seam is composed from them), the ancestor in the root, and the torch's and
+    the seam's velocities relative to the workpiece. Without times, the samples are every
+    keyframe and joint sample that moves the torch or the seam relative to the workpiece,
+    the seam in the root (its welding position) or the contact tip relative to the torch.
+    ``up`` is the upward direction in the root's axes, default +z.
     """
-    plan = plan_query(tree, torch, seam, times, time_ref, extrapolation)
-    # the torch relative to the workpiece, and the contact tip, at the same times
-    velocity_plan = plan.on(tree, torch, workpiece)
-    tip_plan = None if contact_tip is None else plan.on(tree, contact_tip, torch)
-    for same in (velocity_plan, tip_plan):
-        # without times a static torch-to-seam path gives one sample: the others must not
-        # move then, or the samples would not line up
-        if same is not None and plan.times is None and same.path.sources:
-            raise InvalidTimeError(
-                f"{same.path.frame!r} moves relative to {same.path.relative_to!r} while "
-                f"nothing moves between the torch and the seam {seam!r}: give times",
-                field="times")
-    rotation, origin = planned_transforms(tree, plan)
-    # in the torch's own axes (no second pose query), then turned into the seam's by the
-    # rotation of the torch in the seam: R_ts R_tw^T = R_sw^T
-    velocity = planned_velocity(tree, velocity_plan, torch)
-    along_seam = np.einsum("tj,tj->t", rotation[:, 0, :], velocity.linear)
+    upward = _unit_up(up)
+    # every path below moves only with these sources: planned on them, without times a
+    # path on which nothing moves has one sample, and otherwise every path has them all
+    paths = [(torch, workpiece), (seam, workpiece), (seam, tree.root)]
+    if contact_tip is not None:
+        paths.append((contact_tip, torch))
+    moving = {source.name: source for frame, other in paths
+              for source in prepare_path(tree, frame, other).sources}
+    # both ends in their lowest common ancestor, then the torch in the seam from them, as
+    # the model of that path composes it; the seam's moving things are sampled once for the
+    # process and for the upward direction (the ancestor's turn in the root, mostly none)
+    common = paths_to_common_ancestor(tree.parents, tree.depths, torch, seam)[0][-1]
+    plan = plan_query(tree, seam, common, times, time_ref, extrapolation,
+                      sources=moving.values())
+    seam_in_common = planned_transforms(tree, plan)
+    torch_in_common = planned_transforms(tree, plan.on(tree, torch, common))
+    rotation, origin = samples_first(compose(inverse(samples_last(seam_in_common)),
+                                             samples_last(torch_in_common)))
+
+    def velocity(frame: str) -> tuple[FloatArray, FloatArray]:
+        """Of ``frame`` relative to the workpiece, in ``frame``'s own axes (no extra pose
+        query)."""
+        found = planned_velocity(tree, plan.on(tree, frame, workpiece), frame)
+        return found.linear, found.angular
+
+    # the torch's, turned into seam axes by the torch's rotation in the seam
+    torch_linear, torch_angular = (np.einsum("tij,tj->ti", rotation, vector)
+                                   for vector in velocity(torch))
     wire = rotation[:, :, 2]  # the torch z axis in seam axes
+    speed = _weld_point_speed(origin, wire, (torch_linear, torch_angular), velocity(seam))
     ctwd = None
-    if tip_plan is not None:
-        tip = np.einsum("tij,tj->ti", rotation, planned_transforms(tree, tip_plan)[1]) + origin
-        toward_work = -wire[:, 2]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            ctwd = np.where(toward_work > 0.0, tip[:, 2] / toward_work, np.nan)
+    if contact_tip is not None:
+        tip_in_torch = planned_transforms(tree, plan.on(tree, contact_tip, torch))[1]
+        tip = np.einsum("tij,tj->ti", rotation, tip_in_torch) + origin
+        ctwd = _along_wire_to_plane(tip[:, 2], wire[:, 2])
+    up_in_common = upward @ planned_transforms(tree, plan.on(tree, common, tree.root))[0]
+    up_in_seam = np.einsum("tji,tj->ti", seam_in_common[0], up_in_common)
+    slope = np.arctan2(up_in_seam[:, 0], np.hypot(up_in_seam[:, 1], up_in_seam[:, 2]))
+    face_rotation = _across_angle(up_in_seam[:, 1], up_in_seam[:, 2])
     return WeldProcess(
-        travel_speed=along_seam,
+        travel_speed=speed,
         travel_angle=np.arcsin(np.clip(wire[:, 0], -1.0, 1.0)),
-        work_angle=np.arctan2(-wire[:, 2], -wire[:, 1]),
+        work_angle=_across_angle(-wire[:, 2], -wire[:, 1]),
         offset=origin,
         ctwd=ctwd,
+        slope=slope,
+        rotation=face_rotation,
+        position=welding_positions(slope, face_rotation),
         times=plan.result_times,
         reference_time=plan.reference_time,
         torch=torch,
@@ -130,3 +197,61 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
         workpiece=workpiece,
         contact_tip=contact_tip,
     )
+
+
+def _weld_point_speed(origin: FloatArray, wire: FloatArray,
+                      torch_rates: tuple[FloatArray, FloatArray],
+                      seam_rates: tuple[FloatArray, FloatArray]) -> FloatArray:
+    """Velocity along seam x (m/s) of the weld point ``w = p + s a`` (``s = -p_z / a_z``)
+    relative to the workpiece. All in seam axes: the torch origin ``p``, the wire ``a``, and
+    the torch's and the seam's velocities relative to the workpiece (linear of the origin,
+    angular).
+
+    Relative to the seam (axes turning at ``W``, the seam's angular velocity), the torch
+    origin moves at ``dp = v_t - v_s - W x p`` and the wire turns at ``w_r = w_t - W``, so
+    ``da = w_r x a``; ``w`` stays in the seam's plane (``d(p_z + s a_z) = 0`` gives ``ds``)
+    and moves in it at ``dp + ds a + s da``; the seam carries it at ``v_s + W x w``. Only the
+    x and z rows are needed: written out, without ``np.cross``.
+    """
+    (torch_linear, torch_angular), (seam_linear, seam_angular) = torch_rates, seam_rates
+    px, py, pz = origin.T
+    ax, ay, az = wire.T
+    wx, wy, wz = seam_angular.T
+    rx, ry, rz = (torch_angular - seam_angular).T
+    along = torch_linear[:, 0] - seam_linear[:, 0] - (wy * pz - wz * py)
+    rise = torch_linear[:, 2] - seam_linear[:, 2] - (wx * py - wy * px)
+    reach = _along_wire_to_plane(pz, az)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        reach_rate = -(rise + reach * (rx * ay - ry * ax)) / az
+    in_plane = along + reach_rate * ax + reach * (ry * az - rz * ay)
+    # W x w along x, with w_z = 0 on the plane
+    carried = seam_linear[:, 0] - wz * (py + reach * ay)
+    return in_plane + carried
+
+
+def _along_wire_to_plane(height: FloatArray, wire_z: FloatArray) -> FloatArray:
+    """Distance (m) along the wire from points ``height`` above the seam's plane to it; NaN
+    where the wire does not point toward the plane (a_z >= 0)."""
+    toward_work = -wire_z
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(toward_work > 0.0, height / toward_work, np.nan)
+
+
+def _across_angle(along_y: FloatArray, along_z: FloatArray) -> FloatArray:
+    """atan2 of a direction's y and z parts in seam axes; NaN where the direction lies
+    along the seam's x axis (its y-z part below sin :data:`ALONG_TRAVEL_RAD`)."""
+    return np.where(np.hypot(along_y, along_z) > np.sin(ALONG_TRAVEL_RAD),
+                    np.arctan2(along_y, along_z), np.nan)
+
+
+def _unit_up(up: Any) -> FloatArray:
+    """``up`` (a 3-vector in the root's axes, default +z) as a unit vector."""
+    if up is None:
+        return np.array([0.0, 0.0, 1.0])
+    vector = float_array(up, "up", InvalidDataError)
+    largest = float(np.max(np.abs(vector))) if vector.shape == (3,) else 0.0
+    if largest == 0.0:
+        raise InvalidDataError(f"expected a non-zero 3-vector in the root's axes, got "
+                               f"{vector.tolist()}", field="up")
+    scaled = vector / largest
+    return scaled / np.linalg.norm(scaled)

@@ -239,7 +239,7 @@ class TreeQueries(EditableTree):
     def weld_process(
         self, torch: str, seam: str, *, times: Any = None, time_ref: Any = None,
         workpiece: str | None = None, contact_tip: str | None = None,
-        extrapolation: str = "clamp",
+        extrapolation: str = "clamp", up: Any = None,
     ) -> WeldProcess:
         """The welding process ``torch`` produces along ``seam``, per sample.
 
@@ -248,12 +248,18 @@ class TreeQueries(EditableTree):
         ``seam`` is a frame at the weld point with x along the travel direction and z the
         surface normal out of the material (:meth:`Pose.along_curve` makes one); ``torch``
         the tool centre point whose z axis is the wire axis, pointing toward the work.
-        Returns the travel speed (m/s, relative to ``workpiece``, default the seam's
-        parent), the travel angle (rad, positive push) and work angle (rad, pi/2 square to
-        the surface) of the wire axis, the torch origin in seam axes (m) and, when
-        ``contact_tip`` names a frame, the contact tip to work distance (m). Times as
-        :meth:`pose` of ``torch`` in ``seam`` (arguments as there); the speed is exact, from
-        :meth:`velocity`. Turning the torch about its own axis changes none of these.
+        Returns the travel speed (m/s: of the weld point, where the wire axis meets the
+        seam's x-y plane, relative to ``workpiece``, default the seam's parent, along the
+        seam's x), the travel angle (rad, positive push) and work angle (rad, pi/2 square to
+        the surface) of the wire axis, the torch origin in seam axes (m), the seam's slope
+        and face rotation against ``up`` (rad; a 3-vector in the root's axes, default +z)
+        with the ISO 6947 welding position they give ("PA" .. "PG") and, when
+        ``contact_tip`` names a frame, the contact tip to work distance (m). Without times,
+        every keyframe and joint sample that moves the torch or the seam relative to the
+        workpiece or the seam in the root; otherwise times as :meth:`pose` (arguments as
+        there). The speed is
+        exact, from :meth:`velocity`. Turning the torch about its own axis changes none of
+        these.
         """
         self._require(torch, "torch")
         self._require(seam, "seam")
@@ -266,7 +272,7 @@ class TreeQueries(EditableTree):
         if contact_tip is not None:
             self._require(contact_tip, "contact_tip")
         return evaluate_weld_process(self._frozen(), torch, seam, times, time_ref,
-                                     extrapolation, workpiece, contact_tip)
+                                     extrapolation, workpiece, contact_tip, up)
 
     def jacobian(
         self, frame: str, relative_to: str | None = None, times: Any = None,
@@ -334,11 +340,13 @@ class TreeQueries(EditableTree):
         seed : mapping or sequence, optional
             Joint values (radians or metres) the first sample starts from, by name (may
             name some joints only) or one per solved joint, or the name of a group state of
-            a robot's SRDF (``"home"``). Default: the joints'
-            trajectories at the first time, else their rest values.
+            a robot's SRDF (``"home"``). Default: the joints' trajectories at the first
+            time, else their rest values, tried first among 16 fixed starts spread over the
+            joint ranges; the first whose solution reaches every sample of the first 4,096
+            is taken, else the one reaching the most.
         position_tolerance, orientation_tolerance : float
             A sample is reached when the tool's origin is within this many metres of the
-            target's and its rotation within this many radians.
+            target's and its rotation within this many radians (at least 1e-12).
         strict : bool
             Raise :class:`~pinframes.errors.TargetNotReachedError`, naming the first time
             not reached and its errors, instead of returning it as not reached; and
@@ -351,7 +359,9 @@ class TreeQueries(EditableTree):
         JointSolution
             Per time, the joint values (within the URDF position limits; continuous joints
             unbounded), the errors and whether the target was reached. Each sample starts
-            from the one before, so the solution stays on one branch. A sample out of reach
+            from the one before, so the solution stays on one branch; with joints to spare
+            (7 axes, a free axis, a positioner) it is the smallest motion from the one
+            before, and a target that stands still gives joints that do. A sample out of reach
             holds the closest configuration found, and the solver finds its way back when
             the target comes back into reach. Its ``velocities`` and ``speed_ratio`` say
             whether the robot can keep up. Apply it with ``set_joint_trajectory(

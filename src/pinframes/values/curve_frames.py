@@ -1,14 +1,19 @@
 """Frames along a curve: the axes of a seam frame at each point of a polyline.
 
-At point ``i`` of a polyline ``points`` (N, 3), metres: x is the travel direction (the
-central difference ``points[i + 1] - points[i - 1]``; at the two ends the one-sided
-difference of the same (second) order, the direction of the parabola through the first or
-last three points; the chord when there are only two), z is the given normal made
-perpendicular to x, and y = z x x. :meth:`pinframes.Pose.along_curve`
-turns these axes and the points into a moving pose.
+At point ``i`` of a polyline ``points`` (N, 3), metres: x is the travel direction, the
+direction at the point of the parabola through it and its two neighbours, parametrised by
+the length along the chords (the three-point non-uniform difference: with unit chords
+``d1`` before and ``d2`` after the point and their lengths ``h1``, ``h2``, the direction of
+``h2 d1 + h1 d2``; for equal chords the central difference). At the two ends it is the
+same parabola's direction through the first or last three points (``(2 h1 + h2) d1 - h1 d2``
+at the start), the chord when there are only two. z is the given normal made
+perpendicular to x, and y = z x x. :meth:`pinframes.Pose.along_curve` turns these axes and
+the points into a moving pose.
 
 Bad input is an :class:`~pinframes.errors.InvalidPoseError` whose field names the point
-(``points[3]``, ``normals[3]``).
+(``points[3]``, ``normals[3]``): a point repeating the one before it, a turn within
+:data:`MIN_REVERSAL_ANGLE_RAD` of going straight back. Chord lengths are computed without
+squaring, so points 1e-170 m apart keep their directions.
 """
 
 from __future__ import annotations
@@ -18,12 +23,17 @@ from numpy.typing import NDArray
 
 from ..errors import InvalidPoseError
 
-__all__ = ["MIN_NORMAL_ANGLE_RAD", "curve_rotations", "length_along_polyline"]
+__all__ = ["MIN_NORMAL_ANGLE_RAD", "MIN_REVERSAL_ANGLE_RAD", "curve_rotations",
+           "length_along_polyline"]
 
 FloatArray = NDArray[np.float64]
 
 MIN_NORMAL_ANGLE_RAD = 1e-6
 """A normal closer than this to the travel direction (radians) leaves z undefined."""
+
+MIN_REVERSAL_ANGLE_RAD = float(np.radians(0.01))
+"""A turn closer than this (radians) to going straight back is a reversal: the curve has
+no travel direction there."""
 
 
 def curve_rotations(points: FloatArray, normals: FloatArray) -> FloatArray:
@@ -34,27 +44,14 @@ def curve_rotations(points: FloatArray, normals: FloatArray) -> FloatArray:
     """
     _check_points(points)
     normal_stack = _normal_stack(normals, points.shape[0])
-    travel = np.empty_like(points)
-    travel[1:-1] = points[2:] - points[:-2]
-    if points.shape[0] == 2:
-        travel[:] = points[1] - points[0]
-    else:
-        travel[0] = _one_sided(points[0], points[1], points[2])
-        travel[-1] = -_one_sided(points[-1], points[-2], points[-3])
-    travel_norms = np.linalg.norm(travel, axis=1)
-    if np.any(travel_norms == 0.0):
-        index = int(np.argmax(travel_norms == 0.0))
-        raise InvalidPoseError(f"the curve turns back at point {index}: its neighbours "
-                               "coincide, so it has no travel direction there",
-                               field=f"points[{index}]")
-    x_axes = travel / travel_norms[:, None]
-    normal_norms = np.linalg.norm(normal_stack, axis=1)
+    x_axes = _travel_directions(points)
+    normal_norms = _lengths(normal_stack)
     if np.any(normal_norms == 0.0):
         index = int(np.argmax(normal_norms == 0.0))
         raise InvalidPoseError(f"the normal of point {index} is zero",
                                field=f"normals[{index}]")
     across = normal_stack - np.sum(normal_stack * x_axes, axis=1, keepdims=True) * x_axes
-    across_norms = np.linalg.norm(across, axis=1)
+    across_norms = _lengths(across)
     parallel = across_norms <= np.sin(MIN_NORMAL_ANGLE_RAD) * normal_norms
     if np.any(parallel):
         index = int(np.argmax(parallel))
@@ -65,19 +62,47 @@ def curve_rotations(points: FloatArray, normals: FloatArray) -> FloatArray:
     return np.stack([x_axes, np.cross(z_axes, x_axes), z_axes], axis=-1)
 
 
-def _one_sided(first: FloatArray, second: FloatArray, third: FloatArray) -> FloatArray:
-    """The direction at ``first`` of the parabola through three points, parametrised by
-    the length along their chords (second order, as the central differences inside; for
-    equal chords ``4 second - 3 first - third``)."""
-    near = float(np.linalg.norm(second - first))
-    far = float(np.linalg.norm(third - second))
-    return ((near + far) / (near * far) * (second - first)
-            - near / (far * (near + far)) * (third - first))
+def _travel_directions(points: FloatArray) -> FloatArray:
+    """Unit travel directions (N, 3) along ``points`` (N, 3) with no repeated point."""
+    with np.errstate(over="ignore"):
+        chords = np.diff(points, axis=0)
+    lengths = _lengths(chords)
+    overflowing = ~np.isfinite(lengths)
+    if np.any(overflowing):
+        index = int(np.argmax(overflowing)) + 1
+        raise InvalidPoseError(f"point {index} is too far from point {index - 1}: their "
+                               "distance overflows", field=f"points[{index}]")
+    units = chords / lengths[:, None]
+    if points.shape[0] == 2:
+        return np.repeat(units, 2, axis=0)
+    before, after = units[:-1], units[1:]
+    reversed_turn = np.einsum("ij,ij->i", before, after) <= -np.cos(MIN_REVERSAL_ANGLE_RAD)
+    if np.any(reversed_turn):
+        index = int(np.argmax(reversed_turn)) + 1
+        raise InvalidPoseError(f"the curve turns back at point {index} (within "
+                               f"{np.degrees(MIN_REVERSAL_ANGLE_RAD):g} degrees of straight "
+                               "back), so it has no travel direction there",
+                               field=f"points[{index}]")
+    # weights as fractions of the two chords' sum: no product of two lengths, which
+    # would underflow for points 1e-170 m apart
+    near, far = lengths[:-1], lengths[1:]
+    first_share = near / (near + far)
+    travel = np.empty_like(points)
+    travel[1:-1] = (1.0 - first_share)[:, None] * before + first_share[:, None] * after
+    travel[0] = (1.0 + first_share[0]) * units[0] - first_share[0] * units[1]
+    last_share = far[-1] / (near[-1] + far[-1])
+    travel[-1] = (1.0 + last_share) * units[-1] - last_share * units[-2]
+    return travel / _lengths(travel)[:, None]
+
+
+def _lengths(vectors: FloatArray) -> FloatArray:
+    """Euclidean lengths of rows (M, 3), without squaring (no underflow or overflow)."""
+    return np.hypot(np.hypot(vectors[:, 0], vectors[:, 1]), vectors[:, 2])
 
 
 def length_along_polyline(points: FloatArray) -> FloatArray:
     """Length along ``points`` (N, 3) from the first point to each point, metres (N,)."""
-    steps = np.linalg.norm(np.diff(points, axis=0), axis=1)
+    steps = _lengths(np.diff(points, axis=0))
     return np.concatenate([[0.0], np.cumsum(steps)])
 
 

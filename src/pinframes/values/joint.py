@@ -94,6 +94,10 @@ class Joint:
             raise JointError(f"axis must be a non-zero 3-vector, got {self.axis!r}",
                              joint=self.name, field="axis")
         object.__setattr__(self, "axis", tuple(float(v) for v in axis / norm))
+        if (self.kind != "continuous" and self.lower is not None and self.upper is not None
+                and self.lower > self.upper):
+            raise JointError(f"the lower limit {self.lower:g} is above the upper limit "
+                             f"{self.upper:g}", joint=self.name, field="limit")
 
     @property
     def rest_value(self) -> float:

@@ -42,6 +42,7 @@ from .timeconv import (
 )
 from .timed import Timed
 from .timeline import QueryTimeline, TimedSource, plan_query_timeline
+from .weave import Weave
 
 __all__ = ["Pose", "trusted_pose"]
 
@@ -71,7 +72,7 @@ class Pose(Timed):
     raises numpy's ``ValueError``; copy them (``np.array(pose.translation)``) to edit.
     """
 
-    __slots__ = ("_keyframes", "_reference", "_rotation", "_times", "_translation")
+    __slots__ = ("_keyframes", "_reference", "_rotation", "_times", "_translation", "_weave")
 
     def __init__(
         self,
@@ -92,6 +93,7 @@ class Pose(Timed):
         self._times = None if axis is None else readonly(axis.offsets)
         self._reference = None if axis is None else axis.reference
         self._keyframes: Keyframes | None = None
+        self._weave: Weave | None = None
 
     # -- construction --------------------------------------------------------------------
     @classmethod
@@ -113,6 +115,7 @@ class Pose(Timed):
         pose._times = None if times is None else readonly(times)
         pose._reference = reference
         pose._keyframes = None
+        pose._weave = None
         return pose
 
     @classmethod
@@ -213,8 +216,9 @@ class Pose(Timed):
         """A pose moving along the polyline ``points`` (N, 3), metres (or a pint length):
         a seam frame. ``speed`` in m/s (or a pint speed).
 
-        Axes at each point: x the travel direction (central difference of the neighbours;
-        at the ends the one-sided difference of the same order, the parabola through the
+        Axes at each point: x the travel direction (the direction there of the parabola
+        through the point and its neighbours, parametrised by the length along the chords:
+        the three-point non-uniform difference; at the ends that of the parabola through the
         first or last three points), z the point's ``normals`` row ((N, 3), or one (3,)
         normal for all) made perpendicular to x, y = z x x. Give exactly one of ``speed`` (m/s: the
         first point at time 0, each next one after its distance along the polyline) and
@@ -224,8 +228,8 @@ class Pose(Timed):
 
         Raises :class:`~pinframes.errors.InvalidPoseError` naming the point (``points[3]``,
         ``normals[3]``, ``times[3]``): fewer than 2 points, a point repeating the one before
-        it, a curve turning back on itself, a normal parallel to the travel direction, times
-        that do not increase.
+        it, a curve turning back on itself (within 0.01 degrees of straight back), a normal
+        parallel to the travel direction, times that do not increase.
         """
         path = _as_float_array(metres(points, "points"), "points")
         rotation = curve_rotations(
@@ -253,7 +257,47 @@ class Pose(Timed):
                 field=f"times[{index}]")
         return cls(path, rotation, times, reference_time)
 
+    @classmethod
+    def weave(
+        cls, amplitude: float, frequency: float, *, times: Any, pattern: str = "triangle",
+        dwell: float | None = None, reference_time: Any = None,
+    ) -> Pose:
+        """A weave: a pose moving across its parent's y axis (and, for ``"circle"``, along
+        its x) by up to ``amplitude`` metres (or a pint length) at ``frequency`` Hz (or a
+        pint frequency), starting on the centre line at the first of ``times``; put the
+        torch target under it. Its axes are the parent's.
+
+        ``pattern`` is ``"triangle"``, ``"sine"``, ``"trapezoid"`` (with ``dwell``, the
+        fraction of each period held at the two edges, in (0, 1)) or ``"circle"``; the
+        offsets are defined in :class:`~pinframes.Weave`. The pose holds the
+        pattern's exact offsets at ``times`` (at least two, strictly increasing, any time
+        form, ``reference_time`` as for :class:`Pose`) and moves linearly between them, as
+        every pose does: sample the sine and the circle finely, and the triangle's and
+        trapezoid's corners to keep them. :attr:`weaving` keeps the pattern (a scene
+        writes it as a ``weave`` entry).
+
+        Raises :class:`~pinframes.errors.InvalidPoseError` naming the field (``amplitude``,
+        ``frequency``, ``pattern``, ``dwell``, ``times``).
+        """
+        pattern_spec = Weave(metres(amplitude, "amplitude"),
+                             magnitude_in(frequency, "hertz", "frequency"), pattern, dwell)
+        axis = _time_axis(times, reference_time)
+        if axis is None or axis.offsets.shape[0] < 2:
+            raise InvalidPoseError("a weave needs at least two times", field="times")
+        seconds = (axis.offsets - axis.offsets[0]) / 1e9
+        count = axis.offsets.shape[0]
+        pose = cls._trusted(np.broadcast_to(np.eye(3), (count, 3, 3)).copy(),
+                            pattern_spec.offsets(seconds), axis.offsets, axis.reference)
+        pose._weave = pattern_spec
+        return pose
+
     # -- attributes ----------------------------------------------------------------------
+    @property
+    def weaving(self) -> Weave | None:
+        """The weave pattern of a pose made by :meth:`weave`; None for every other pose
+        (what an operation on a weave returns included)."""
+        return self._weave
+
     @property
     def translation(self) -> FloatArray:
         """Origin in the reference frame, metres: shape (3,) or (T, 3)."""

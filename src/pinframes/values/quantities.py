@@ -16,7 +16,8 @@ from ..errors import InvalidPoseError, InvalidTimeError, PinframesError
 __all__ = ["is_quantity", "magnitude_in", "metres", "radians", "seconds"]
 
 _KINDS = {"meter": "a length", "radian": "an angle", "second": "a time",
-          "meter / second": "a speed", "dimensionless": "plain numbers"}
+          "meter / second": "a speed", "hertz": "a frequency",
+          "dimensionless": "plain numbers"}
 
 
 def is_quantity(value: object) -> bool:
@@ -27,8 +28,8 @@ def is_quantity(value: object) -> bool:
 def magnitude_in(value: Any, unit: str, field: str,
                  error: type[PinframesError] = InvalidPoseError) -> Any:
     """``value``'s magnitude in ``unit`` (``"meter"``, ``"radian"``, ``"second"``,
-    ``"meter / second"`` or ``"dimensionless"``) when it is a pint quantity, else ``value``
-    unchanged.
+    ``"meter / second"``, ``"hertz"`` or ``"dimensionless"``) when it is a pint quantity,
+    else ``value`` unchanged.
 
     A quantity that cannot be converted (a length for an angle) is an ``error`` at ``field``
     naming its unit. Angles accept plain dimensionless quantities, as pint does.

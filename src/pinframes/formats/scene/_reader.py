@@ -57,7 +57,7 @@ _TOP_KEYS = {SCENE_FORMAT_KEY, "name", "root", "reference_time", "layers", "fram
 _POSE_KEYS = {"xyz", "rpy", "quaternion"}
 _ENTRY_KEYS = {
     "layers": {"file", "mount", "prefix", "key"},
-    "frames": {"name", "parent", "keyframes", "curve", "reference_time",
+    "frames": {"name", "parent", "keyframes", "curve", "weave", "reference_time",
                "geometry"} | _POSE_KEYS,
     "robots": {"name", "urdf", "parent", "prefix", "trajectory", "srdf", "package_dirs",
                "xacro_args"} | _POSE_KEYS,
@@ -69,6 +69,7 @@ _KEYFRAME_KEYS = {"time"} | _POSE_KEYS
 _CURVE_KEYS = {"points", "normals", "arc", "speed", "duration", "times"}
 _CURVE_TIMINGS = ("speed", "duration", "times")
 _ARC_KEYS = {"centre", "axis", "start", "angle", "count"}
+_WEAVE_KEYS = {"amplitude", "frequency", "pattern", "dwell", "times", "duration", "step"}
 
 
 @dataclass
@@ -267,7 +268,13 @@ class _Scene:
         if "keyframes" in item and "curve" in item:
             raise FileFormatError("give either keyframes or curve, not both", file=self.path,
                                   frame=name, field=f"{field}.curve")
-        if "curve" in item:
+        if "weave" in item:
+            if {"keyframes", "curve"} & set(item) or _POSE_KEYS & set(item):
+                raise FileFormatError("a weave frame takes its pose from the weave: no "
+                                      "keyframes, curve, xyz, rpy or quaternion",
+                                      file=self.path, frame=name, field=f"{field}.weave")
+            pose = self._weave(item, name, field)
+        elif "curve" in item:
             if _POSE_KEYS & set(item):
                 raise FileFormatError("a curve frame takes its pose from the curve: no xyz, "
                                       "rpy or quaternion", file=self.path, frame=name,
@@ -276,7 +283,7 @@ class _Scene:
         elif "keyframes" in item:
             pose = self._keyframes(item, static, name, field)
         elif "reference_time" in item:
-            raise FileFormatError("a reference_time needs keyframes or a curve",
+            raise FileFormatError("a reference_time needs keyframes, a curve or a weave",
                                   file=self.path, frame=name, field=f"{field}.reference_time")
         return self._inline(item, name, parent, pose, field)
 
@@ -450,6 +457,54 @@ class _Scene:
             raise FileFormatError(exc.message, file=self.path, frame=frame,
                                   field=where + inner) from None
 
+    def _weave(self, item: dict, frame: str, field: str) -> Pose:
+        """A frame weaving across its parent's y axis (``Pose.weave``), sampled at ``times``
+        or every ``step`` seconds from 0 through ``duration``."""
+        where = f"{field}.weave"
+        weave = item["weave"]
+        self._check_keys(weave, _WEAVE_KEYS, frame, where)
+        for key in ("amplitude", "frequency"):
+            if key not in weave:
+                raise FileFormatError("missing", file=self.path, frame=frame,
+                                      field=f"{where}.{key}")
+        if ("times" in weave) == ("duration" in weave or "step" in weave):
+            raise FileFormatError("give either times or duration (s) with step (s)",
+                                  file=self.path, frame=frame, field=where)
+        times = weave.get("times")
+        if times is None:
+            times = self._time_grid(weave, frame, where)
+        reference = None
+        if "reference_time" in item:
+            reference = self._timestamp(item["reference_time"], frame,
+                                        f"{field}.reference_time")
+        amplitude = self._positive(weave["amplitude"], frame, f"{where}.amplitude")
+        frequency = self._positive(weave["frequency"], frame, f"{where}.frequency")
+        try:
+            return Pose.weave(amplitude, frequency, times=times,
+                              pattern=weave.get("pattern", "triangle"),
+                              dwell=weave.get("dwell"), reference_time=reference)
+        except PinframesError as exc:
+            inner = "" if exc.field is None else f".{exc.field}"
+            raise FileFormatError(exc.message, file=self.path, frame=frame,
+                                  field=where + inner) from None
+
+    def _time_grid(self, weave: dict, frame: str, where: str) -> np.ndarray:
+        """Times (timedelta64[ns]) every ``step`` seconds from 0 through ``duration``."""
+        for key in ("duration", "step"):
+            if key not in weave:
+                raise FileFormatError("missing", file=self.path, frame=frame,
+                                      field=f"{where}.{key}")
+        duration_ns = round(self._positive(weave["duration"], frame, f"{where}.duration") * 1e9)
+        step_ns = round(self._positive(weave["step"], frame, f"{where}.step") * 1e9)
+        if step_ns == 0:
+            raise FileFormatError("the step is below a nanosecond", file=self.path,
+                                  frame=frame, field=f"{where}.step")
+        count = duration_ns // step_ns + 1
+        if count > current_limits().max_samples:
+            raise exceeded("max_samples", f"the weave has {count:,} samples",
+                           field=f"{where}.step", frame=frame).located(file=self.path)
+        return (step_ns * np.arange(count, dtype=np.int64)).astype("timedelta64[ns]")
+
     def _arc(self, arc: Any, frame: str, field: str) -> tuple[np.ndarray, np.ndarray]:
         """Points (count, 3) of a circular arc and their normals, away from its centre."""
         self._check_keys(arc, _ARC_KEYS, frame, field)
@@ -477,6 +532,12 @@ class _Scene:
         if not np.linalg.norm(radial) > 0.0 or angle == 0.0:
             raise FileFormatError("the arc has no length: start on the axis or angle 0",
                                   file=self.path, frame=frame, field=field)
+        step = angle / (count - 1)
+        if abs(step) >= np.pi:
+            raise FileFormatError(
+                f"the arc turns by {np.degrees(step):g} degrees from point to point, half a "
+                "turn or more, so its points do not follow it (whole turns stand still): "
+                "give more points (count)", file=self.path, frame=frame, field=field)
         turns = matrix_from_axis_angle(axis, np.linspace(0.0, angle, count))
         points = centre + turns @ (start - centre)
         return points, turns @ (radial / np.linalg.norm(radial))

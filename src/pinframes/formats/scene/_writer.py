@@ -1,7 +1,8 @@
 """Writing a :class:`FrameTree` as a self-contained scene file (inline frames only).
 
 Every frame becomes an inline frame with its pose in its parent: ``xyz`` in metres and a
-``quaternion`` ``(x, y, z, w)``, to double precision. Moving frames get their keyframes.
+``quaternion`` ``(x, y, z, w)``, to double precision. Moving frames get their keyframes; a
+weave (:meth:`Pose.weave`) keeps its pattern as a ``weave`` entry.
 A link driven by a robot joint becomes a moving frame keyed at its joint's trajectory
 samples, which is exact: between two samples a revolute joint turns about a fixed axis, as
 SLERP does, and a prismatic joint slides, as linear interpolation does. Joint kinds, limits
@@ -68,6 +69,10 @@ def write_scene(tree: FrameTree, path: str | os.PathLike[str], time: Any = None)
     for name in tree.frames[1:]:
         parent = tree.parent(name)
         assert parent is not None  # every frame but the root has one
+        weave = tree.local_pose(name)
+        if instant is None and weave.weaving is not None:
+            frames.append(_weave_entry(name, parent, weave, tree.reference_time))
+            continue
         if instant is None:
             check_joint_steps(tree, name)
             pose = tree.pose(name, relative_to=parent)
@@ -113,8 +118,7 @@ def _frame_entry(name: str, parent: str, pose: Pose, tree_reference: np.datetime
     if not pose.is_time_dependent:
         entry.update(_pose_fields(pose.translation, pose.quaternion))
         return entry
-    if pose.reference_time is not None and pose.reference_time != tree_reference:
-        entry["reference_time"] = str(pose.reference_time)
+    entry.update(_own_reference(pose, tree_reference))
     quaternions = pose.quaternion
     entry["keyframes"] = [
         _Keyframe(time=_time_value(int(offset)), **_pose_fields(translation, quaternion))
@@ -122,6 +126,38 @@ def _frame_entry(name: str, parent: str, pose: Pose, tree_reference: np.datetime
             pose.keyframes.times, pose.translation, quaternions, strict=True)
     ]
     return entry
+
+
+def _weave_entry(name: str, parent: str, pose: Pose, tree_reference: np.datetime64 | None
+                 ) -> dict[str, Any]:
+    """A ``weave`` entry: the pattern of :attr:`Pose.weaving`, sampled at the pose's times
+    (``duration`` and ``step`` when they are every step from 0, else the ``times``)."""
+    weave = pose.weaving
+    assert weave is not None  # the caller checked
+    fields: dict[str, Any] = {"amplitude": float(weave.amplitude),
+                              "frequency": float(weave.frequency), "pattern": weave.pattern}
+    if weave.dwell is not None:
+        fields["dwell"] = float(weave.dwell)
+    offsets = pose.keyframes.times
+    step = int(offsets[1] - offsets[0])
+    grid = _time_value(step), _time_value(int(offsets[-1]))
+    times = [_time_value(int(offset)) for offset in offsets]
+    if (offsets[0] == 0 and np.array_equal(offsets, step * np.arange(offsets.shape[0]))
+            and all(isinstance(value, float) for value in grid)):
+        fields["duration"], fields["step"] = grid[1], grid[0]
+    elif all(isinstance(value, float) for value in times):
+        fields["times"] = times
+    else:  # one form for all: durations to the nanosecond
+        fields["times"] = [format_timedelta_iso(int(offset)) for offset in offsets]
+    return {"name": name, "parent": parent, **_own_reference(pose, tree_reference),
+            "weave": fields}
+
+
+def _own_reference(pose: Pose, tree_reference: np.datetime64 | None) -> dict[str, str]:
+    """``reference_time`` of a moving frame whose times count from another than the tree's."""
+    if pose.reference_time is not None and pose.reference_time != tree_reference:
+        return {"reference_time": str(pose.reference_time)}
+    return {}
 
 
 def _pose_fields(translation: np.ndarray, quaternion: np.ndarray) -> dict[str, list[float]]:

@@ -156,6 +156,11 @@ def _parse_joint(element: ET.Element, source: str) -> JointDescription:
     limit = element.find("limit")
     bounds = {key: _number(limit, key, source, name) for key in
               ("lower", "upper", "effort", "velocity")}
+    lower, upper = bounds["lower"], bounds["upper"]
+    if (joint_type in ("revolute", "prismatic") and lower is not None and upper is not None
+            and lower > upper):
+        raise FileFormatError(f"the lower limit {lower:g} is above the upper limit {upper:g}",
+                              file=source, joint=name, field="limit")
     mimic_element = element.find("mimic")
     mimic = None
     if mimic_element is not None:

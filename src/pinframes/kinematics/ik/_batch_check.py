@@ -12,7 +12,7 @@ from ...values.se3 import Transform, compose, inverse, samples_last, to_stacks
 from .._description import TreeDescription
 from .._plan import PreparedPath
 from .._sampling import sample_joints
-from ._tool_error import AxisError, PoseError
+from ._tool_error import ToolMatch
 
 __all__ = ["measure_solutions"]
 
@@ -22,7 +22,7 @@ FloatArray = NDArray[np.float64]
 def measure_solutions(
     tree: TreeDescription, path: PreparedPath, times: NDArray[np.int64], shifts: dict[str, int],
     joint_names: tuple[str, ...], positions: FloatArray, targets: Transform | None,
-    error: PoseError | AxisError,
+    error: ToolMatch,
 ) -> tuple[FloatArray, FloatArray]:
     """Position (m) and orientation (rad) errors, shape (N,), of the tool of ``path`` with
     the solved joints at ``positions`` (N, n) at ``times`` (timeline basis, ns).

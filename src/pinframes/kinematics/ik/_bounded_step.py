@@ -3,10 +3,11 @@
 The step ``d`` (radians or metres per joint) makes the linearised error vanish,
 ``rows @ d = -error``, in the least-squares sense and with the smallest norm: with as many
 joints as error rows it is the solution of the square system (LU), with more (a redundant
-arm, a free tool axis) the smallest step (nearest to a small drift towards the middle of the
-ranges; through ``rows @ rows.T``), with fewer the best fit (through ``rows.T @ rows``).
+arm, a free tool axis) the smallest step (through ``rows @ rows.T``: the least joint motion),
+with fewer the best fit (through ``rows.T @ rows``).
 ``damping > 0`` adds ``damping * |d|^2`` to what is minimised (Levenberg-Marquardt: shorter,
-safer steps near a singularity or when the target is out of reach). The normal equations
+safer steps near a singularity or when the target is out of reach); a step that turns a
+small error into a large motion is taken again damped (:data:`AMPLIFICATION`). The normal equations
 square the condition number; the next Newton iteration corrects what that costs, and a
 singular system is taken again with damping.
 
@@ -33,14 +34,20 @@ _LARGEST_STEP = 1e6
 """A step longer than this (radians or metres) comes from a singular system: it is taken
 again with damping."""
 
-DRIFT_RATE = 1e-3
-"""How far a redundant arm's step moves towards the middle of the joint ranges, per
-iteration (a fraction of the way): without it the smallest steps let such an arm wander
-along its self-motion over a long path into its limits (the Panda of bench_ik.py did after
-a few hundred seconds at 100 Hz)."""
-
 _SINGULAR_DAMPING = 1e-9
 """The damping of a step whose undamped system is singular (error units squared)."""
+
+AMPLIFICATION = 1e3
+"""A step whose joint changes sum to more than this times the error's size (radians or
+metres per metre or radian) comes from a system near a singular configuration: its
+smallest singular values turn small errors into large motions along the directions the tool
+barely feels (a wrist's two axes in line trading turns). It is taken again with
+:data:`NEAR_SINGULAR_DAMPING`."""
+
+NEAR_SINGULAR_DAMPING = 1e-6
+"""The damping of a step near a singular configuration (metres or radians squared): it
+leaves directions whose singular value is well above its square root (1e-3) as they are
+and holds still the ones below."""
 
 
 class JointLimits:
@@ -55,10 +62,6 @@ class JointLimits:
     def __init__(self, lower: FloatArray, upper: FloatArray) -> None:
         self.lower, self.upper = lower, upper
         self._lower, self._upper = lower.tolist(), upper.tolist()
-        bounded = np.isfinite(lower) & np.isfinite(upper)
-        self._drift_rate = DRIFT_RATE * bounded
-        middle = (np.where(bounded, lower, 0.0) + np.where(bounded, upper, 0.0)) / 2
-        self._drift_to = self._drift_rate * middle
 
     def contain(self, values: list[float]) -> bool:
         """Whether every value lies within its joint's limits (NaN does not); Python floats,
@@ -72,11 +75,6 @@ class JointLimits:
         outside, infinite when no joint is bounded."""
         return min(min(map(operator.sub, values, self._lower)),
                    min(map(operator.sub, self._upper, values)))
-
-    def drift(self, theta: FloatArray) -> FloatArray:
-        """A small move of ``theta`` towards the middle of each bounded joint's range:
-        :data:`DRIFT_RATE` of the way (continuous joints keep still)."""
-        return self._drift_to - self._drift_rate * theta
 
     def clipped(self, theta: FloatArray) -> FloatArray:
         """``theta`` moved onto the limits where it lies outside them (a new array)."""
@@ -96,10 +94,25 @@ class LeastSquares:
     def __init__(self) -> None:
         self._lu: dict[int, Any] = {}  # Eigen's partial-pivoting LU, by size
         self._llt: dict[int, Any] = {}  # Eigen's Cholesky, by size
+        self._undamped: FloatArray | None = None  # the rows of the latest undamped solve
+
+    def row_space_part(self, rows: FloatArray, motion: FloatArray) -> FloatArray:
+        """The part of ``motion`` (n,) that ``rows`` (m, n) feel, ``A^+ A motion``, with
+        :data:`NEAR_SINGULAR_DAMPING`; for the rows of the latest solve when it was
+        undamped (so not near a singular configuration) from its decomposition: all of
+        ``motion`` for a square system, one Cholesky solve for a redundant one."""
+        count, joints = rows.shape
+        if rows is self._undamped:
+            if joints == count:
+                return motion
+            if joints > count:
+                return self._llt[count].solve(rows.dot(motion)).dot(rows)  # type: ignore[no-any-return]
+        return self.correction(rows, rows.dot(motion), NEAR_SINGULAR_DAMPING)
 
     def correction(self, rows: FloatArray, error: FloatArray, damping: float) -> FloatArray:
         """``c`` (n,) for ``rows`` (m, n) and ``error`` (m,)."""
         count, joints = rows.shape
+        self._undamped = rows if damping == 0.0 and joints >= count else None
         if damping == 0.0 and count == joints:
             correction = _of_size(self._lu, eigenpy.PartialPivLU, count).compute(rows).solve(
                 error)
@@ -131,37 +144,36 @@ def _of_size(decompositions: dict[int, Any], kind: Any, size: int) -> Any:
 
 
 def bounded_step(solver: LeastSquares, rows: FloatArray, error: FloatArray, theta: FloatArray,
-                 limits: JointLimits, damping: float, longest_step: float, margin: float
-                 ) -> tuple[FloatArray, bool, float]:
+                 limits: JointLimits, damping: float, longest_step: float, margin: float,
+                 error_size: float) -> tuple[FloatArray, bool, float]:
     """The joint values after a least-squares Newton step from ``theta``: at most
     ``longest_step`` (radians or metres) per joint, within the ``limits`` (joints that would
     cross one are fixed on it); whether that was the full step (not shortened, not limited,
     its system not singular); and a lower bound of their ``limits.margin`` (0: not known).
 
-    With more joints than rows, the step is the one closest to ``limits.drift(theta)``
-    (a small move towards the middle of the ranges) instead of the shortest.
-
     ``margin``: a lower bound of ``limits.margin`` of ``theta`` (0: not known). A step whose
     joint changes sum to less than half of it stays inside the limits, by at least the
-    margin less that sum: no need to check them joint by joint (the usual tracked sample)."""
-    count, joints = rows.shape
-    if joints > count:
-        drift = limits.drift(theta)
-        correction = solver.correction(rows, error + rows.dot(drift), damping)
-        correction -= drift
-    else:
-        correction = solver.correction(rows, error, damping)
+    margin less that sum: no need to check them joint by joint (the usual tracked sample).
+
+    ``error_size``: how large the error is (the position error in metres plus the
+    orientation error in radians): a step whose joint changes sum to more than
+    :data:`AMPLIFICATION` times it comes from a near-singular system."""
+    correction = solver.correction(rows, error, damping)
     values = correction.tolist()
     total = sum(map(abs, values))  # NaN when one is
-    if total <= longest_step and total < margin / 2:  # (half: a margin for rounding)
+    near_singular = not total <= AMPLIFICATION * error_size
+    if near_singular and damping < NEAR_SINGULAR_DAMPING:
+        damping = NEAR_SINGULAR_DAMPING
+        correction = solver.correction(rows, error, damping)
+        values = correction.tolist()
+        total = sum(map(abs, values))
+    elif total <= longest_step and total < margin / 2:  # (half: a margin for rounding)
         return theta - correction, True, margin - total
     longest = max(max(values), -min(values)) if values else 0.0
-    if longest <= longest_step:
+    if longest <= longest_step and not near_singular:
         stepped = theta - correction
         if limits.contain(stepped.tolist()):
             return stepped, True, 0.0
-    if not longest < _LARGEST_STEP:  # a singular system
-        correction = solver.correction(rows, error, max(damping, _SINGULAR_DAMPING))
     step = _within_limits(solver, rows, error, theta, -correction, limits, damping)
     values = step.tolist()
     longest = max(max(values), -min(values)) if values else 0.0

@@ -1,26 +1,47 @@
 """The solver loop of ``FrameTree.solve_joints``: damped Newton on Pinocchio, sample by sample.
 
-Each sample starts from a prediction: the previous solution carried on by the step between
-the last two (scaled by the ratio of the time steps), when both reached their targets; the
-first sample starts from the seed (:class:`TrackingHistory`). So the solution follows one
-branch (no elbow or wrist flips) and usually takes one Newton step per sample. The
-prediction comes with a lower bound of how far it lies inside the joint limits, carried from
-sample to sample: the limits are checked joint by joint only when that bound runs out.
+Each sample starts from the previous solution carried on by the step between the last two
+(scaled by the ratio of the time steps), when both reached their targets and the time step is
+at most :data:`LONGEST_PREDICTION` times the one before; else from the previous solution; the
+first sample starts from the seed (:class:`TrackingHistory`). The carried step keeps only its
+part that moves the tool (its damped projection on the rows of the previous sample: all of it
+away from singular configurations, with as many joints as rows), and every Newton step is the
+smallest: with more joints than rows (a 7-axis arm, a free tool axis, a positioner solved
+with the robot) the solution is the smallest joint motion
+from the previous sample, with no self-motion carried on. So it follows one branch (no
+elbow or wrist flips), usually with one Newton step per sample. A sample whose target and
+everything else stand still starts from the last solution, already on it: a static target
+gives a static solution. The prediction comes with a lower bound of how far it lies inside the joint
+limits, carried from sample to sample: the limits are checked joint by joint only when that
+bound runs out.
+
+A start whose tool lies far from its target (more than :data:`BRIDGE_LENGTH` or
+:data:`BRIDGE_ANGLE`: after a long gap between samples, from a seed, on the way back after
+an unreachable stretch) is bridged: Newton solves for intermediate targets along the
+straight screw motion from where the tool is to the target (metres and radians in
+proportion), each from the one before, then for the target. The branch the motion is on is
+kept, where one large step could cross to another.
 
 An iteration sets the configuration, runs Pinocchio's ``forwardKinematics``, and measures the
 tool in the target (:mod:`._tool_error`); when both errors are within their tolerances the
 sample is reached. Otherwise ``computeFrameJacobian`` (``LOCAL``) gives the rows and
 :func:`._bounded_step.bounded_step` the step within the limits, at most
 :data:`LONGEST_STEP` per joint. A step that does not lower the error is taken back and tried
-again with more damping (Levenberg-Marquardt), less after one that does. A full Newton step
-(undamped, not shortened, within the limits) taken from errors within
-:func:`quadratic_region` lands within the tolerances: the sample is taken as solved there
-without measuring it again, and :mod:`._batch_check` measures such samples afterwards, many
-at once, and solves again the rare one that missed (:func:`solve_again`). A sample that is not
-reached after :data:`MAX_ITERATIONS`, or whose damping grows past :data:`MAX_DAMPING`, keeps
-the best configuration found (the closest within the limits); the next sample starts from
-the last solution that reached its target, then from that closest configuration: the solver
-finds its way back, onto the branch it left, when the target comes back into reach.
+again with more damping (Levenberg-Marquardt), less after one that does: near a singular
+configuration the damped step still lowers the error, and the damping falls back to zero
+once it is past. A full Newton step (undamped, not shortened, within the limits) taken from
+errors within :func:`quadratic_region` lands within the tolerances: the sample is taken as
+solved there without measuring it again, and :mod:`._batch_check` measures such samples
+afterwards, many at once, and solves again the rare one that missed (:func:`solve_again`). A
+sample that is not reached after :data:`MAX_ITERATIONS`, or whose damping grows past
+:data:`MAX_DAMPING`, keeps the best configuration found (the closest within the limits); the
+next sample starts from the last solution that reached its target, then from that closest
+configuration: the solver finds its way back, onto the branch it left, when the target comes
+back into reach.
+
+A reached sample is then offered to the secondary objective (:mod:`._null_space`: keeping
+the joints out of the bands along their limits), exactly in the null space of the task and
+only where the tool gets back within its tolerances.
 
 Measured against a per-sample loop of pink with a QP solver (benchmarks/bench_ik.py): the
 QP pink solves per iteration costs more than this whole step; the limits need a QP only on
@@ -38,11 +59,13 @@ import pinocchio as pin
 from numpy.typing import NDArray
 
 from ._bounded_step import LeastSquares, bounded_step
+from ._null_space import NullSpaceObjective, null_space_motion
 from ._solved_joints import SolvedJoints
-from ._tool_error import AxisError, PoseError
+from ._tool_error import PoseMatch, ToolMatch
 
-__all__ = ["LONGEST_STEP", "MAX_DAMPING", "MAX_ITERATIONS", "Tracked", "TrackingHistory",
-           "TrackingProblem", "quadratic_region", "solve_again", "track_targets"]
+__all__ = ["BRIDGE_ANGLE", "BRIDGE_LENGTH", "LONGEST_PREDICTION", "LONGEST_STEP",
+           "MAX_DAMPING", "MAX_ITERATIONS", "Tracked", "TrackingHistory", "TrackingProblem",
+           "quadratic_region", "solve_again", "track_targets"]
 
 FloatArray = NDArray[np.float64]
 
@@ -61,6 +84,25 @@ LONGEST_STEP = 0.5
 """Largest change of one joint in one iteration, radians or metres: far from the target, a
 Newton step is only a direction."""
 
+LONGEST_PREDICTION = 2.0
+"""The largest ratio of a time step to the one before by which the last step is carried on:
+after a longer gap the sample starts from the last solution (and is bridged)."""
+
+BRIDGE_LENGTH = 0.05
+"""Metres of the tool's travel per intermediate target of a bridge."""
+
+BRIDGE_ANGLE = 0.2
+"""Radians of the tool's turn per intermediate target of a bridge."""
+
+BRIDGE_TOLERANCE = 1e-4
+"""Metres and radians within which an intermediate target counts as reached."""
+
+BRIDGE_ITERATIONS = 20
+"""Newton iterations at most per intermediate target; one not reached ends the bridge."""
+
+MAX_BRIDGE_PARTS = 1000
+"""Intermediate targets at most (a target kilometres away, out of reach anyway)."""
+
 FIRST_DAMPING = 1e-6
 """Damping of the first retried step (error units squared, after the tolerances scale the
 errors to 1)."""
@@ -75,6 +117,9 @@ a full Newton step from an error ``e`` leaves about ``CURVATURE * e**2``."""
 
 _LOCAL = pin.ReferenceFrame.LOCAL
 """Pinocchio's frame of a Jacobian in the tool's own axes."""
+
+_WHOLE_POSE = PoseMatch()
+"""What intermediate targets of a bridge match."""
 
 
 def quadratic_region(tolerance: float) -> float:
@@ -103,7 +148,7 @@ class TrackingProblem:
         quaternion); None: the reference frame itself.
     joints : SolvedJoints
         The unknowns and their limits.
-    error : PoseError or AxisError
+    error : PoseMatch or AxisMatch
         What must match.
     position_tolerance, orientation_tolerance : float
         Metres and radians.
@@ -111,6 +156,11 @@ class TrackingProblem:
         Per sample, its time step over the previous one (for the prediction).
     solver : LeastSquares
         The linear algebra of the steps (kept from one stretch to the next).
+    objective : NullSpaceObjective or None
+        The secondary objective, served in the task's null space.
+    still : ndarray of bool, shape (N,), or None
+        Per sample, whether its target and everything not solved for are those of the
+        sample before (it starts from the last solution, not a prediction); None: none is.
     """
 
     model: pin.Model
@@ -120,11 +170,13 @@ class TrackingProblem:
     configurations: FloatArray
     targets: FloatArray | None
     joints: SolvedJoints
-    error: PoseError | AxisError
+    error: ToolMatch
     position_tolerance: float
     orientation_tolerance: float
     step_ratios: FloatArray
     solver: LeastSquares
+    objective: NullSpaceObjective | None = None
+    still: NDArray[np.bool_] | None = None
 
     @cached_property
     def position_region(self) -> float:
@@ -176,20 +228,17 @@ class TrackingHistory:
         self._last_margin = 0.0  # a lower bound of how far ``last`` lies inside the limits
         self._previous: FloatArray | None = None  # before ``last``, when both reached
 
-    def start(self, ratio: float) -> tuple[FloatArray, float]:
-        """The last solution carried on by the last step times ``ratio`` (the ratio of the
-        time steps), when both reached their targets, else the last solution (either may
-        lie a little outside the limits: the solver starts from the nearest values within);
-        and a lower bound of how far it lies inside the limits (0: not known): the last
-        solution's less the sum of the changes of the joints, each at least its own."""
-        if self._previous is None:
-            return self.last, self._last_margin
+    def start(self, ratio: float) -> tuple[FloatArray, FloatArray | None, float]:
+        """The last solution; the last step times ``ratio`` (the ratio of the time steps)
+        when both reached their targets and ``ratio`` is at most :data:`LONGEST_PREDICTION`,
+        else None; and a lower bound of how far the last solution lies inside the limits
+        (0: not known)."""
+        if self._previous is None or not ratio <= LONGEST_PREDICTION:
+            return self.last, None, self._last_margin
         step = self.last - self._previous
-        changes = sum(map(abs, step.tolist()))  # NaN when one is
         if ratio != 1.0:
             step *= ratio
-        step += self.last
-        return step, self._last_margin - ratio * changes
+        return self.last, step, self._last_margin
 
     def add(self, theta: FloatArray, reached: bool, margin: float) -> None:
         """Record the solution of the sample just solved, with a lower bound of how far it
@@ -210,16 +259,25 @@ def track_targets(problem: TrackingProblem, history: TrackingHistory,
     configuration before it; the better of the two counts. With ``stop_when_unreached`` the
     loop ends after the first sample that is not reached (the results stop there).
     """
-    solve = _SampleSolver(problem).solve
+    sample_solver = _SampleSolver(problem)
+    solve, predicted = sample_solver.solve, sample_solver.predicted
     solutions: list[Solved] = []
-    for index, ratio in enumerate(problem.step_ratios.tolist()):
+    ratios = problem.step_ratios.tolist()
+    stills = [False] * len(ratios) if problem.still is None else problem.still.tolist()
+    for index, (ratio, still) in enumerate(zip(ratios, stills, strict=True)):
         if not history.after_a_miss:
-            theta, margin = history.start(ratio)
-            solved = solve(index, theta, margin, True)
+            last, step, margin = history.start(ratio)
+            if still:  # nothing moved: the last solution stands (no objective either)
+                solved = solve(index, last, margin, True, False, False)
+            elif step is None:
+                solved = solve(index, last, margin, True, True)
+            else:
+                theta, margin = predicted(last, step, margin)
+                solved = solve(index, theta, margin, True, False)
         else:
-            solved = solve(index, history.last_on_target, 0.0, True)
+            solved = solve(index, history.last_on_target, 0.0, True, True)
             if not solved[3]:
-                closer = solve(index, history.last, 0.0, True)
+                closer = solve(index, history.last, 0.0, True, True)
                 if closer[3] or _cost(problem, closer) < _cost(problem, solved):
                     solved = closer
         solutions.append(solved)
@@ -233,16 +291,16 @@ def track_targets(problem: TrackingProblem, history: TrackingHistory,
 
 
 def _cost(problem: TrackingProblem, solved: Solved) -> float:
-    """The errors of a measured solution, scaled by the tolerances, squared and summed."""
-    return ((solved[1] / problem.position_tolerance) ** 2
-            + (solved[2] / problem.orientation_tolerance) ** 2)
+    """The errors of a measured solution scaled by the tolerances, their Euclidean norm."""
+    return math.hypot(solved[1] / problem.position_tolerance,
+                      solved[2] / problem.orientation_tolerance)
 
 
 def solve_again(problem: TrackingProblem, index: int, theta: FloatArray) -> Solution:
     """Sample ``index`` solved from ``theta`` and measured: the solution, its position and
     orientation errors (m, rad) and whether it is reached."""
     solution, position, orientation, reached, _ = _SampleSolver(problem).solve(
-        index, theta, 0.0, trust_newton=False)
+        index, theta, 0.0, trust_newton=False, bridge=True)
     return solution, position, orientation, reached
 
 
@@ -264,35 +322,129 @@ class _SampleSolver:
         self.position_region = problem.position_region
         self.orientation_region = problem.orientation_region
         self.least_squares = problem.solver
+        self.objective = problem.objective
+        self.objective_margin = -math.inf if self.objective is None else (
+            self.objective.quiet_margin)
+        self.rows: FloatArray | None = None  # the task's rows at the latest linearisation
 
-    def solve(self, index: int, theta: FloatArray, margin: float, trust_newton: bool
-              ) -> Solved:
-        """Damped Newton from ``theta`` for sample ``index``: the solution (the best
-        configuration when the target is not reached), its position and orientation errors,
-        whether it is reached and a lower bound of its margin inside the limits. ``margin``
-        is one of ``theta`` (0: not known, then ``theta`` is checked joint by joint). With
-        ``trust_newton``, a full step from within the quadratic region ends the sample
-        unmeasured: errors NaN, reached True."""
-        model, data, frame_id, reference_id = (self.model, self.data, self.frame_id,
-                                               self.reference_id)
-        joints, limits, error = self.joints, self.limits, self.error
+    def predicted(self, last: FloatArray, step: FloatArray, margin: float
+                  ) -> tuple[FloatArray, float]:
+        """``last`` carried on by the part of ``step`` that moves the tool (all of it for a
+        square system far from a singular configuration; its damped least-squares projection
+        on the last rows), and a lower bound of its margin inside the limits: ``last``'s less
+        the sum of the changes of the joints (NaN when one is)."""
+        if self.rows is not None:
+            step = self.least_squares.row_space_part(self.rows, step)
+        changes = sum(map(abs, step.tolist()))
+        return last + step, margin - changes
+
+    def solve(self, index: int, theta: FloatArray, margin: float, trust_newton: bool,
+              bridge: bool, serve: bool = True) -> Solved:
+        """Sample ``index`` from ``theta``, with ``bridge`` bridged when far from its target
+        (see the module docstring; a prediction is not far), then with ``serve`` offered to
+        the secondary objective: the solution (the best configuration when the target is
+        not reached), its position and orientation errors, whether it is reached and a lower
+        bound of its margin inside the limits. ``margin`` is one of ``theta`` (0: not known, then
+        ``theta`` is checked joint by joint). With ``trust_newton``, a full step from
+        within the quadratic region ends the sample unmeasured: errors NaN, reached True."""
         q = self.configurations[index]  # the solved joints are written into it
         target = None if self.targets is None else pin.XYZQUATToSE3(self.targets[index])
-        position_tolerance = self.position_tolerance
-        orientation_tolerance = self.orientation_tolerance
+        if not margin > 0.0:
+            margin = self.limits.margin(theta.tolist())
+            if not margin >= 0.0:  # a prediction past a limit
+                theta, margin = self.limits.clipped(theta), 0.0
+        if bridge:
+            bridged = self._bridge(q, target, theta)
+            if bridged is not theta:
+                theta, margin = bridged, 0.0
+        solved = self._newton(q, target, self.error, theta, margin, self.position_tolerance,
+                              self.orientation_tolerance, MAX_ITERATIONS, trust_newton)
+        if serve and solved[3] and solved[4] < self.objective_margin:
+            return self._served(q, target, solved)
+        return solved
+
+    def _bridge(self, q: FloatArray, target: pin.SE3 | None, theta: FloatArray
+                ) -> FloatArray:
+        """``theta`` when its tool lies close to ``target``, else the last intermediate
+        target's solution along the screw motion from the tool to it."""
+        tool_in_target = self._tool_in_target(q, theta, target)
+        aim = self.error.nearest_match(tool_in_target)
+        twist = pin.log6(aim.actInv(tool_in_target))
+        parts = max(math.hypot(*twist.linear.tolist()) / BRIDGE_LENGTH,
+                    math.hypot(*twist.angular.tolist()) / BRIDGE_ANGLE)
+        if not parts > 1.0:  # close by (or not finite)
+            return theta
+        count = math.ceil(min(parts, MAX_BRIDGE_PARTS))
+        goal_in_reference = aim if target is None else target.act(aim)
+        for part in range(1, count):
+            goal = goal_in_reference.act(pin.exp6(twist * (1.0 - part / count)))
+            reached = self._newton(q, goal, _WHOLE_POSE, theta, 0.0, BRIDGE_TOLERANCE,
+                                   BRIDGE_TOLERANCE, BRIDGE_ITERATIONS, False)
+            if not reached[3]:
+                break
+            theta = reached[0]
+        return theta
+
+    def _served(self, q: FloatArray, target: pin.SE3 | None, solved: Solved) -> Solved:
+        """``solved`` moved by the objective's motion in the task's null space, when the
+        tool gets back within its tolerances from there; else ``solved`` (with its margin
+        measured afresh when that is wide enough for the objective to ask nothing: the
+        bound carried from sample to sample stays above it for a while)."""
+        assert self.objective is not None
+        theta = solved[0]
+        margin = self.limits.margin(theta.tolist())
+        if margin >= self.objective_margin:
+            return solved[0], solved[1], solved[2], solved[3], margin
+        self.joints.set_configuration(q, theta)
+        motion = self.objective.motion(theta, q)
+        if motion is None:
+            return solved
+        tool_in_reference = self._tool_in_reference(q)  # the task's rows at the solution
+        rows = self.error.rows(self.joints.jacobian(self._tool_jacobian(q, tool_in_reference)))
+        moved = self.limits.clipped(theta + null_space_motion(self.least_squares, rows, motion))
+        served = self._newton(q, target, self.error, moved, 0.0, self.position_tolerance,
+                              self.orientation_tolerance, MAX_ITERATIONS, False)
+        return served if served[3] else solved
+
+    def _tool_in_target(self, q: FloatArray, theta: FloatArray, target: pin.SE3 | None
+                        ) -> pin.SE3:
+        """The tool in ``target`` (None: the reference frame) with the solved joints at
+        ``theta``; leaves ``q`` and Pinocchio's data at that configuration."""
+        self.joints.set_configuration(q, theta)
+        tool_in_reference = self._tool_in_reference(q)
+        return tool_in_reference if target is None else target.actInv(tool_in_reference)
+
+    def _tool_in_reference(self, q: FloatArray) -> pin.SE3:
+        """Forward kinematics of ``q``: the tool in the reference frame."""
+        model, data = self.model, self.data
+        pin.forwardKinematics(model, data, q)
+        tool_in_reference = pin.updateFramePlacement(model, data, self.frame_id)
+        if self.reference_id is not None:
+            tool_in_reference = pin.updateFramePlacement(model, data, self.reference_id).actInv(
+                tool_in_reference)
+        return tool_in_reference
+
+    def _newton(self, q: FloatArray, target: pin.SE3 | None, error: ToolMatch,
+                theta: FloatArray, margin: float, position_tolerance: float,
+                orientation_tolerance: float, iterations: int, trust_newton: bool) -> Solved:
+        """Damped Newton from ``theta`` (within the limits, ``margin`` a lower bound of how
+        far; 0: not known) until ``error`` is within the tolerances: the solution (the best
+        configuration when not), its errors, whether reached, a lower bound of its margin.
+        With ``trust_newton``, a full step from within the quadratic region ends unmeasured:
+        errors NaN, reached True."""
+        model, data, frame_id, reference_id = (self.model, self.data, self.frame_id,
+                                               self.reference_id)
+        joints, limits, least_squares = self.joints, self.limits, self.least_squares
         position_region = self.position_region if trust_newton else -1.0
         orientation_region = self.orientation_region
-        if not margin > 0.0:
-            margin = limits.margin(theta.tolist())
-            if not margin >= 0.0:  # a prediction past a limit
-                theta, margin = limits.clipped(theta), 0.0
         best, best_margin = theta, margin
         best_cost = best_position = best_orientation = math.inf
         rows = residual = theta  # set on the first iteration
+        first = True
         damping = 0.0
-        for _ in range(MAX_ITERATIONS):
+        for _ in range(iterations):
             joints.set_configuration(q, theta)
-            pin.forwardKinematics(model, data, q)
+            pin.forwardKinematics(model, data, q)  # as _tool_in_reference, inlined: per sample
             tool_in_reference = pin.updateFramePlacement(model, data, frame_id)
             if reference_id is not None:
                 tool_in_reference = pin.updateFramePlacement(model, data, reference_id).actInv(
@@ -302,20 +454,24 @@ class _SampleSolver:
             position, orientation, vector = error.measure(tool_in_target)
             if position <= position_tolerance and orientation <= orientation_tolerance:
                 return theta, position, orientation, True, margin
-            cost = ((position / position_tolerance) ** 2
-                    + (orientation / orientation_tolerance) ** 2)
-            if cost < best_cost:
+            # (hypot: no overflow for a target 1e155 m away; inf compares as the largest)
+            cost = math.hypot(position / position_tolerance,
+                              orientation / orientation_tolerance)
+            if cost < best_cost or first:
+                first = False
                 best, best_margin, best_cost, best_position, best_orientation = (
                     theta, margin, cost, position, orientation)
                 damping = 0.0 if damping <= FIRST_DAMPING else damping / 10.0
                 rows = error.rows(joints.jacobian(self._tool_jacobian(q, tool_in_reference)))
+                self.rows = rows
                 residual = vector
             else:  # take the step back, and damp it more
                 damping = max(10.0 * damping, FIRST_DAMPING)
                 if damping > MAX_DAMPING:
                     break
-            theta, full, margin = bounded_step(self.least_squares, rows, residual, best,
-                                               limits, damping, LONGEST_STEP, best_margin)
+            theta, full, margin = bounded_step(least_squares, rows, residual, best, limits,
+                                               damping, LONGEST_STEP, best_margin,
+                                               best_position + best_orientation)
             if (full and damping == 0.0 and best_position <= position_region
                     and best_orientation <= orientation_region):
                 return theta, math.nan, math.nan, True, margin
@@ -323,11 +479,12 @@ class _SampleSolver:
 
     def _tool_jacobian(self, q: FloatArray, tool_in_reference: pin.SE3) -> FloatArray:
         """The tool's ``LOCAL`` Jacobian (6, nv) relative to the reference frame: when solved
-        joints move the reference too, its motion (seen in the tool's axes) counts against."""
+        joints move the reference too, its motion (seen in the tool's axes) counts against.
+        (eigenpy hands a one-column matrix back as a vector: reshaped.)"""
         model, data = self.model, self.data
         if not self.joints.moves_reference:
-            return pin.computeFrameJacobian(model, data, q, self.frame_id, _LOCAL)
+            return pin.computeFrameJacobian(model, data, q, self.frame_id, _LOCAL).reshape(6, -1)
         pin.computeJointJacobians(model, data, q)
-        tool = pin.getFrameJacobian(model, data, self.frame_id, _LOCAL)
-        reference = pin.getFrameJacobian(model, data, self.reference_id, _LOCAL)
+        tool = pin.getFrameJacobian(model, data, self.frame_id, _LOCAL).reshape(6, -1)
+        reference = pin.getFrameJacobian(model, data, self.reference_id, _LOCAL).reshape(6, -1)
         return tool - tool_in_reference.inverse().action.dot(reference)

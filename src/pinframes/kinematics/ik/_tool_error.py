@@ -13,7 +13,7 @@ velocity, then the angular velocity, in the tool's axes) per unit rate of each j
   (``error = R^T p``) and the two angular ones across the axis (``error`` the rotation
   carrying the target's axis onto the tool's, written in the tool's axes).
 
-:meth:`PoseError.measure` gives the position error (m, the distance between the origins) and
+:meth:`PoseMatch.measure` gives the position error (m, the distance between the origins) and
 the orientation error (rad: the angle of the rotation between the frames, or between the two
 axes), which the tolerances are checked against.
 """
@@ -26,16 +26,18 @@ import numpy as np
 import pinocchio as pin
 from numpy.typing import NDArray
 
-__all__ = ["AXES", "AxisError", "PoseError"]
+__all__ = ["AXES", "AxisMatch", "PoseMatch", "ToolMatch"]
 
 FloatArray = NDArray[np.float64]
 
 AXES = ("x", "y", "z")
 """The tool axes that ``free_axis`` may name."""
 
+_IDENTITY = pin.SE3.Identity()
 
-class PoseError:
-    """The whole pose of the tool must match the target's."""
+
+class PoseMatch:
+    """What must match: the whole pose of the tool and the target's."""
 
     def measure(self, tool_in_target: pin.SE3) -> tuple[float, float, FloatArray]:
         """Position error (m), orientation error (rad) and the error vector (6,)."""
@@ -47,6 +49,10 @@ class PoseError:
     def rows(self, jacobian: FloatArray) -> FloatArray:
         """The rows of the Newton system from the tool's ``LOCAL`` Jacobian (6, n)."""
         return jacobian
+
+    def nearest_match(self, tool_in_target: pin.SE3) -> pin.SE3:
+        """The pose in the target's axes nearest to the tool that matches: the target."""
+        return _IDENTITY
 
     def errors(self, rotations: FloatArray, translations: FloatArray
                ) -> tuple[FloatArray, FloatArray]:
@@ -60,9 +66,9 @@ class PoseError:
         return np.linalg.norm(translations, axis=1), np.arctan2(sines, cosines)
 
 
-class AxisError:
-    """The tool's origin and one of its axes must match the target's; rotation about that
-    axis is free."""
+class AxisMatch:
+    """What must match: the tool's origin and one of its axes and the target's; rotation
+    about that axis is free."""
 
     def __init__(self, axis: str) -> None:
         self.axis = AXES.index(axis)
@@ -79,18 +85,31 @@ class AxisError:
         ahead, behind = target_axis[self._next], target_axis[self._after]
         sine = math.hypot(ahead, behind)
         angle = math.atan2(sine, target_axis[self.axis])
-        # the rotation carrying the target's axis onto the tool's: (target x tool) / sine *
-        # angle, whose components across the tool axis are (behind, -ahead) / sine * angle
-        scale = angle / sine if sine > 0.0 else 1.0
         error = np.empty(5)
         error[:3] = rotation.T.dot(offset)
-        error[3] = scale * behind
-        error[4] = -scale * ahead
+        if sine > 0.0:
+            # the rotation carrying the target's axis onto the tool's: (target x tool) / sine
+            # * angle, whose components across the tool axis are (behind, -ahead) / sine * angle
+            scale = angle / sine
+            error[3] = scale * behind
+            error[4] = -scale * ahead
+        else:  # aligned (angle 0), or opposite: half a turn about any axis across, the next
+            error[3] = angle
+            error[4] = 0.0
         return math.hypot(*offset.tolist()), angle, error
 
     def rows(self, jacobian: FloatArray) -> FloatArray:
         """The rows of the Newton system from the tool's ``LOCAL`` Jacobian (6, n)."""
         return jacobian[self._kept_rows]
+
+    def nearest_match(self, tool_in_target: pin.SE3) -> pin.SE3:
+        """The pose in the target's axes nearest to the tool that matches: the target turned
+        about its axis as far as the tool's next axis is, seen along that axis."""
+        next_axis = tool_in_target.rotation[:, self._next]
+        turn = math.atan2(next_axis[self._after], next_axis[self._next])
+        rotation = np.zeros(3)
+        rotation[self.axis] = turn
+        return pin.SE3(pin.exp3(rotation), np.zeros(3))
 
     def errors(self, rotations: FloatArray, translations: FloatArray
                ) -> tuple[FloatArray, FloatArray]:
@@ -100,3 +119,7 @@ class AxisError:
         sines = np.hypot(tool_axes[:, self._next], tool_axes[:, self._after])
         return (np.linalg.norm(translations, axis=1),
                 np.arctan2(sines, tool_axes[:, self.axis]))
+
+
+ToolMatch = PoseMatch | AxisMatch
+"""What a solve makes match between the tool and its target."""

@@ -2,11 +2,12 @@
 (inverse kinematics along a path).
 
 The path from the tool to the frame the target is given in is prepared as for a pose query
-(:mod:`._path`: a Pinocchio model rooted at their lowest common ancestor) and its times
-planned (:mod:`._times`) from every moving thing on it but the solved joints, whose samples
-are what is being solved for. Per chunk of samples, everything that is not solved for is
+(:mod:`._plan`: a Pinocchio model rooted at their lowest common ancestor) and its times
+planned from every moving thing on it but the solved joints, whose samples are what is
+being solved for. Per chunk of samples, everything that is not solved for is
 sampled into Pinocchio configurations (:func:`._sampling.sample_configurations`), then
-:mod:`._newton_tracking` solves sample after sample, each from the one before.
+:mod:`._newton_tracking` solves sample after sample, each from the one before; without a
+seed, the first stretch from the start :mod:`._starts` takes.
 """
 
 from __future__ import annotations
@@ -36,14 +37,24 @@ from ._newton_tracking import (
     solve_again,
     track_targets,
 )
+from ._null_space import AwayFromLimits
 from ._solved_joints import SolvedJoints, solved_joints
-from ._tool_error import AXES, AxisError, PoseError
+from ._starts import track_from_the_best_start
+from ._tool_error import AXES, AxisMatch, PoseMatch, ToolMatch
 from .joint_solution import JointSolution
 from .joint_speeds import require_within_speed, velocity_limits
 
-__all__ = ["evaluate_solve_joints"]
+__all__ = ["SMALLEST_TOLERANCE", "STILL", "evaluate_solve_joints"]
 
 FloatArray = NDArray[np.float64]
+
+SMALLEST_TOLERANCE = 1e-12
+"""The smallest position (m) and orientation (rad) tolerance: errors of poses a few metres
+from their origin are not resolved much below it in double precision."""
+
+STILL = 1e-12
+"""Metres, radians or quaternion components by which a sample may differ from the one
+before and still stand still (interpolation between equal keyframes rounds)."""
 
 _TARGET_SOURCE = "<target pose>"
 """Name of a time-dependent target pose among the timeline's sources."""
@@ -56,7 +67,7 @@ def evaluate_solve_joints(
 ) -> JointSolution:
     """``tree.solve_joints(...)``; ``frame`` (and a target frame name) already checked."""
     reference, target_pose = _reference(tree, frame, target, relative_to)
-    error = _tool_error(free_axis, frame)
+    error = _tool_match(free_axis, frame)
     tolerances = (_tolerance(position_tolerance, "position_tolerance", frame),
                   _tolerance(orientation_tolerance, "orientation_tolerance", frame))
     # a time-dependent target's times are the solve's, beside those of what moves
@@ -80,16 +91,22 @@ def evaluate_solve_joints(
     start = _seed(tree, solved, seed, int(moments[0]), shifts, frame)
     history = TrackingHistory(start)
     solver = LeastSquares()
+    objective = AwayFromLimits(solved.limits)
     parts: list[Tracked] = []
     for begin in range(0, moments.shape[0], KERNEL_CHUNK):
         part = slice(begin, begin + KERNEL_CHUNK)
         targets = _targets(target_pose, moments[part], shifts.get(_TARGET_SOURCE, 0))
+        configurations = sample_configurations(model, path.samplers, moments[part], shifts,
+                                               held)
+        target_rows = None if targets is None else _xyz_quaternions(targets)
         problem = TrackingProblem(
-            model.model, model.data, model.frame_ids[frame], reference_id,
-            sample_configurations(model, path.samplers, moments[part], shifts, held),
-            None if targets is None else _xyz_quaternions(targets),
-            solved, error, tolerances[0], tolerances[1], ratios[part], solver)
-        tracked = track_targets(problem, history, stop_when_unreached=strict)
+            model.model, model.data, model.frame_ids[frame], reference_id, configurations,
+            target_rows, solved, error, tolerances[0], tolerances[1], ratios[part], solver,
+            objective, _standing_still(configurations, target_rows))
+        if begin == 0 and seed is None:
+            tracked, history = track_from_the_best_start(problem, start, strict)
+        else:
+            tracked = track_targets(problem, history, stop_when_unreached=strict)
         _measure_the_rest(tree, path, moments[part], shifts, targets, problem, tracked)
         parts.append(tracked)
         if strict and not tracked.reached.all():
@@ -138,13 +155,13 @@ def _reference(tree: TreeDescription, frame: str, target: str | Pose, relative_t
                             frame=frame, field="target")
 
 
-def _tool_error(free_axis: Any, frame: str) -> PoseError | AxisError:
+def _tool_match(free_axis: Any, frame: str) -> ToolMatch:
     if free_axis is None:
-        return PoseError()
+        return PoseMatch()
     if free_axis not in AXES:
         raise ArgumentTypeError(f"expected one of {', '.join(AXES)} or None, got {free_axis!r}",
                                 frame=frame, field="free_axis")
-    return AxisError(free_axis)
+    return AxisMatch(free_axis)
 
 
 def _tolerance(value: Any, field: str, frame: str) -> float:
@@ -154,6 +171,10 @@ def _tolerance(value: Any, field: str, frame: str) -> float:
         number = math.nan
     if isinstance(value, (str, bytes, bool)) or not (0.0 < number < math.inf):
         raise InvalidDataError(f"expected a positive number, got {value!r}", frame=frame,
+                               field=field)
+    if number < SMALLEST_TOLERANCE:
+        raise InvalidDataError(f"{number:g} is below what double precision resolves on a "
+                               f"robot (at least {SMALLEST_TOLERANCE:g})", frame=frame,
                                field=field)
     return number
 
@@ -211,8 +232,22 @@ def _step_ratios(moments: NDArray[np.int64]) -> FloatArray:
     ratios = np.ones(moments.shape[0])
     if moments.shape[0] > 2:
         steps = np.diff(moments).astype(float)
-        ratios[2:] = steps[1:] / steps[:-1]
+        before = steps[:-1]
+        # a step after a repeated time (none before it) is not predicted: inf
+        ratios[2:] = np.divide(steps[1:], before, out=np.full(before.shape, np.inf),
+                               where=before > 0)
     return ratios
+
+
+def _standing_still(configurations: FloatArray, targets: FloatArray | None
+                    ) -> NDArray[np.bool_]:
+    """Per sample, whether its configuration (everything not solved for) and its target
+    rows are those of the sample before, to :data:`STILL` (False for the first)."""
+    still = np.zeros(configurations.shape[0], dtype=bool)
+    still[1:] = np.all(np.abs(configurations[1:] - configurations[:-1]) <= STILL, axis=1)
+    if targets is not None:
+        still[1:] &= np.all(np.abs(targets[1:] - targets[:-1]) <= STILL, axis=1)
+    return still
 
 
 def _reference_id(model: CompiledModel, reference: str) -> int | None:

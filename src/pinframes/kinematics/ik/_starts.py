@@ -1,0 +1,76 @@
+"""Where a solve without a seed starts: several starts for the first sample, one taken.
+
+The default start is the joints' own values at the first time (their trajectories), else
+their rest values. A path that the arm can follow from one branch may be lost from another
+(an elbow down where the path needs it up, a wrist whose turn runs into a limit), and a rest
+value may be a singular configuration (a UR's stretched arm). So the first sample is solved
+from the default start and from :data:`SPREAD_STARTS` fixed configurations spread over the
+joint ranges (the same for every call: :data:`SPREAD_SEED`), these in the order of their
+distance from the default start. The distinct solutions (:data:`SAME_SOLUTION` apart) are
+tracked along the first stretch of samples, in that order; the first that reaches every
+sample of it is taken, else the one that reaches the most (the earlier on ties). A given
+seed is the only start.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ._bounded_step import JointLimits
+from ._newton_tracking import Tracked, TrackingHistory, TrackingProblem, solve_again, track_targets
+
+__all__ = ["SAME_SOLUTION", "SPREAD_SEED", "SPREAD_STARTS", "spread_starts",
+           "track_from_the_best_start"]
+
+FloatArray = NDArray[np.float64]
+
+SPREAD_STARTS = 16
+"""Starts spread over the joint ranges, besides the default one."""
+
+SPREAD_SEED = 20_240_301
+"""Seed of the generator that spreads the starts (fixed: every call tries the same)."""
+
+SAME_SOLUTION = 1e-3
+"""Radians or metres (largest joint difference) within which two first-sample solutions are
+one."""
+
+
+def spread_starts(limits: JointLimits, default: FloatArray) -> list[FloatArray]:
+    """:data:`SPREAD_STARTS` configurations uniform over the ranges (within -pi..pi where a
+    range is wider or unbounded), nearest to ``default`` first."""
+    lower = np.maximum(limits.lower, -math.pi)
+    upper = np.minimum(limits.upper, math.pi)
+    lower, upper = np.minimum(lower, limits.upper), np.maximum(upper, limits.lower)
+    generator = np.random.default_rng(SPREAD_SEED)
+    starts = generator.uniform(lower, upper, size=(SPREAD_STARTS, default.shape[0]))
+    order = np.argsort(np.linalg.norm(starts - default, axis=1), kind="stable")
+    return list(starts[order])
+
+
+def track_from_the_best_start(problem: TrackingProblem, default: FloatArray,
+                              stop_when_unreached: bool) -> tuple[Tracked, TrackingHistory]:
+    """The samples of ``problem`` tracked from the start taken by the rule of the module
+    docstring, and the history to go on from."""
+    tried: list[FloatArray] = []
+    best: tuple[Tracked, TrackingHistory] | None = None
+    best_count = -1
+    for start in [default, *spread_starts(problem.joints.limits, default)]:
+        first, _, _, reached = solve_again(problem, 0, start)
+        if not reached or any(np.max(np.abs(first - other)) <= SAME_SOLUTION
+                              for other in tried):
+            continue
+        tried.append(first)
+        history = TrackingHistory(first)
+        tracked = track_targets(problem, history, stop_when_unreached)
+        count = int(np.count_nonzero(tracked.reached))
+        if count > best_count:
+            best, best_count = (tracked, history), count
+        if count == problem.step_ratios.shape[0]:
+            break
+    if best is None:  # no start reaches the first sample: the default's closest approach
+        history = TrackingHistory(default)
+        return track_targets(problem, history, stop_when_unreached), history
+    return best
