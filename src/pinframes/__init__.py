@@ -38,6 +38,7 @@ from .formats.limits import Limits
 from .formats.pose_files import write_poses
 from .formats.rosbag import read_rosbag
 from .formats.scene import read_scene, write_scene
+from .formats.trajectory_writer import write_joint_trajectory
 from .formats.urdf import read_urdf, write_urdf
 from .kinematics import (
     Clearance,
@@ -127,6 +128,7 @@ __all__ = [
     "read_urdf",
     "write",
     "write_frames_yaml",
+    "write_joint_trajectory",
     "write_poses",
     "write_scene",
     "write_urdf",

@@ -11,6 +11,7 @@ import numpy as np
 import yaml
 from scipy.spatial.transform import Rotation
 
+import pinframes
 from pinframes import read_scene
 from pinframes.cli.demo import bundled_scene
 
@@ -159,3 +160,10 @@ def test_demo_prints_summary_and_writes_csv_and_png(run_cli, tmp_path):
     np.testing.assert_allclose(np.linalg.norm(rows[:, 4:], axis=1), 1.0, atol=1e-12)
     png = (tmp_path / "results" / "torch_path.png").read_bytes()
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    # the run as a ROS recording: the torch path read back from it with rosbags' help
+    assert summary["ROS recording"].startswith(str(Path("results") / "cell_run.mcap"))
+    bag = tmp_path / "results" / "cell_run.mcap"
+    assert bag.read_bytes()[:8] == b"\x89MCAP0\r\n"
+    recorded = pinframes.read(bag).pose("torch_tcp", "workpiece",
+                                        times=(rows[:, 0] * 1e9).astype("datetime64[ns]"))
+    np.testing.assert_allclose(recorded.translation, rows[:, 1:4], atol=1e-9)

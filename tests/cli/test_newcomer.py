@@ -172,7 +172,9 @@ def test_bundled_cell_exports_to_frames_yaml_with_a_slash_replacement(run_cli, t
 def test_demo_on_the_base_install_writes_the_csv_and_says_what_the_extras_add(
         tmp_path, cli_env):
     # the base install: neither the plot extra (matplotlib) nor the view extra (umsgpack)
+    # nor the ros extra (rosbags)
     code = ("import sys; sys.modules['matplotlib'] = None; sys.modules['umsgpack'] = None; "
+            "sys.modules['rosbags'] = None; "
             "from pinframes.cli import main; "
             f"sys.exit(main(['demo', '--out', {str(tmp_path / 'out')!r}]))")
     result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
@@ -186,4 +188,8 @@ def test_demo_on_the_base_install_writes_the_csv_and_says_what_the_extras_add(
     plot_lines = [line for line in lines if "pinframes[plot]" in line]
     assert len(plot_lines) == 1 and 'pip install "pinframes[plot]"' in plot_lines[0]
     assert lines[2:] == ['pinframes: no 3-D page: the 3-D page needs u-msgpack-python: pip '
-                         'install "pinframes[view]"']
+                         'install "pinframes[view]"',
+                         'pinframes: no ROS bag: pip install "pinframes[ros]" adds rosbags, and '
+                         'the demo then also writes the run as cell_run.mcap (Foxglove, ros2 '
+                         'bag play)']
+    assert not (tmp_path / "out" / "cell_run.mcap").exists()

@@ -27,7 +27,7 @@ def _joint_values(path: Path) -> dict[str, float]:
     with path.open(newline="") as handle:
         rows = [row for row in csv.reader(handle) if row and not row[0].startswith("#")]
     header, (values,) = rows[0], rows[1:]
-    assert header[0] == "time"
+    assert header[0] == "time_s"  # the one joint trajectory CSV: seconds (no reference time)
     return {name: float(value) for name, value in zip(header[1:], values[1:], strict=True)}
 
 

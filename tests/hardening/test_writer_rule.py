@@ -38,6 +38,8 @@ WRITERS = {
     "scene": (".yaml", pinframes.write_scene, pinframes.read_scene),
     "asdf-1.0.0": (".asdf", partial(pinframes.write_asdf, schema="1.0.0"), pinframes.read_asdf),
     "asdf-0.1.0": (".asdf", partial(pinframes.write_asdf, schema="0.1.0"), pinframes.read_asdf),
+    "mcap": (".mcap", pinframes.write, pinframes.read),
+    "ros1 bag": (".bag", pinframes.write, pinframes.read),
 }
 
 names = st.one_of(st.text(st.sampled_from(HOSTILE_CHARACTERS), min_size=1, max_size=5),
@@ -120,7 +122,7 @@ def test_the_issue_examples(writer, tmp_path):
         check_rule(tree, writer, tmp_path)
 
 
-@pytest.mark.parametrize("writer", ["urdf", "frames.yaml", "scene", "asdf-1.0.0"])
+@pytest.mark.parametrize("writer", ["urdf", "frames.yaml", "scene", "asdf-1.0.0", "mcap"])
 def test_writers_that_cannot_hold_data_refuse_it_by_name(tmp_path, writer):
     suffix, write, _ = WRITERS[writer]
     tree = FrameTree("world")

@@ -1,4 +1,5 @@
-"""``pinframes convert IN OUT``: between scene, frames.yaml, ASDF and URDF files."""
+"""``pinframes convert IN OUT``: between scene, frames.yaml, ASDF and URDF files, and out to
+ROS bags (MCAP, ROS 1, ROS 2)."""
 
 from __future__ import annotations
 
@@ -6,6 +7,7 @@ import argparse
 import sys
 
 from ..formats import registered_formats
+from ._evaluate import add_time_arguments, times_from_options
 from ._files import read_tree, write_tree
 
 __all__ = ["add_parser", "run"]
@@ -14,12 +16,15 @@ __all__ = ["add_parser", "run"]
 def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     """Register the ``convert`` subcommand."""
     parser = subparsers.add_parser(
-        "convert", parents=parents, help="convert between scene, frames.yaml, ASDF and URDF",
+        "convert", parents=parents,
+        help="convert between scene, frames.yaml, ASDF and URDF; write ROS bags",
         description="Read IN and write its tree to OUT; formats are told by the file names: "
         ".asdf, .urdf, and .yaml, which is a scene (key 'pinframes_scene') or a frames.yaml "
         "(key 'frames', or a name starting with 'frames'). A .yaml to be written is a "
-        "frames.yaml when its name starts with 'frames', else a scene. OUT is replaced "
-        "atomically.")
+        "frames.yaml when its name starts with 'frames', else a scene. ROS bags: .mcap (one "
+        "MCAP file, opens in Foxglove), .bag (ROS 1), .db3, or a name without a suffix (a "
+        "ROS 2 bag folder): /tf_static, /tf at the times of the time options, and each "
+        "robot's description and joint states. OUT is replaced atomically.")
     parser.add_argument("input", metavar="IN", help="file to read")
     parser.add_argument("output", metavar="OUT", help="file to write")
     parser.add_argument("--to", choices=registered_formats(),
@@ -39,13 +44,16 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         help="frames.yaml only: write TEXT for each '/' of a frame name that "
                         "would put the frame under another one, e.g. _ (default: none, such "
                         "names are refused)")
+    add_time_arguments(parser)
     parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
     """Read, then write."""
     tree = read_tree(args.input, args)
+    times = times_from_options(args, tree.time_union)
     write_tree(tree, args.output, args.to, schema=args.schema, time=args.time,
-               freeze_joints=args.freeze_joints, slash_replacement=args.slash_replacement)
+               freeze_joints=args.freeze_joints, slash_replacement=args.slash_replacement,
+               times=times, time_ref=args.time_ref)
     print(f"pinframes: wrote {args.output} ({len(tree)} frames)", file=sys.stderr)
     return 0

@@ -17,6 +17,7 @@ from ..tree import FrameTree
 from ..values.pose import Pose
 from ..view import write_view
 from ._cell_clearance import clearance_lines
+from ._demo_bag import BAG_FILE, write_demo_bag
 from ._demo_process import DEFAULT_SEAM, demo_process, plot_process, process_table
 from ._evaluate import pose_in_chunks, pose_velocity, terminal_stderr
 from ._files import read_tree, require_frames
@@ -44,8 +45,9 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "the pose of the torch tip relative to the workpiece at every sample of the motion, "
         "and the welding process along the seam (travel speed, torch angles, offset), "
         f"print a summary and write the poses ({POSES_FILE}), a plot ({PLOT_FILE}; needs "
-        f"pinframes[plot]) and an animated 3-D page of the whole run ({VIEW_FILE}; needs "
-        "pinframes[view]).")
+        f"pinframes[plot]), an animated 3-D page of the whole run ({VIEW_FILE}; needs "
+        f"pinframes[view]) and the run as a ROS recording ({BAG_FILE}, MCAP; needs "
+        "pinframes[ros]).")
     parser.add_argument("--out", metavar="DIR", default=".",
                         help="folder for the CSV, PNG and HTML files (default: the current folder; "
                         "created if missing, but not its parent folders)")
@@ -146,6 +148,11 @@ def run(args: argparse.Namespace) -> int:
         written.append(out / VIEW_FILE)
     except UnsupportedFeatureError as exc:  # meshcat is not installed: the page is optional
         missing.append(f"no 3-D page: {exc}")
+    bag, bag_line = write_demo_bag(tree, out)
+    if bag is not None:
+        written.append(bag)
+    else:
+        missing.append(bag_line)
     print(f"{args.tool} relative to {args.workpiece} ({scene.name})")
     table = summary.table()
     sys.stdout.write(table)
@@ -153,6 +160,8 @@ def run(args: argparse.Namespace) -> int:
         sys.stdout.write(process_table(process, len("seam length travelled")))
     sys.stdout.write(clearance_lines(tree))
     sys.stdout.write(_reached_row(tree, args.tool, table))
+    if bag is not None:
+        print(bag_line)
     print(f"pinframes: wrote {', '.join(map(str, written))}", file=sys.stderr)
     for line in missing:
         print(f"pinframes: {line}", file=sys.stderr)

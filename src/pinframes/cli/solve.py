@@ -10,7 +10,7 @@ import numpy as np
 
 from ..errors import JointError, joint_not_found
 from ..formats.trajectory_files import joint_trajectory_csv
-from ..formats.urdf import URDF_METADATA_KEY
+from ..formats.trajectory_writer import urdf_joint_names, write_joint_trajectory
 from ..kinematics import JointSolution
 from ..kinematics.ik.joint_speeds import speed_unit
 from ..tree import FrameTree
@@ -19,7 +19,7 @@ from ._extrapolation import add_extrapolation_argument, check_extrapolation
 from ._files import read_tree, require_frames
 from ._output import write_text
 
-__all__ = ["add_parser", "csv_joint_names", "run", "summary"]
+__all__ = ["add_parser", "run", "summary"]
 
 
 def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
@@ -65,7 +65,9 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     add_time_arguments(parser)
     add_extrapolation_argument(parser)
     parser.add_argument("-o", "--output", metavar="OUT",
-                        help="write the CSV to this file (default: standard output)")
+                        help="write to this file: .csv, .npz, or a ROS bag (.mcap, .bag, "
+                        ".db3, or a folder): a trajectory_msgs/JointTrajectory and the joint "
+                        "states (default: CSV on standard output)")
     parser.set_defaults(run=run)
 
 
@@ -82,13 +84,15 @@ def run(args: argparse.Namespace) -> int:
         seed=_seed(tree, args.seed),
         free_axis=args.free_axis, position_tolerance=args.position_tolerance,
         orientation_tolerance=args.orientation_tolerance, strict=args.strict)
-    # timestamps when the solution has a reference time, else seconds (it has a time per sample)
-    moments: np.ndarray | None = solution.absolute_times
-    if moments is None:
-        moments = solution.seconds
-    assert moments is not None
-    write_text(joint_trajectory_csv(moments, solution.positions, csv_joint_names(tree, solution)),
-               args.output)
+    if args.output is not None:
+        write_joint_trajectory(solution, args.output, tree=tree)
+    else:  # timestamps when the solution has a reference time, else seconds
+        moments: np.ndarray | None = solution.absolute_times
+        if moments is None:
+            moments = solution.seconds
+        assert moments is not None  # a solution has a time per sample
+        write_text(joint_trajectory_csv(moments, solution.positions,
+                                        urdf_joint_names(tree, solution.joint_names)), None)
     print(f"pinframes: {summary(tree, solution)}", file=sys.stderr)
     return 0
 
@@ -128,25 +132,6 @@ def _seed(tree: FrameTree, given: list[tuple[str, float]] | None) -> dict[str, f
             raise JointError(f"joint {name!r} is given twice", field="--seed")
         seed[name] = value
     return seed
-
-
-def csv_joint_names(tree: FrameTree, solution: JointSolution) -> list[str]:
-    """The columns: the robot's URDF joint names when every solved joint belongs to the same
-    robot (as a scene's ``robots[].trajectory`` names them), else the tree's names."""
-    frames = {joint.name: frame for frame in tree.frames
-              if (joint := tree.joint_of(frame)) is not None}
-    robots = tree.metadata.get(URDF_METADATA_KEY, {})
-    prefixes = set()
-    for name in solution.joint_names:
-        kept = tree.frame_metadata(frames[name]).get(URDF_METADATA_KEY, {})
-        prefixes.add(robots.get(kept.get("robot"), {}).get("prefix"))
-    if len(prefixes) != 1:
-        return list(solution.joint_names)
-    prefix = prefixes.pop()
-    if not isinstance(prefix, str) or not all(name.startswith(prefix)
-                                              for name in solution.joint_names):
-        return list(solution.joint_names)
-    return [name[len(prefix):] for name in solution.joint_names]
 
 
 def summary(tree: FrameTree, solution: JointSolution) -> str:

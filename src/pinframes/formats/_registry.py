@@ -138,7 +138,8 @@ def detect_format(
 ) -> str:
     """The format of ``path``: a tree file that exists is told by its content, whatever its
     name (the formats' ``head_test`` and ``document_test``); a file to be written (if
-    ``writing``) and other kinds of files by the suffix.
+    ``writing``) and other kinds of files by the suffix; a tree to be written to a name
+    without a suffix, or to a folder, goes to the format that writes folders (ROS 2 bags).
 
     Formats that share a suffix (``.yaml``: scene or frames.yaml) are told apart by their
     ``document_test`` (``write_name_test`` for a file to be written). ``among`` restricts
@@ -153,6 +154,11 @@ def detect_format(
         return _folder_format(source.path, allowed)
     if kind == TREE and not writing and source.path.is_file():
         return _format_by_content(source, allowed)
+    if kind == TREE and writing and (not suffix or source.path.is_dir()):
+        folder_writers = [entry.name for entry in allowed
+                          if entry.folder_test is not None and entry.write is not None]
+        if folder_writers:  # a folder to be written (a ROS 2 bag)
+            return folder_writers[0]
     candidates = [entry for entry in allowed if suffix in entry.suffixes]
     if not candidates:
         suffixes = list(dict.fromkeys(s for entry in allowed for s in entry.suffixes))
@@ -274,8 +280,9 @@ def write(tree: Any, path: str | os.PathLike[str], format: str | None = None,
     """Write ``tree`` to ``path`` in ``format`` (default: told from the name), atomically.
 
     ``options`` go to the format's writer: ``time=`` for the formats that store one pose
-    per frame, ``schema=`` for ASDF. An option the format does not take is a
-    :class:`FileFormatError`.
+    per frame, ``schema=`` for ASDF, ``times=`` and ``time_ref=`` for ROS bags (``.mcap``,
+    ``.bag``, ``.db3``, or a name without a suffix: a ROS 2 bag folder). An option the
+    format does not take is a :class:`FileFormatError`.
     """
     _check_path(path)
     entry = file_format(format) if format is not None else file_format(

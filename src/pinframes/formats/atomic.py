@@ -5,6 +5,7 @@ from __future__ import annotations
 import contextlib
 import os
 import secrets
+import shutil
 import stat
 from collections.abc import Iterator
 from pathlib import Path
@@ -13,7 +14,7 @@ from typing import IO
 from ..errors import PinframesError, WriteError
 from ._paths import path_argument
 
-__all__ = ["atomic_write", "remove_stale_temporaries"]
+__all__ = ["atomic_path", "atomic_write", "remove_stale_temporaries", "temporary_name"]
 
 _TEMPORARY_PREFIX = ".pinframes-"
 _TEMPORARY_SUFFIX = ".tmp"
@@ -57,6 +58,70 @@ def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO]
         raise
 
 
+@contextlib.contextmanager
+def atomic_path(path: str | os.PathLike[str], *, folder: bool = False) -> Iterator[Path]:
+    """A fresh temporary name beside ``path``, for writers that create their file (with
+    ``folder``: their folder) themselves, such as rosbags' bag writers; on success it is
+    renamed onto ``path``.
+
+    Nothing exists at the temporary name when the body starts. If the body raises, whatever
+    it made there is removed and ``path`` is left untouched. A folder replaces an existing
+    one only when that is empty or a ROS 2 bag (it holds a ``metadata.yaml``): the old
+    folder is moved aside, the new one renamed in and the old one deleted.
+    """
+    file = path_argument(path)
+    target = Path(os.path.realpath(file)) if os.path.islink(file) else Path(file)
+    parent = target.parent if str(target.parent) else Path(".")
+    if folder:
+        _check_folder_target(target, parent, file)
+    else:
+        _check_target(target, parent, file)
+    remove_stale_temporaries(parent)
+    temporary = parent / temporary_name()
+    try:
+        yield temporary
+        if folder and target.is_dir():
+            aside = parent / temporary_name()
+            os.replace(target, aside)
+            os.replace(temporary, target)
+            shutil.rmtree(aside, ignore_errors=True)
+        else:
+            os.replace(temporary, target)
+    except BaseException as exc:
+        _remove(temporary)
+        if isinstance(exc, OSError) and not isinstance(exc, PinframesError):
+            raise WriteError(f"cannot write: {exc.strerror or exc}", file=file) from exc
+        raise
+
+
+def temporary_name(suffix: str = "") -> str:
+    """A fresh name for a temporary file or folder of this process: one that
+    :func:`remove_stale_temporaries` deletes once the process no longer runs (``suffix``
+    goes before the ending, for names whose ending a library insists on)."""
+    return (f"{_TEMPORARY_PREFIX}{os.getpid()}-{secrets.token_hex(6)}{suffix}"
+            f"{_TEMPORARY_SUFFIX}")
+
+
+def _remove(path: Path) -> None:
+    """Delete the file or folder ``path`` if it exists."""
+    if path.is_dir() and not path.is_symlink():
+        shutil.rmtree(path, ignore_errors=True)
+    else:
+        with contextlib.suppress(OSError):
+            os.unlink(path)
+
+
+def _check_folder_target(target: Path, parent: Path, file: str) -> None:
+    """Refuse to replace a file, or a folder that is neither empty nor a ROS 2 bag."""
+    if target.exists() and not target.is_dir():
+        raise WriteError("exists and is not a folder", file=file)
+    if target.is_dir() and any(target.iterdir()) and not (target / "metadata.yaml").is_file():
+        raise WriteError("a folder that is not a ROS 2 bag (no metadata.yaml) and not empty: "
+                         "pinframes replaces only bag folders", file=file)
+    if not parent.is_dir():
+        raise WriteError(f"the folder does not exist: {os.fspath(parent)}", file=file)
+
+
 def _check_target(target: Path, folder: Path, file: str) -> None:
     """Refuse a target that exists and is no regular file (a folder, a FIFO, a device such
     as ``/dev/null``, which a rename would replace), or a missing folder."""
@@ -76,8 +141,8 @@ def _check_target(target: Path, folder: Path, file: str) -> None:
 
 
 def remove_stale_temporaries(folder: Path) -> None:
-    """Delete temporary files in ``folder`` that writers killed before their rename left
-    behind: files of our naming whose process no longer runs."""
+    """Delete temporary files (and folders) in ``folder`` that writers killed before their
+    rename left behind: those of our naming whose process no longer runs."""
     try:
         entries = [entry.name for entry in os.scandir(folder)
                    if entry.name.startswith(_TEMPORARY_PREFIX)
@@ -87,8 +152,7 @@ def remove_stale_temporaries(folder: Path) -> None:
     for name in entries:
         pid = name[len(_TEMPORARY_PREFIX):].split("-", 1)[0]
         if pid.isdigit() and not _running(int(pid)):
-            with contextlib.suppress(OSError):
-                os.unlink(folder / name)
+            _remove(folder / name)
 
 
 def _running(pid: int) -> bool:

@@ -23,7 +23,7 @@ import math
 import os
 import zipfile
 import zlib
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import IO
 
 import numpy as np
@@ -90,24 +90,30 @@ def read_joint_trajectory(
 
 
 def joint_trajectory_csv(times: np.ndarray, positions: NDArray[np.float64],
-                         joint_names: list[str] | tuple[str, ...], *,
-                         significant_digits: int | None = None) -> str:
+                         joint_names: Sequence[str], *, significant_digits: int | None = None,
+                         comment: str | None = None) -> str:
     """The text of a ``.csv`` joint trajectory file that :func:`read_joint_trajectory` reads.
 
     ``times`` (T,) are float seconds (a ``time_s`` column) or ``datetime64`` (a ``time``
     column of ISO timestamps); ``positions`` (T, n) radians or metres, one column per name.
-    Numbers are written to round-trip exactly, or with ``significant_digits``.
+    Names are quoted as CSV quotes them (a name holding a comma or a quote reads back
+    whole). Numbers are written to round-trip exactly, or with ``significant_digits``.
+    ``comment`` becomes a first ``#`` line.
     """
     def number(value: float) -> str:
         return repr(value) if significant_digits is None else f"{value:.{significant_digits}g}"
 
     absolute = np.issubdtype(np.asarray(times).dtype, np.datetime64)
-    lines = [",".join(["time" if absolute else "time_s", *joint_names])]
     stamps = ([format_timestamp_iso(stamp) for stamp in times] if absolute
               else [number(float(time)) for time in times])
+    out = io.StringIO()
+    if comment is not None:
+        out.write("# " + " ".join(comment.splitlines()) + "\n")
+    writer = csv.writer(out, lineterminator="\n")
+    writer.writerow(["time" if absolute else "time_s", *joint_names])
     for stamp, row in zip(stamps, np.asarray(positions, dtype=float).tolist(), strict=True):
-        lines.append(",".join([stamp, *map(number, row)]))
-    return "\n".join(lines) + "\n"
+        writer.writerow([stamp, *map(number, row)])
+    return out.getvalue()
 
 
 def read_csv_trajectory(

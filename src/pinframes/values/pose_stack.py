@@ -54,7 +54,10 @@ class PoseStack(Timed):
 
     @property
     def quaternion(self) -> NDArray[np.float64]:
-        """Unit quaternions ``(x, y, z, w)``, ``w >= 0``: shape (F, 4) or (F, T, 4)."""
+        """Unit quaternions ``(x, y, z, w)``: shape (F, 4), ``w >= 0``, or (F, T, 4), each
+        pose's as :attr:`Pose.quaternion` gives it (signs continuous along its times)."""
+        if self.rotation.ndim == 4:
+            return np.stack([self[index].quaternion for index in range(len(self))])
         return trusted_pose(self.rotation, self.translation).quaternion
 
     @property

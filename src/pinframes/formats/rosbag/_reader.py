@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import ArgumentTypeError, FileFormatError, PinframesError
+from ...errors import ArgumentTypeError, BagWarning, FileFormatError, PinframesError, warn_at_caller
 from ...tree import FrameTree
 from ..limits import Limits, current_limits, exceeded, using_limits
 from ..urdf import RobotDescription, parse_urdf
@@ -49,7 +49,10 @@ def read_rosbag(
         ``sensor_msgs/JointState`` that drive the robot's joints (radians, metres).
     description_topic : str or None
         ``std_msgs/String`` holding the robot's URDF as XML text (never taken for a path:
-        other text is an error).
+        other text is an error). Robots in namespaces are read too: every
+        ``<namespace>/robot_description`` with its ``<namespace>/joint_states`` (the last
+        parts of ``description_topic`` and ``joint_states_topic``), as several
+        ``robot_state_publisher`` nodes publish them.
     limits : pinframes.Limits or None
         ``max_samples`` bounds the keyframes of a frame and the samples of a joint,
         ``max_decompressed_bytes`` the bytes of the messages read; the URDF is read
@@ -96,6 +99,13 @@ def _read(bag: OpenBag, robot_description: str | os.PathLike[str] | None,
     if robot_description is None and description_topic in bag.topics:
         check_type(bag, bag.topics[description_topic], DESCRIPTION_TYPES)
         uses[description_topic] = "robot description"
+    for described, states_topic in _namespaced_robots(bag, description_topic,
+                                                      joint_states_topic).items():
+        check_type(bag, bag.topics[described], DESCRIPTION_TYPES)
+        uses[described] = "robot description"
+        if states_topic in bag.topics:
+            check_type(bag, bag.topics[states_topic], JOINT_STATE_TYPES)
+            uses[states_topic] = "joint states"
     raw = _raw_messages(bag, list(uses))
     tf_raw = [(topic, received, data) for topic, received, data in raw
               if uses[topic] in ("tf", "tf static")]
@@ -103,20 +113,50 @@ def _read(bag: OpenBag, robot_description: str | os.PathLike[str] | None,
     static_messages = np.array([uses[topic] == "tf static" for topic, _, _ in tf_raw], bool)
     tracks = frame_tracks(columns, static_messages[columns.message_index], bag.path,
                           bag.ros_version)
-    robot = _robot(bag, robot_description, [(topic, received, data) for topic, received, data
-                                            in raw if uses[topic] == "robot description"])
-    if not tracks and robot is None:
+    descriptions = [(topic, received, data) for topic, received, data in raw
+                    if uses[topic] == "robot description"]
+    robot = _robot(bag, robot_description, [message for message in descriptions
+                                            if message[0] == description_topic])
+    robots = [robot] if robot is not None else []
+    for topic in dict.fromkeys(message[0] for message in descriptions
+                               if message[0] != description_topic):
+        namespaced = _robot(bag, None, [message for message in descriptions
+                                        if message[0] == topic])
+        if namespaced is None:
+            continue
+        if any(link in known.links for known in robots for link in namespaced.links):
+            warn_at_caller(f"{bag.path}: the robot description on {topic} names links "
+                           "another description has (the same robot twice?); not used",
+                           BagWarning)
+            continue
+        robots.append(namespaced)
+    if not tracks and not robots:
         raise FileFormatError(
             f"no tf messages on {', '.join(tf_topics) or 'no topic'} and no robot "
             f"description; the bag's topics: {', '.join(bag.topics) or 'none'}", file=bag.path)
     states = [_deserialised(bag, topic, received, data) for topic, received, data in raw
               if uses[topic] == "joint states"]
     joints = joint_samples(states, bag.path, bag.ros_version)
-    tree = assemble_tree(bag.path.stem if bag.path.suffix else bag.path.name, tracks, robot,
-                         joints if robot is not None else {}, bag.path)
+    tree = assemble_tree(bag.path.stem if bag.path.suffix else bag.path.name, tracks, robots,
+                         joints if robots else {}, bag.path)
     tree.metadata[ROSBAG_METADATA_KEY] = _summary(bag, uses, tracks, joints, tree,
-                                                  robot is not None)
+                                                  bool(robots))
     return tree
+
+
+def _namespaced_robots(bag: OpenBag, description_topic: str | None,
+                       joint_states_topic: str | None) -> dict[str, str | None]:
+    """Robots published in namespaces, one ``robot_state_publisher`` each (what
+    ``pinframes.write`` writes for several robots): every ``<namespace>/robot_description``
+    topic (the last part of ``description_topic``) with its ``<namespace>/joint_states``
+    (the last part of ``joint_states_topic``)."""
+    if description_topic is None:
+        return {}
+    ending = "/" + description_topic.rsplit("/", 1)[-1]
+    states = None if joint_states_topic is None else joint_states_topic.rsplit("/", 1)[-1]
+    return {topic: None if states is None else topic[:-len(ending)] + "/" + states
+            for topic in bag.topics
+            if topic.endswith(ending) and topic != description_topic and len(topic) > len(ending)}
 
 
 def _raw_messages(bag: OpenBag, topics: list[str]) -> list[tuple[str, int, bytes]]:

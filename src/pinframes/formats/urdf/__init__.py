@@ -5,7 +5,14 @@ joint values beside it)."""
 from ._format import URDF_FORMAT, read_urdf
 from ._mount import DRIVEN_JOINT_TYPES, URDF_METADATA_KEY, mount_robot, mount_urdf
 from ._parse import is_urdf, parse_urdf
-from ._read_write import joint_state_path, read_robot, write_urdf
+from ._read_write import (
+    joint_state_path,
+    read_robot,
+    robot_links,
+    robot_urdf,
+    shapes_urdf,
+    write_urdf,
+)
 from ._robot_description import JointDescription, RobotDescription
 from ._srdf import read_srdf
 from ._xacro import expand_xacro, is_xacro
@@ -26,5 +33,8 @@ __all__ = [
     "read_robot",
     "read_srdf",
     "read_urdf",
+    "robot_links",
+    "robot_urdf",
+    "shapes_urdf",
     "write_urdf",
 ]

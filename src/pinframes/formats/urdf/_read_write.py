@@ -10,21 +10,23 @@ from typing import Any
 
 import numpy as np
 
+from ...errors import UnsupportedFeatureError
 from ...kinematics import Snapshot
 from ...tree import FrameTree
 from ...values.geometry import GEOMETRY_METADATA_KEY, FrameGeometry
 from ...values.joint import Joint, mimic_chain
 from ...values.rotations import rpy_from_matrix
-from ...values.timeconv import format_timestamp_iso
 from .._snapshot import moving_parts, one_instant
 from .._writable import check_writable_tree, refuse_attached_data
 from ..atomic import atomic_write
 from ..limits import Limits
+from ..trajectory_files import joint_trajectory_csv
 from ._geometry import shape_elements
 from ._mount import URDF_METADATA_KEY, mount_robot
 from ._parse import parse_urdf
 
-__all__ = ["joint_state_path", "read_robot", "write_urdf"]
+__all__ = ["joint_state_path", "read_robot", "robot_links", "robot_urdf", "shapes_urdf",
+           "write_urdf"]
 
 
 def read_robot(path: str | os.PathLike[str], *, strict: bool = False,
@@ -83,12 +85,74 @@ def write_urdf(tree: FrameTree, path: str | os.PathLike[str], time: Any = None, 
         robot.append(_link(tree, frame))
         if frame != tree.root:
             robot.append(_joint(tree, frame, instant, freeze_joints, used_joint_names))
-    ET.indent(robot, "  ")
-    text = ET.tostring(robot, encoding="unicode", xml_declaration=False)
     if not freeze_joints and moving_parts(tree)[1]:
         _write_joint_state(tree, instant, path)
     with atomic_write(path, "w") as handle:
-        handle.write('<?xml version="1.0" encoding="utf-8"?>\n' + text + "\n")
+        handle.write(_xml_text(robot))
+
+
+def robot_links(tree: FrameTree, root_link: str) -> list[str]:
+    """The frames of the robot mounted with the root link ``root_link`` (its URDF links as
+    the tree names them), parents first."""
+    return [frame for frame in tree.frames
+            if tree.frame_metadata(frame).get(URDF_METADATA_KEY, {}).get("robot") == root_link]
+
+
+def robot_urdf(tree: FrameTree, root_link: str) -> str:
+    """The URDF text of one robot of ``tree``, as the tree holds it: the links of
+    :func:`robot_links` under the tree's names (prefix included), their joints with their
+    names, types, axes, limits and mimics, and what its file held besides (materials, link
+    contents). Joint values are not part of it. A text has no folder: mesh names relative
+    to the robot's file become absolute ``file://`` URIs (``package://`` names stay). A link
+    that moves in its parent without a joint is an
+    :class:`~pinframes.errors.UnsupportedFeatureError` (a URDF cannot hold it).
+    """
+    kept = tree.metadata.get(URDF_METADATA_KEY, {}).get(root_link, {})
+    robot = ET.Element("robot", name=kept.get("name") or root_link)
+    for text in kept.get("extra_xml", ()):
+        robot.append(ET.fromstring(text))
+    used = set(tree.joints)
+    at_rest = Snapshot(None, {})
+    for frame in robot_links(tree, root_link):
+        link = _link(tree, frame)
+        _absolute_mesh_names(link, tree.frame_metadata(frame).get(GEOMETRY_METADATA_KEY))
+        robot.append(link)
+        if frame == root_link:
+            continue
+        if tree.is_moving(frame):
+            raise UnsupportedFeatureError(
+                f"a link of the robot {kept.get('name') or root_link!r} moves in its parent "
+                "without a joint, which a URDF cannot hold", frame=frame, field="pose")
+        robot.append(_joint(tree, frame, at_rest, False, used))
+    return _xml_text(robot)
+
+
+def shapes_urdf(tree: FrameTree, frame: str) -> str:
+    """The URDF text of one link: ``frame`` with the shapes recorded on it
+    (``FrameTree.add_geometry``, a scene's geometry entries), as ``<collision>`` and
+    ``<visual>`` elements; for a frame that is no URDF link."""
+    robot = ET.Element("robot", name=frame)
+    link = _link(tree, frame)
+    _absolute_mesh_names(link, tree.frame_metadata(frame).get(GEOMETRY_METADATA_KEY))
+    robot.append(link)
+    return _xml_text(robot)
+
+
+def _absolute_mesh_names(link: ET.Element, geometry: FrameGeometry | None) -> None:
+    """Mesh names of ``link`` relative to its URDF file, as ``file://`` URIs."""
+    source = None if geometry is None else geometry.urdf
+    if not source or not os.path.isabs(source):  # a URDF given as text: nothing to resolve
+        return
+    for mesh in link.iter("mesh"):
+        name = mesh.get("filename", "")
+        if name and "://" not in name and not os.path.isabs(name):
+            mesh.set("filename", (Path(source).parent / name).resolve().as_uri())
+
+
+def _xml_text(robot: ET.Element) -> str:
+    ET.indent(robot, "  ")
+    text = ET.tostring(robot, encoding="unicode", xml_declaration=False)
+    return '<?xml version="1.0" encoding="utf-8"?>\n' + text + "\n"
 
 
 def joint_state_path(urdf_path: str | os.PathLike[str]) -> Path:
@@ -102,16 +166,14 @@ def _write_joint_state(tree: FrameTree, instant: Snapshot, urdf_path: str | os.P
     """The actuated joints' values at the URDF's instant (mimic joints follow the URDF)."""
     names = [name for name, joint in tree.joints.items() if joint.is_actuated]
     when = instant.time
-    if isinstance(when, np.datetime64):
-        stamp = format_timestamp_iso(when)
-    else:
-        stamp = repr(float(when / np.timedelta64(1, "s"))) if when is not None else "0.0"
-    lines = [f"# robot joint values (radians, metres) of {Path(urdf_path).name} at the time it "
-             "was written; pinframes.read_joint_trajectory reads this file",
-             ",".join(["time", *names]),
-             ",".join([stamp, *(repr(instant.joint_values[name]) for name in names)])]
+    time = (np.array([when], "datetime64[ns]") if isinstance(when, np.datetime64)
+            else np.array([0.0 if when is None else when / np.timedelta64(1, "s")]))
+    text = joint_trajectory_csv(
+        time, np.array([[instant.joint_values[name] for name in names]]), names,
+        comment=f"robot joint values (radians, metres) of {Path(urdf_path).name} at the time "
+        "it was written; pinframes.read_joint_trajectory reads this file")
     with atomic_write(joint_state_path(urdf_path), "w") as handle:
-        handle.write("\n".join(lines) + "\n")
+        handle.write(text)
 
 
 def _link(tree: FrameTree, frame: str) -> ET.Element:

@@ -1,0 +1,138 @@
+"""``write_joint_trajectory``: joint values over time to the files a scene robot reads
+(``.csv``, ``.npz``) or to a ROS bag (``.mcap``, ``.bag``, ``.db3``, a folder).
+
+What ``pinframes solve -o`` writes. Joint names: as given, or (a solution with ``tree=``)
+as the robot's URDF names them, the tree's prefix removed, when every joint belongs to the
+same robot (:func:`urdf_joint_names`).
+"""
+
+from __future__ import annotations
+
+import io
+import os
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import (
+    ArgumentTypeError,
+    FileFormatError,
+    InvalidDataError,
+    InvalidTimeError,
+    PinframesError,
+)
+from ..kinematics import JointSolution
+from ..tree import FrameTree
+from ..values.numbers import float_array
+from ..values.timeconv import parse_time_axis
+from ._paths import path_argument
+from .atomic import atomic_write
+from .rosbag import write_trajectory_bag
+from .trajectory_files import joint_trajectory_csv
+from .urdf import URDF_METADATA_KEY
+
+__all__ = ["urdf_joint_names", "write_joint_trajectory"]
+
+BAG_SUFFIXES = (".mcap", ".bag", ".db3")
+Times = NDArray[np.datetime64] | NDArray[np.timedelta64]
+
+
+def write_joint_trajectory(
+    trajectory: JointSolution | tuple[Any, Any, Sequence[str]],
+    path: str | os.PathLike[str], *, tree: FrameTree | None = None,
+) -> None:
+    """Write joint values over time, atomically, in the format the name says.
+
+    Parameters
+    ----------
+    trajectory : JointSolution or (times, positions, joint_names)
+        A solution of :meth:`FrameTree.solve_joints` (its absolute times when it has a
+        reference time), or T times (seconds, durations or timestamps, strictly
+        increasing), positions (T, n) in radians or metres and n joint names.
+    path : path
+        ``.csv`` (``time_s`` seconds, or ``time`` ISO timestamps, then one column per
+        joint), ``.npz`` (``times`` as ``timedelta64[ns]`` or ``datetime64[ns]``,
+        ``positions``, ``joint_names``): both read by :func:`pinframes.read_joint_trajectory`
+        and a scene's ``robots[].trajectory``. ``.mcap``, ``.bag``, ``.db3`` or another name
+        (a ROS 2 bag folder): a ``trajectory_msgs/JointTrajectory`` on
+        ``/joint_trajectory`` and ``sensor_msgs/JointState`` on ``/joint_states`` at the
+        samples.
+    tree : FrameTree or None
+        The tree a solution was solved in: its joints are then named as their URDF names
+        them (without the tree's prefix), when they belong to one robot.
+    """
+    file = Path(path_argument(path))
+    try:
+        times, positions, names = _samples(trajectory, tree)
+    except PinframesError as exc:
+        raise exc.located(file=file) from None
+    suffix = file.suffix.lower()
+    if suffix == ".csv":
+        seconds = times if times.dtype.kind == "M" else times.astype(np.int64) / 1e9
+        with atomic_write(file, "w") as handle:
+            handle.write(joint_trajectory_csv(seconds, positions, names))
+    elif suffix == ".npz":
+        buffer = io.BytesIO()
+        np.savez(buffer, times=times, positions=positions, joint_names=np.array(names, str))
+        with atomic_write(file, "wb") as handle:
+            handle.write(buffer.getvalue())
+    elif suffix in BAG_SUFFIXES or not suffix or file.is_dir():
+        write_trajectory_bag(times, positions, names, file)
+    else:
+        raise FileFormatError(f"unknown joint trajectory file type {suffix!r}; expected .csv, "
+                              ".npz, a ROS bag (.mcap, .bag, .db3) or a bag folder (a name "
+                              "without a suffix)", file=file)
+
+
+def urdf_joint_names(tree: FrameTree, joint_names: Sequence[str]) -> list[str]:
+    """``joint_names`` (the tree's) as the robot's URDF names them, when every one belongs
+    to the same robot (as a scene's ``robots[].trajectory`` names them), else unchanged."""
+    frames = {joint.name: frame for frame in tree.frames
+              if (joint := tree.joint_of(frame)) is not None}
+    robots = tree.metadata.get(URDF_METADATA_KEY, {})
+    prefixes = set()
+    for name in joint_names:
+        kept = tree.frame_metadata(frames[name]).get(URDF_METADATA_KEY, {})
+        prefixes.add(robots.get(kept.get("robot"), {}).get("prefix"))
+    prefix = prefixes.pop() if len(prefixes) == 1 else None
+    if not isinstance(prefix, str) or not all(name.startswith(prefix) for name in joint_names):
+        return list(joint_names)
+    return [name[len(prefix):] for name in joint_names]
+
+
+def _samples(trajectory: Any, tree: FrameTree | None
+             ) -> tuple[Times, NDArray[np.float64], list[str]]:
+    """Times (``datetime64[ns]`` or ``timedelta64[ns]``), positions (T, n) and names."""
+    if isinstance(trajectory, JointSolution):
+        absolute = trajectory.absolute_times
+        times = absolute if absolute is not None else trajectory.times.astype(
+            "timedelta64[ns]")
+        names = list(trajectory.joint_names)
+        if tree is not None:
+            names = urdf_joint_names(tree, names)
+        return times, np.asarray(trajectory.positions, np.float64), names
+    if not isinstance(trajectory, tuple) or len(trajectory) != 3:
+        raise ArgumentTypeError("expected a JointSolution or a tuple (times, positions, "
+                                f"joint_names), got {type(trajectory).__name__}",
+                                field="trajectory")
+    raw_times, raw_positions, raw_names = trajectory
+    axis = parse_time_axis(raw_times)
+    times = axis.as_numpy()
+    if times.shape[0] == 0 or np.any(np.diff(axis.offsets) <= 0):
+        raise InvalidTimeError("times must be strictly increasing (and at least one)",
+                               field="times")
+    if isinstance(raw_names, str) or not all(isinstance(n, str) and n for n in raw_names):
+        raise ArgumentTypeError("expected a list of non-empty joint names",
+                                field="joint_names")
+    names = list(raw_names)
+    if len(set(names)) != len(names):
+        raise InvalidDataError("a joint is named twice", field="joint_names")
+    positions = float_array(raw_positions, "positions", InvalidDataError)
+    if positions.shape != (times.shape[0], len(names)):
+        raise InvalidDataError(f"expected positions of shape ({times.shape[0]}, {len(names)}) "
+                               f"(times x joint_names), got {positions.shape}",
+                               field="positions")
+    return times, positions, names
