@@ -25,6 +25,7 @@ __all__ = [
     "BrokenMimicWarning",
     "DataNotFoundError",
     "ExtrapolationError",
+    "ExtrapolationWarning",
     "FileFormatError",
     "FrameExistsError",
     "FrameNotFoundError",
@@ -37,6 +38,7 @@ __all__ = [
     "JointError",
     "JointLimitWarning",
     "JointNotFoundError",
+    "JointSpeedError",
     "JointWithoutSamplesWarning",
     "ManifestWarning",
     "NameNotFoundError",
@@ -45,6 +47,7 @@ __all__ = [
     "ReferenceTimeError",
     "TargetNotReachedError",
     "TreeStructureError",
+    "UnitWarning",
     "UnsupportedFeatureError",
     "WriteError",
     "joint_not_found",
@@ -166,6 +169,11 @@ class JointNotFoundError(NameNotFoundError, JointError):
     ``ValueError``), which unknown joint names raised before."""
 
 
+class JointSpeedError(JointError):
+    """A joint that ``solve_joints(..., strict=True)`` moves faster than its URDF velocity
+    limit allows (the message names the time, the speed and its ratio to the limit)."""
+
+
 class DataNotFoundError(NameNotFoundError):
     """A data set name that no frame of the tree holds."""
 
@@ -271,6 +279,17 @@ class GeometryWarning(UserWarning):
 class JointWithoutSamplesWarning(UserWarning):
     """Robot joints evaluated without samples: they hold their rest value
     (:attr:`pinframes.Joint.rest_value`). Issued once until the tree changes."""
+
+
+class ExtrapolationWarning(UserWarning):
+    """Times outside the samples of a moving frame or joint, where it holds its first or
+    last pose (the command line's ``--extrapolation clamp``)."""
+
+
+class UnitWarning(UserWarning):
+    """Numbers of a file that are implausible in pinframes' units (metres, radians): a
+    position hundreds of metres away, an angle over a full turn. The message names the frame,
+    the field and the likely unit (millimetres, degrees)."""
 
 
 class ManifestWarning(UserWarning):

@@ -57,7 +57,7 @@ def test_batch_on_a_runs_list_with_a_local_cluster(tmp_path, make_campaign):
             f"{out / 'poses'}") in lines
     assert f"pinframes: run broken: {tmp_path / 'campaign' / 'none.yaml'}: no such file" in (
         lines)
-    assert lines[-1] == ("pinframes: error: 1 of 3 runs have no poses (see "
+    assert lines[-1] == ("pinframes: error: 1 of 3 runs has no poses (see "
                          f"{out / 'manifest.jsonl'})")
     table = pd.read_parquet(out / "poses")
     for run, scene in zip(("first", "second"), scenes, strict=True):

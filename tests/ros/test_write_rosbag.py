@@ -118,7 +118,7 @@ def test_every_cell_message_decodes_and_matches_pose(cell, cell_bags, reader):
     static = records["/tf_static"]
     assert {row["child"] for row in static} == {
         "robot_base", "positioner_base", "fixtures", "robot/base_link", "workpiece",
-        "faceplate", "torch", "torch_tcp", "weld_seam", "pipe", "torch_target",
+        "faceplate", "torch", "torch_tcp", "contact_tip", "weld_seam", "pipe", "torch_target",
         "robot/flange"}
     _check_transforms_against_pose(cell, static)
     # five robots, one robot_state_publisher each: namespaced by their URDF names

@@ -15,7 +15,7 @@ from typing import Any, TextIO
 from distributed import as_completed, progress
 from distributed.client import Future
 
-from ..errors import WriteError
+from ..errors import WriteError, warn_at_caller
 from ..formats.limits import Limits, checked_limits
 from ._engine import dask_client
 from ._manifest import Manifest
@@ -43,11 +43,13 @@ class BatchSummary:
     records : list of dict
         This batch's runs' manifest records, in the order of the runs.
     computed : list of str
-        Ids of the runs whose poses were computed now.
+        Ids of the runs whose poses were computed now, in the order of the runs.
     without_poses : list of str
-        Ids of the runs tried now that have no poses (status ``error`` or ``failed``).
+        Ids of the runs tried now that have no poses (status ``error`` or ``failed``), in
+        the order of the runs.
     skipped : list of str
-        Ids of the runs unchanged since an earlier batch (with or without poses).
+        Ids of the runs unchanged since an earlier batch (with or without poses), in the
+        order of the runs.
     """
 
     dataset: Path
@@ -134,11 +136,22 @@ def run_batch(runs: Iterable[str | os.PathLike[str]], out: str | os.PathLike[str
                         result = _result(future, task_of.pop(future))
                         manifest.append(result.record)
                         _count(summary, result)
+                        _warn_again(result)
         finally:
             manifest.rewrite(run.run_id for run in all_runs)
             clear_staging(out_path)
     summary.records = [manifest.records[run.run_id] for run in all_runs]
+    order = {run.run_id: position for position, run in enumerate(all_runs)}
+    for ids in (summary.computed, summary.without_poses, summary.skipped):
+        ids.sort(key=order.__getitem__)
     return summary
+
+
+def _warn_again(result: RunResult) -> None:
+    """The warnings a worker caught for a run, given here (where the caller's filters and
+    the command line's one-line display apply), each naming the run."""
+    for category, message in result.warnings:
+        warn_at_caller(f"run {result.record['run']}: {message}", category)
 
 
 def _count(summary: BatchSummary, result: RunResult) -> None:

@@ -6,6 +6,8 @@ run that reads (of the first :data:`RUNS_TRIED`) tells at once, with near names.
 
 from __future__ import annotations
 
+import warnings
+
 from ..errors import FrameNotFoundError, near_misses
 from ..formats.limits import Limits, using_limits
 from ._inputs import read_run, run_inputs
@@ -23,8 +25,9 @@ def check_frame_names(runs: list[Run], options: BatchOptions, limits: Limits) ->
     has no frame of that name (a :class:`FrameNotFoundError` naming the run's file, the
     frame, the field and near names)."""
     for run in runs[:RUNS_TRIED]:
-        try:
-            with using_limits(limits):
+        try:  # its warnings come from its worker, once
+            with using_limits(limits), warnings.catch_warnings():
+                warnings.simplefilter("ignore")
                 tree = read_run(run_inputs(run.path), limits)
         except Exception:  # a bad run: its own record will say what is wrong
             continue

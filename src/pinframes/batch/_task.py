@@ -20,6 +20,7 @@ from __future__ import annotations
 import datetime
 import os
 import time
+import warnings
 from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
@@ -57,10 +58,13 @@ class RunTask:
 
 @dataclass(frozen=True)
 class RunResult:
-    """The run's manifest record, and whether it was computed (False: skipped)."""
+    """The run's manifest record, whether it was computed (False: skipped), and the
+    warnings reading and evaluating it gave on the worker (category, message; each once),
+    for the driver to give again where the user sees them."""
 
     record: dict[str, Any]
     computed: bool
+    warnings: tuple[tuple[type[Warning], str], ...] = ()
 
 
 def process_run(task: RunTask) -> RunResult:
@@ -79,18 +83,21 @@ def process_run(task: RunTask) -> RunResult:
         "status": "ok",
         "samples": None, "error": None, "checksums": files, "options": task.options_digest,
         "limits": asdict(task.limits)}
-    try:
-        tree = read_run(inputs, task.limits)
-        record["samples"] = _write_poses(tree, task)
-    except PinframesError as exc:
-        record.update(status="error", error=_located(exc, task.run.path))
-    except Exception as exc:  # a bug or the machine, not the input: try again next time
-        record.update(status="failed", error=f"{type(exc).__name__}: {exc}")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            tree = read_run(inputs, task.limits)
+            record["samples"] = _write_poses(tree, task)
+        except PinframesError as exc:
+            record.update(status="error", error=_located(exc, task.run.path))
+        except Exception as exc:  # a bug or the machine, not the input: try again next time
+            record.update(status="failed", error=f"{type(exc).__name__}: {exc}")
     if record["status"] != "ok":  # no stale poses beside a record that has none
         partition_path(task.out, task.run.run_id).unlink(missing_ok=True)
     record["seconds"] = round(time.perf_counter() - started, 6)
     record["finished"] = datetime.datetime.now(datetime.timezone.utc).isoformat()
-    return RunResult(record, computed=True)
+    given = dict.fromkeys((warning.category, str(warning.message)) for warning in caught)
+    return RunResult(record, computed=True, warnings=tuple(given))
 
 
 def _recorded_files(previous: dict[str, Any] | None) -> list[Path]:

@@ -9,6 +9,8 @@ from typing import Any
 
 from ..errors import FileFormatError, FrameNotFoundError, near_misses
 from ..formats import detect_format, file_format, formats_taking, read, write
+from ..formats.rosbag import ROSBAG_METADATA_KEY
+from ..formats.urdf import URDF_METADATA_KEY
 from ..tree import FrameTree
 
 __all__ = ["read_tree", "require_frames", "write_tree", "xacro_argument"]
@@ -54,11 +56,18 @@ def xacro_argument(text: str) -> tuple[str, str]:
 
 
 def require_frames(tree: FrameTree, path: str | Path, *names: str | None) -> None:
-    """Raise a :class:`FrameNotFoundError` naming ``path`` for a name not in ``tree``."""
+    """Raise a :class:`FrameNotFoundError` naming ``path`` for a name not in ``tree``; for
+    a ROS bag read without a robot, it says how to give one."""
     for name in names:
         if name is not None and name not in tree:
+            robot = ""
+            if ROSBAG_METADATA_KEY in tree.metadata and URDF_METADATA_KEY not in tree.metadata:
+                robot = ("; the bag has no robot description (/robot_description), so only "
+                         "the frames of its tf messages are here: give the robot's URDF with "
+                         "--robot-description URDF for its links")
             raise FrameNotFoundError("no frame of this name in the file"
-                                     + near_misses(name, tree.frames), file=path, frame=name)
+                                     + near_misses(name, tree.frames) + robot, file=path,
+                                     frame=name)
 
 
 def write_tree(tree: FrameTree, path: str | Path, fmt: str | None = None, **flags: Any

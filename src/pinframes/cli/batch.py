@@ -4,12 +4,16 @@ from __future__ import annotations
 
 import argparse
 import sys
+from typing import TYPE_CHECKING
 
 from ..errors import PinframesError, UnsupportedFeatureError
 from ..formats.limits import current_limits
 from ._evaluate import terminal_stderr
 
-__all__ = ["add_parser", "run"]
+if TYPE_CHECKING:
+    from ..batch import BatchSummary
+
+__all__ = ["add_parser", "batch_summary", "run"]
 
 
 def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
@@ -75,13 +79,28 @@ def run(args: argparse.Namespace) -> int:
                         velocity=args.velocity, scheduler=args.scheduler, workers=args.workers,
                         limits=current_limits(),  # --max-... (main() sets them), to the workers
                         progress_bar=terminal_stderr() is not None, log=sys.stderr, **extra)
-    total = len(summary.records)
-    print(f"pinframes: {total} runs: {len(summary.computed)} computed, "
-          f"{len(summary.without_poses)} without poses, {len(summary.skipped)} unchanged; "
-          f"poses in {summary.dataset}", file=sys.stderr)
+    print(f"pinframes: {batch_summary(summary)}", file=sys.stderr)
     if summary.bad:
         for record in summary.bad:
             print(f"pinframes: run {record['run']}: {record['error']}", file=sys.stderr)
-        raise PinframesError(f"{len(summary.bad)} of {total} runs have no poses (see "
-                             f"{summary.dataset.parent / MANIFEST_NAME})")
+        bad, total = len(summary.bad), len(summary.records)
+        raise PinframesError(f"{bad} of {_count(total, 'run')} {'has' if bad == 1 else 'have'} "
+                             f"no poses (see {summary.dataset.parent / MANIFEST_NAME})")
     return 0
+
+
+def batch_summary(summary: BatchSummary) -> str:
+    """``3 runs: 1 computed, 1 without poses, 1 unchanged (1 without poses); poses in
+    OUT/poses``: what was done now, and of the runs unchanged since an earlier batch those
+    that have no poses, so that the runs without poses add up to ``summary.bad``."""
+    unchanged_bad = len(summary.bad) - len(summary.without_poses)
+    unchanged = f"{len(summary.skipped)} unchanged" + (
+        f" ({unchanged_bad} without poses)" if unchanged_bad else "")
+    return (f"{_count(len(summary.records), 'run')}: {len(summary.computed)} computed, "
+            f"{len(summary.without_poses)} without poses, {unchanged}; poses in "
+            f"{summary.dataset}")
+
+
+def _count(number: int, noun: str) -> str:
+    """``1 run``, ``2 runs``."""
+    return f"{number} {noun}" + ("" if number == 1 else "s")

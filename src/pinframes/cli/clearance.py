@@ -17,6 +17,7 @@ from ..tree import FrameTree
 from ..values.geometry import GEOMETRY_KINDS
 from ..values.timeconv import TimeAxis
 from ._evaluate import add_time_arguments, in_chunks, terminal_stderr, times_from_options
+from ._extrapolation import add_extrapolation_argument, check_query_extrapolation
 from ._files import read_tree
 from ._output import write_text
 
@@ -53,6 +54,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     parser.add_argument("--geometry", choices=GEOMETRY_KINDS, default="collision",
                         help="which URDF geometry of the links (default: collision)")
     add_time_arguments(parser)
+    add_extrapolation_argument(parser)
     parser.add_argument("--format", "-f", choices=CLEARANCE_FILE_FORMATS,
                         help="table format (default: from the -o file name, else csv)")
     parser.add_argument("-o", "--output", metavar="OUT",
@@ -70,6 +72,10 @@ def run(args: argparse.Namespace) -> int:
                "limits": current_limits()}  # --max-triangles (main() sets the limits)
     times = times_from_options(args, lambda: tree.clearance_times(a, b,
                                                                   geometry=args.geometry))
+    check_query_extrapolation(
+        args, lambda values, reference: tree.clearance(a, b, times=values, time_ref=reference,
+                                                       extrapolation="error", **options),
+        lambda: tree.clearance_times(a, b, geometry=args.geometry), times, args.time_ref)
     result = _in_chunks(tree, a, b, times, args.time_ref, options)
     print(f"pinframes: {clearance_summary(result)}", file=sys.stderr)
     suffix = Path(args.output).suffix.lstrip(".").lower() if args.output else ""

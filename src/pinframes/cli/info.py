@@ -150,7 +150,8 @@ def _bag_lines(bag: dict[str, Any]) -> list[str]:
         for number, topic in enumerate(topics):
             use = f": {topic['use']}" if used else ""
             lines.append(f"{label if number == 0 else ' ' * len(label)} {topic['name']} "
-                         f"({topic['type']}, {topic['messages']} messages){use}")
+                         f"({topic['type']}, {topic['messages']} "
+                         f"message{'' if topic['messages'] == 1 else 's'}){use}")
     if bag["joint_states_not_used"]:
         lines.append("joint states not used (no robot description drives them): "
                      + ", ".join(bag["joint_states_not_used"]))

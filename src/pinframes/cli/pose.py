@@ -12,6 +12,7 @@ from ._evaluate import (
     requested_times,
     terminal_stderr,
 )
+from ._extrapolation import add_extrapolation_argument, check_extrapolation
 from ._files import read_tree, require_frames
 from ._output import OUTPUT_FORMATS, output_format, output_poses
 
@@ -39,6 +40,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         help="the frame whose axes the velocities are written in (default: "
                         "the --relative-to frame; implies --velocity)")
     add_time_arguments(parser)
+    add_extrapolation_argument(parser)
     parser.add_argument("--format", "-f", choices=OUTPUT_FORMATS,
                         help="output format (default: from the -o file name, else csv)")
     parser.add_argument("-o", "--output", metavar="OUT",
@@ -57,6 +59,7 @@ def run(args: argparse.Namespace) -> int:
     if relative_to is None:
         tree.pose(args.frame)  # raises the error for the root, which has no parent
     times = requested_times(args, tree, args.frame, relative_to)
+    check_extrapolation(args, tree, [(args.frame, relative_to)], times, args.time_ref)
     pose = pose_in_chunks(tree, args.frame, relative_to, times, args.time_ref,
                           progress=terminal_stderr())
     velocity = None

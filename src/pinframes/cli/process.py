@@ -18,6 +18,7 @@ from ..kinematics import WeldProcess
 from ..tree import FrameTree
 from ..values.timeconv import TimeAxis
 from ._evaluate import add_time_arguments, in_chunks, terminal_stderr, times_from_options
+from ._extrapolation import add_extrapolation_argument, check_query_extrapolation
 from ._files import read_tree, require_frames
 from ._output import write_text
 
@@ -56,6 +57,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         help="the upward direction in the root frame's axes, for the slope, "
                         "rotation and position (default: 0 0 1)")
     add_time_arguments(parser)
+    add_extrapolation_argument(parser)
     parser.add_argument("-o", "--output", metavar="OUT",
                         help="write the CSV to this file (default: standard output)")
     parser.set_defaults(run=run)
@@ -83,10 +85,11 @@ def run(args: argparse.Namespace) -> int:
 def _evaluate(tree: FrameTree, args: argparse.Namespace) -> WeldProcess:
     """The process at the requested times, in chunks with a progress bar on a terminal;
     without time options, at the process's own samples, in one call."""
-    def at(times: object = None, time_ref: object = None) -> WeldProcess:
+    def at(times: object = None, time_ref: object = None,
+           extrapolation: str = "clamp") -> WeldProcess:
         return tree.weld_process(args.torch, args.seam, times=times, time_ref=time_ref,
                                  workpiece=args.workpiece, contact_tip=args.contact_tip,
-                                 up=args.up)
+                                 up=args.up, extrapolation=extrapolation)
 
     def own_times() -> TimeAxis | None:
         process = at()
@@ -95,6 +98,9 @@ def _evaluate(tree: FrameTree, args: argparse.Namespace) -> WeldProcess:
         return TimeAxis(process.times.astype(np.int64), process.reference_time)
 
     times = times_from_options(args, own_times)
+    check_query_extrapolation(
+        args, lambda values, reference: at(values, reference, "error"), own_times, times,
+        args.time_ref)
     if times is None:
         return at()
     time_ref = args.time_ref

@@ -8,11 +8,14 @@ import sys
 
 import numpy as np
 
+from ..errors import JointError, joint_not_found
 from ..formats.trajectory_files import joint_trajectory_csv
 from ..formats.trajectory_writer import urdf_joint_names, write_joint_trajectory
 from ..kinematics import JointSolution
+from ..kinematics.ik.joint_speeds import speed_unit
 from ..tree import FrameTree
 from ._evaluate import add_time_arguments, requested_times
+from ._extrapolation import add_extrapolation_argument, check_extrapolation
 from ._files import read_tree, require_frames
 from ._output import write_text
 
@@ -62,10 +65,18 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         help="metres (default: 1e-6)")
     parser.add_argument("--orientation-tolerance", type=float, default=1e-6, metavar="RAD",
                         help="radians (default: 1e-6)")
+    parser.add_argument("--seed", nargs="+", metavar="NAME=VALUE", type=_seed_value,
+                        help="joint values (radians or metres) the first sample starts from, "
+                        "by joint name as 'pinframes info' lists them, e.g. "
+                        "robot/joint_3=-0.6; may name some of the joints only (default: "
+                        "the joints' trajectories at the first time, else their rest values)")
     parser.add_argument("--strict", action="store_true",
-                        help="fail at the first time the target is out of reach (default: "
-                        "keep the closest configuration there and go on)")
+                        help="fail at the first time the target is out of reach or a joint "
+                        "moves faster than its URDF velocity limit (default: keep the "
+                        "closest configuration there and go on; the summary names the "
+                        "fastest joint against its limit)")
     add_time_arguments(parser)
+    add_extrapolation_argument(parser)
     parser.add_argument("-o", "--output", metavar="OUT",
                         help="write to this file: .csv, .npz, or a ROS bag (.mcap, .bag, "
                         ".db3, or a folder): a trajectory_msgs/JointTrajectory and the joint "
@@ -78,11 +89,13 @@ def run(args: argparse.Namespace) -> int:
     tree = read_tree(args.file, args)
     require_frames(tree, args.file, args.frame, args.target, args.flat)
     times = requested_times(args, tree, args.frame, args.target)
+    if args.target != tree.root:  # the target's own motion (the solved joints have none)
+        check_extrapolation(args, tree, [(args.target, tree.root)], times, args.time_ref)
     solution = tree.solve_joints(
         args.frame, args.target, times=None if times is None else times.as_numpy(),
         time_ref=args.time_ref, joints=_joints_or_group(tree, args.joints),
-        free_axis=args.free_axis, flat=args.flat, up=args.up, tilt=args.tilt,
-        position_tolerance=args.position_tolerance,
+        seed=_seed(tree, args.seed), free_axis=args.free_axis, flat=args.flat, up=args.up,
+        tilt=args.tilt, position_tolerance=args.position_tolerance,
         orientation_tolerance=args.orientation_tolerance, strict=args.strict)
     if args.output is not None:
         write_joint_trajectory(solution, args.output, tree=tree)
@@ -105,8 +118,39 @@ def _joints_or_group(tree: FrameTree, joints: list[str] | None) -> list[str] | s
     return joints
 
 
+def _seed_value(text: str) -> tuple[str, float]:
+    """``NAME=VALUE`` as ``(name, value)``; a usage error when it is not."""
+    name, equals, value = text.rpartition("=")
+    try:
+        number = float(value)
+    except ValueError:
+        number = None
+    if not equals or not name or number is None:
+        raise argparse.ArgumentTypeError(f"expected NAME=VALUE (a joint name, a number in "
+                                         f"radians or metres), got {text!r}")
+    return name, number
+
+
+def _seed(tree: FrameTree, given: list[tuple[str, float]] | None) -> dict[str, float] | None:
+    """The ``--seed`` values by joint name; a joint the tree does not hold, or one given
+    twice, is a user error naming it."""
+    if given is None:
+        return None
+    joints = tree.joints
+    seed: dict[str, float] = {}
+    for name, value in given:
+        if name not in joints:
+            raise joint_not_found(name, joints, field="--seed")
+        if name in seed:
+            raise JointError(f"joint {name!r} is given twice", field="--seed")
+        seed[name] = value
+    return seed
+
+
 def summary(tree: FrameTree, solution: JointSolution) -> str:
-    """One line: samples, reached, the largest errors, the smallest distance to a limit."""
+    """One line: samples, reached, the largest errors, the largest tilt (with process
+    windows), the smallest distance to a position limit, the fastest joint against its
+    velocity limit."""
     count, reached = len(solution), int(solution.reached.sum())
     line = (f"{count} samples, {reached} reached; largest errors "
             f"{solution.position_error.max():.2g} m, {solution.orientation_error.max():.2g} "
@@ -127,4 +171,24 @@ def summary(tree: FrameTree, solution: JointSolution) -> str:
         margin, name = min(margins)
         unit = "m" if joints[name].kind == "prismatic" else "rad"
         line += f"; closest to a joint limit: {margin:.3g} {unit} ({name})"
-    return line
+    return line + "; " + _fastest(tree, solution)
+
+
+def _fastest(tree: FrameTree, solution: JointSolution) -> str:
+    """The joint that comes closest to (or goes furthest past) its velocity limit: its
+    speed, the limit, the share and the time."""
+    if len(solution) < 2:
+        return "one sample, so no joint speeds"
+    if not np.isfinite(solution.velocity_limits).any():
+        return "no joint velocity limits in the URDF"
+    ratios = solution.joint_speed_ratios
+    index, column = np.unravel_index(int(np.argmax(ratios)), ratios.shape)
+    ratio = float(ratios[index, column])
+    joint = tree.joints[solution.velocity_limit_joints[column]]
+    limit = joint.velocity
+    assert limit is not None  # a finite velocity limit came from it
+    unit = speed_unit(joint)
+    text = (f"fastest joint {joint.name}: {ratio * limit:.3g} of {limit:.3g} {unit} "
+            f"({ratio:.0%} of its limit) at "
+            f"{int(solution.times[index].astype(np.int64)) / 1e9:.6g} s")
+    return text + (": faster than the robot can move" if ratio > 1.0 else "")

@@ -20,9 +20,10 @@ import numpy as np
 from ..errors import FileFormatError, InvalidDataError
 from ..formats.reading import read_text
 from ..values.length_units import LENGTH_SYMBOLS
-from ..values.timeconv import TimeAxis
+from ..values.timeconv import TimeAxis, parse_time_axis
 from ._column_units import metres_per_unit
 from ._evaluate import add_time_arguments, requested_times
+from ._extrapolation import add_extrapolation_argument, check_extrapolation
 from ._files import read_tree, require_frames
 from ._output import require_suffix, write_text
 
@@ -52,6 +53,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         help="the data are directions (velocities, normals): rotate only "
                         "(default: off, the data are points)")
     add_time_arguments(parser)
+    add_extrapolation_argument(parser)
     parser.add_argument("-o", "--output", metavar="OUT",
                         help="write to this CSV file (default: standard output)")
     parser.set_defaults(run=run)
@@ -74,12 +76,15 @@ def run(args: argparse.Namespace) -> int:
         if args.times is not None or args.start or args.stop or args.step:
             raise FileFormatError(f"has a '{TIME_COLUMN}' column: leave out the time options",
                                   file=args.data, field=TIME_COLUMN)
+        check_extrapolation(args, tree, [(args.frame, args.relative_to)],
+                            parse_time_axis(times, field=TIME_COLUMN), args.time_ref)
         out = method(data, args.frame, args.relative_to, times, per_time=True,
                      time_ref=args.time_ref)
         header, rows = [TIME_COLUMN, *names], np.column_stack([times, out])
     else:
-        axis = (requested_times(args, tree, args.frame, args.relative_to)
-                or tree.sample_times(args.frame, args.relative_to))
+        axis = requested_times(args, tree, args.frame, args.relative_to)
+        check_extrapolation(args, tree, [(args.frame, args.relative_to)], axis, args.time_ref)
+        axis = axis or tree.sample_times(args.frame, args.relative_to)
         if axis is None:  # nothing moves: the points as they are
             header, rows = names, method(data, args.frame, args.relative_to)
         else:

@@ -66,7 +66,21 @@ def _is_asdf(source: InputFile) -> bool:
     return source.start().startswith(b"#ASDF")
 
 
-# Content tests are asked in this order: a pose file's before a joint trajectory's.
+def _is_point_table(source: InputFile) -> bool:
+    """A CSV table of points as ``pinframes transform`` reads and writes them: a header of
+    ``x``, ``y``, ``z`` columns (each may name its unit: ``x_mm``), perhaps after a time
+    and a point column."""
+    lines = [line for line in source.start().split(b"\n") if line.strip()]
+    if not lines:
+        return False
+    cells = [cell.strip().decode("utf-8", "replace") for cell in lines[0].split(b",")]
+    data = [cell for cell in cells if cell not in ("time_s", "time", "point")]
+    return len(data) == 3 and all(cell == axis or cell.startswith(axis + "_")
+                                  for cell, axis in zip(data, "xyz", strict=True))
+
+
+# Content tests are asked in this order: a pose file's and a point table's before a joint
+# trajectory's.
 for _format in (
     FileFormat("asdf", "ASDF", (".asdf",), _read_asdf, _write_asdf, ("schema", "key"),
                head_test=_is_asdf, looks_like="an ASDF file"),
@@ -75,6 +89,9 @@ for _format in (
     FRAMES_YAML_FORMAT,
     ROSBAG_FORMAT,
     *POSE_FORMATS,
+    FileFormat("csv", "CSV", (".csv",), kind="points", head_test=_is_point_table,
+               looks_like="a CSV table of points (x, y, z columns), which 'pinframes "
+               "transform' takes"),
     CSV_TRAJECTORY_FORMAT,
     NPZ_TRAJECTORY_FORMAT,
 ):

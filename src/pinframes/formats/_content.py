@@ -4,7 +4,8 @@ The formats tell their own files by their content (``FileFormat.head_test`` and
 ``document_test`` in :mod:`._registry`). A file none of them claims gets a message that says
 what it looks like: :func:`other_content` recognises the kinds of files people pass by
 mistake (images the ``plot`` command writes, other XML, JSON, CSV, binary data) from the
-first bytes. :func:`xml_root` is the root element of an XML file, for the URDF test too.
+first bytes, :func:`other_document` the YAML that names its own kind. :func:`xml_root` is
+the root element of an XML file, for the URDF test too.
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ import re
 
 from .reading import InputFile
 
-__all__ = ["is_text", "other_content", "xml_root"]
+__all__ = ["is_text", "other_content", "other_document", "xml_root"]
 
 _XML_ROOT = re.compile(rb"<([A-Za-z_][\w:.-]*)")
 _XML_SKIPPED = re.compile(rb"<\?.*?\?>|<!--.*?-->|<!DOCTYPE[^>]*>", re.DOTALL)
@@ -59,7 +60,21 @@ def other_content(source: InputFile) -> str | None:
         return "binary data"
     if start.startswith((b"{", b"[")) and source.path.suffix.lower() == ".json":
         return "a JSON file"
-    first_line = start.split(b"\n", 1)[0]
-    if b"," in first_line and b":" not in first_line:
+    lines = [line for line in start.split(b"\n") if line.strip()
+             and not line.lstrip().startswith(b"#")]
+    if lines and b"," in lines[0] and b":" not in lines[0]:
         return "a CSV table"
+    return None
+
+
+def other_document(source: InputFile) -> str | None:
+    """What a YAML file that no format claims is, when it says so itself: a mapping with a
+    ``format`` (or ``type``) key naming its kind."""
+    document = source.yaml()
+    if not isinstance(document, dict):
+        return None
+    for key in ("format", "type"):
+        if isinstance(document.get(key), str):
+            return (f"YAML of another kind ({key}: {document[key]!r}), which no pinframes "
+                    "reader takes")
     return None

@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from ..errors import FileFormatError, PinframesError, ReadError
-from ._content import other_content
+from ._content import is_text, other_content, other_document
 from ._paths import check_regular_file, path_argument
 from .limits import using_limits
 from .reading import InputFile
@@ -32,6 +32,7 @@ __all__ = [
     "read",
     "register_format",
     "registered_formats",
+    "require_format",
     "write",
 ]
 
@@ -86,6 +87,10 @@ class FileFormat:
         For a format whose ``read`` also takes a folder (a ROS 2 bag):
         ``folder_test(path) -> bool``, whether the folder at ``path`` is one. None: the
         format reads files only.
+    near_miss : callable or None
+        ``near_miss(source) -> str or None``: for a text file no format claims, what it is
+        when it is almost in this format and what it lacks (a scene without its
+        ``pinframes_scene`` line), for the message that refuses it.
     """
 
     name: str
@@ -102,6 +107,7 @@ class FileFormat:
     files_read: Callable[[InputFile], list[Path]] | None = None
     kind: str = TREE
     folder_test: Callable[[Path], bool] | None = None
+    near_miss: Callable[[InputFile], str | None] | None = None
 
 
 _FORMATS: dict[tuple[str, str], FileFormat] = {}
@@ -191,10 +197,40 @@ def _format_by_content(source: InputFile, allowed: list[FileFormat]) -> str:
     for entry in allowed:
         if entry.document_test is not None and entry.document_test(source):
             return entry.name
+    for entry in allowed:
+        near = None if entry.near_miss is None else entry.near_miss(source)
+        if near is not None:
+            raise _not_a_tree(source, near, allowed)
+    named = other_document(source)
+    if named is not None:
+        raise _not_a_tree(source, named, allowed)
     reasons = " nor ".join(f"a {entry.title} ({entry.unrecognised})" for entry in allowed
                            if entry.unrecognised)
     raise _not_a_tree(source, f"YAML or text, but neither {reasons}" if reasons else "text",
                       allowed)
+
+
+def require_format(source: InputFile, name: str) -> None:
+    """Refuse, before a reader parses it, a file that another format's content test claims
+    or that is text of another kind (XML, CSV): a :class:`FileFormatError` saying what the
+    file is and which reader takes it (``name``: the format of the reader that was called).
+    Bytes that are no text are left to the reader's :class:`ReadError`."""
+    wanted = file_format(name)
+    for entry in _FORMATS.values():
+        if entry is not wanted and entry.head_test is not None and entry.head_test(source):
+            raise FileFormatError(f"this is {entry.looks_like}, not a {wanted.title} file"
+                                  + _reader_of(entry), file=source)
+    other = other_content(source) if is_text(source) else None
+    if other is not None:
+        raise FileFormatError(f"this looks like {other}, not a {wanted.title} file",
+                              file=source)
+
+
+def _reader_of(entry: FileFormat) -> str:
+    """Which reader takes a file of ``entry``'s format, for a message."""
+    if entry.kind == TREE:
+        return "; pinframes.read() and the command line read it"
+    return ""
 
 
 def _not_a_tree(source: InputFile, kind: str, allowed: list[FileFormat]) -> FileFormatError:

@@ -350,7 +350,10 @@ class TreeQueries(EditableTree):
             target's and its rotation within this many radians (at least 1e-12).
         strict : bool
             Raise :class:`~pinframes.errors.TargetNotReachedError`, naming the first time
-            not reached and its errors, instead of returning it as not reached.
+            not reached and its errors, instead of returning it as not reached; and
+            :class:`~pinframes.errors.JointSpeedError`, naming the joint, the time and the
+            ratio, where a joint moves faster than its URDF velocity limit (a mimic joint
+            that moves: its own limit).
         flat : str, optional
             A frame the solved joints move (a seam on a positioner solved with the robot):
             once the tool is on its target, the freedom left turns this frame's z toward
@@ -386,7 +389,8 @@ class TreeQueries(EditableTree):
             (7 axes, a free axis, a positioner) it is the smallest motion from the one
             before, and a target that stands still gives joints that do. A sample out of reach
             holds the closest configuration found, and the solver finds its way back when
-            the target comes back into reach. Apply it with ``set_joint_trajectory(
+            the target comes back into reach. Its ``velocities`` and ``speed_ratio`` say
+            whether the robot can keep up. Apply it with ``set_joint_trajectory(
             sol.seconds, sol.positions, joint_names=sol.joint_names)``.
         """
         self._require(frame, "frame")

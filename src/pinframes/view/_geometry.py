@@ -91,7 +91,8 @@ def load_geometry(
     "pinframes[view]"``).
     """
     kind = "collision" if collision else "visual"
-    meshes: dict[str, TriangleMesh | None] = {}  # mesh file -> its triangles, None: unreadable
+    # mesh file -> its triangles, None: unreadable or not found (key: name and places searched)
+    meshes: dict[str, TriangleMesh | None] = {}
     pieces: list[LinkGeometry] = []
     for frame in tree.frames:
         recorded = tree.frame_metadata(frame).get(GEOMETRY_METADATA_KEY)
@@ -137,8 +138,11 @@ def _triangles(shape: Shape, recorded: FrameGeometry, mesh_files: MeshFiles,
     assert shape.mesh is not None  # a mesh always names its file
     path = mesh_files.find(shape.mesh)
     if path is None:
-        looked = ", ".join(map(str, mesh_files.candidates(shape.mesh)[:4]))
-        _warn(recorded, f"mesh {shape.mesh!r} not found (looked in {looked}); {HOW_TO_SEARCH}")
+        missing = f"not found: {shape.mesh} in {mesh_files.candidates(shape.mesh)}"
+        if missing not in meshes:  # one warning per mesh and search, not one per link
+            meshes[missing] = None
+            _warn(recorded, f"mesh {shape.mesh!r} not found ({mesh_files.looked_in(shape.mesh)}"
+                  f"); {HOW_TO_SEARCH}")
         return []
     key = str(path)
     if key not in meshes:

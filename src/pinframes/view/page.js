@@ -99,6 +99,7 @@
   });
 
   // frame names: HTML labels placed where each frame's origin is on the screen
+  const LABEL_OFFSET = 6;  // px right of the origin
   const labels = data.labels.map((label) => {
     const element = document.createElement("div");
     element.className = "pinframes-label";
@@ -112,6 +113,7 @@
   const origin = new THREE.Vector3();
   function placeLabels() {
     const width = pane.clientWidth, height = pane.clientHeight;
+    const shown = [];  // the visible labels and the screen point of their frame's origin
     for (const label of labels) {
       const on = label.link ? linkNames.checked : frameNames.checked;
       label.object.getWorldPosition(origin);
@@ -119,9 +121,32 @@
       const visible = on && origin.z < 1 && Math.abs(origin.x) <= 1 && Math.abs(origin.y) <= 1;
       label.element.style.display = visible ? "block" : "none";
       if (visible) {
-        label.element.style.left = ((origin.x + 1) / 2 * width) + "px";
-        label.element.style.top = ((1 - origin.y) / 2 * height) + "px";
+        shown.push({ label: label, x: (origin.x + 1) / 2 * width,
+                     y: (1 - origin.y) / 2 * height });
       }
+    }
+    // frames whose origins are close (a tool on its target, a seam point) would print their
+    // names over each other: from the top of the screen down, a label that meets one already
+    // placed moves below it
+    shown.sort((a, b) => a.y - b.y || a.x - b.x);
+    const placed = [];
+    for (const item of shown) {
+      const element = item.label.element;
+      const w = element.offsetWidth, h = element.offsetHeight;
+      const left = item.x + LABEL_OFFSET;
+      let top = item.y - h / 2;
+      for (let moved = true; moved;) {
+        moved = false;
+        for (const box of placed) {
+          if (left < box.right && left + w > box.left && top < box.bottom && top + h > box.top) {
+            top = box.bottom + 1;
+            moved = true;
+          }
+        }
+      }
+      placed.push({ left: left, top: top, right: left + w, bottom: top + h });
+      element.style.left = left + "px";
+      element.style.top = top + "px";
     }
   }
   frameNames.addEventListener("change", placeLabels);

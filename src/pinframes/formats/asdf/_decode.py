@@ -42,6 +42,9 @@ _WELDX_EXTENSION_PREFIX = "asdf://weldx.bam.de/"
 _WELDX_WARNINGS = (
     r"(asdf://weldx\.bam\.de/|tag:weldx\.bam\.de:)\S* is not recognized",
     r"(?s).*created with extension (URI 'asdf://weldx\.bam\.de/|class 'weldx\.)",
+    # weldx up to 0.3 tagged units with the ASDF standard's unit tag, which asdf leaves to
+    # asdf-astropy; pinframes reads the unit's text itself
+    r"tag:stsci\.edu:asdf/unit/unit-\S* is not recognized",
 )
 _TAG = re.compile(r"^(?P<path>.+)-(?P<version>\d+\.\d+\.\d+)$")
 # Frequency aliases of older pandas versions (docs/asdf-format.md), as units pinframes reads.
@@ -59,7 +62,8 @@ def open_raw_tree(path: str | os.PathLike[str]) -> Iterator[dict[str, Any]]:
     """The tree of the ASDF file at ``path`` as raw tagged data, while the file is open.
 
     weldx's own asdf extensions are switched off for the read, and asdf's warnings about
-    the weldx tags it then does not recognise are silenced (only those).
+    the weldx tags it then does not recognise are silenced (only those, and the ASDF
+    standard's unit tag of old weldx files, whose text pinframes reads).
 
     Raises
     ------

@@ -26,6 +26,7 @@ from ...errors import FileFormatError, PinframesError
 from ...tree import FrameTree
 from ...values.pose import Pose
 from .._paths import is_regular_file
+from .._registry import require_format
 from ..limits import Limits, current_limits, exceeded, reader_with_limits
 from ..reading import InputFile
 from ._schema import (
@@ -82,6 +83,7 @@ def read_frames_yaml(path: str | os.PathLike[str], root: str = "world", *,
         For unknown fields (kept, not used) and undeclared ``relative_to`` targets.
     """
     source = InputFile.of(path)
+    require_format(source, "frames.yaml")
     file = os.fspath(source)
     top_level, entries = parse_layer(source.yaml(locate_in("frames")), file)
     _check_key_depths(entries, file)

@@ -92,11 +92,13 @@ def is_frames_yaml_name(path: Path) -> bool:
 
 def is_frames_yaml(source: InputFile) -> bool:
     """Whether ``source`` is a frames.yaml layer (the format's content test): its name says
-    so (:func:`is_frames_yaml_name`), or it is a YAML mapping with a ``frames`` key."""
+    so (:func:`is_frames_yaml_name`), or it is a YAML mapping with a ``frames`` key that is
+    no list (a list of frames is a scene's)."""
     if is_frames_yaml_name(source.path):
         return True
     document = source.yaml()
-    return isinstance(document, dict) and "frames" in document
+    return (isinstance(document, dict) and "frames" in document
+            and not isinstance(document["frames"], list))
 
 
 def key_ancestors(key: str) -> list[str]:
@@ -145,8 +147,10 @@ def parse_layer(document: Any, file: str) -> tuple[dict[str, Any], list[Entry]]:
             warn_layer(file, None, f"unknown top-level field {name!r} is kept but not used")
     frames = document["frames"]
     if not isinstance(frames, dict):
-        raise FileFormatError(f"expected a mapping of keys to frames, got {_kind(frames)}",
-                              file=file, field="frames")
+        scene = (" (a list of frames is a pinframes scene's: does the file lack its first "
+                 "line 'pinframes_scene: 1'?)" if isinstance(frames, list) else "")
+        raise FileFormatError(f"expected a mapping of keys to frames, got {_kind(frames)}"
+                              + scene, file=file, field="frames")
     top_level = {name: (None if name == "frames" else value) for name, value in document.items()}
     return top_level, [_entry(key, index, raw, file) for index, (key, raw) in
                        enumerate(frames.items())]

@@ -7,6 +7,7 @@ from ._reader import (
     is_scene,
     read_scene,
     scene_files_read,
+    scene_without_key,
 )
 from ._writer import write_scene
 
@@ -16,6 +17,6 @@ __all__ = ["SCENE_FORMAT", "SCENE_FORMAT_KEY", "SCENE_FORMAT_VERSION", "read_sce
 SCENE_FORMAT = FileFormat(
     "scene", "scene", (".yaml", ".yml"), read_scene, write_scene, ("time",),
     document_test=is_scene, unrecognised=f"no '{SCENE_FORMAT_KEY}' key",
-    files_read=scene_files_read)
+    files_read=scene_files_read, near_miss=scene_without_key)
 """The scene format: a ``.yaml`` file with the scene key (to be written: a ``.yaml`` name
 that frames.yaml does not claim)."""

@@ -33,15 +33,16 @@ from ...values.pose import Pose
 from ...values.rotations import matrix_from_axis_angle
 from ...values.timeconv import parse_timestamp
 from .._paths import regular_file_problem
-from .._registry import detect_format, files_read, read
+from .._registry import detect_format, files_read, read, require_format
 from ..limits import Limits, current_limits, exceeded, reader_with_limits
 from ..reading import InputFile
 from ..trajectory_files import read_joint_trajectory
 from ..urdf import RobotDescription, mount_robot, parse_urdf
 from ._geometry import add_geometry, read_geometry
+from ._unit_check import UnitCheck
 
 __all__ = ["SCENE_FORMAT_KEY", "SCENE_FORMAT_VERSION", "is_scene", "read_scene",
-           "scene_files_read"]
+           "scene_files_read", "scene_without_key"]
 
 SCENE_FORMAT_KEY = "pinframes_scene"
 """The top-level key that marks a scene file; its value is the format version."""
@@ -115,6 +116,20 @@ def is_scene(source: InputFile) -> bool:
     return isinstance(content, dict) and SCENE_FORMAT_KEY in content
 
 
+def scene_without_key(source: InputFile) -> str | None:
+    """What ``source`` is when it is a scene but for its :data:`SCENE_FORMAT_KEY` line: a
+    YAML mapping of scene keys only, with robots, tools, layers or a list of frames."""
+    content = source.yaml()
+    if not isinstance(content, dict) or SCENE_FORMAT_KEY in content or not content or (
+            not set(content) <= _TOP_KEYS):
+        return None
+    if not (isinstance(content.get("frames"), list)
+            or any(key in content for key in ("robots", "tools", "layers"))):
+        return None
+    return (f"a pinframes scene without its first line '{SCENE_FORMAT_KEY}: "
+            f"{SCENE_FORMAT_VERSION}' (add that line and it reads as a scene)")
+
+
 def scene_files_read(source: InputFile) -> list[Path]:
     """The files reading the scene ``source`` opens: the files its entries name (those that
     exist or not, in the scene's order), with what a layer file reads in turn. Names that
@@ -145,6 +160,7 @@ class _Scene:
         self.path = path
         self.package_dirs = package_dirs
         self._read: dict[tuple[str, Path, str], Any] = {}
+        require_format(source, "scene")
         content = source.yaml()
         if not isinstance(content, dict) or SCENE_FORMAT_KEY not in content:
             raise FileFormatError(f"not a pinframes scene: the file must start with "
@@ -156,6 +172,7 @@ class _Scene:
                 f"{SCENE_FORMAT_VERSION}", file=path, field=SCENE_FORMAT_KEY)
         self._check_keys(content, _TOP_KEYS, None, "")
         self.content = content
+        self._units = UnitCheck(path)
         self.root = self._name(content.get("root", "world"), None, "root")
 
     # -- building --------------------------------------------------------------------------
@@ -180,6 +197,7 @@ class _Scene:
             for entry in ready:
                 self._apply(entry, tree)
             pending = [entry for entry in pending if entry not in ready]
+        self._units.warn()
         return tree
 
     def _apply(self, entry: _Entry, tree: FrameTree) -> None:
@@ -344,12 +362,14 @@ class _Scene:
                     ) -> tuple[np.ndarray | None, np.ndarray]:
         """Rotation (a (3, 3) matrix, or None) and translation (3,) metres."""
         translation = self._numbers(item.get("xyz", (0.0, 0.0, 0.0)), 3, frame, f"{field}.xyz")
+        self._units.lengths(translation, frame, f"{field}.xyz")
         if "rpy" in item and "quaternion" in item:
             raise FileFormatError("give either rpy or quaternion, not both", file=self.path,
                                   frame=frame, field=f"{field}.rpy")
         rotation = None
         if "rpy" in item:
             rpy = self._numbers(item["rpy"], 3, frame, f"{field}.rpy")
+            self._units.angles(rpy, frame, f"{field}.rpy")
             rotation = Pose.from_xyz_rpy(0.0, 0.0, 0.0, *rpy).rotation
         elif "quaternion" in item:
             quaternion = self._numbers(item["quaternion"], 4, frame, f"{field}.quaternion")
@@ -401,6 +421,7 @@ class _Scene:
                                   frame=frame, field=where)
         if "points" in curve:
             points = self._vectors(curve["points"], frame, f"{where}.points")
+            self._units.lengths(points, frame, f"{where}.points")
             if "normals" not in curve:
                 raise FileFormatError("missing", file=self.path, frame=frame,
                                       field=f"{where}.normals")
@@ -494,6 +515,7 @@ class _Scene:
         centre = self._numbers(arc["centre"], 3, frame, f"{field}.centre")
         axis = self._numbers(arc["axis"], 3, frame, f"{field}.axis")
         start = self._numbers(arc["start"], 3, frame, f"{field}.start")
+        self._units.lengths(np.stack([centre, start]), frame, field)
         angle = self._number(arc["angle"], frame, f"{field}.angle")
         count = arc["count"]
         if isinstance(count, bool) or not isinstance(count, int) or count < 2:

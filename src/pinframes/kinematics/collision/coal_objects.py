@@ -151,9 +151,9 @@ class ShapeLoader:
         mesh_files = mesh_files_of(geometry, self._package_dirs)
         found = mesh_files.find(name)
         if found is None:
-            looked = ", ".join(map(str, mesh_files.candidates(name)[:4]))
-            raise GeometryError(f"link {geometry.link!r}: mesh {name!r} not found (looked in "
-                                f"{looked}); {HOW_TO_SEARCH}", file=geometry.urdf,
+            raise GeometryError(f"link {geometry.link!r}: mesh {name!r} not found "
+                                f"({mesh_files.looked_in(name)}); {HOW_TO_SEARCH}",
+                                file=geometry.urdf,
                                 frame=frame, field=f"{field}.mesh")
         return str(found)
 

@@ -145,6 +145,15 @@ class MeshFiles:
                 return candidate
         return None
 
+    def looked_in(self, fname: str) -> str:
+        """Where ``fname`` was looked for, for a message: ``looked in A, B, C`` (the first
+        four places), or that there was no folder to look in."""
+        places = self.candidates(fname)
+        if not places:
+            return ("no folder to look in: the robot description has no file of its own (a "
+                    "URDF string, or one read from a bag)")
+        return "looked in " + ", ".join(map(str, places[:4]))
+
     def candidates(self, fname: str) -> list[Path]:
         """Every path where ``fname`` is looked for, in order."""
         scheme = next((scheme for scheme in _SCHEMES if fname.startswith(scheme)), None)

@@ -43,6 +43,14 @@ class JointSolution(Timed):
     reached : ndarray of bool, shape (T,)
         Whether both errors are within the tolerances. Where not, :attr:`positions` hold the
         closest configuration found within the limits.
+    velocity_limits : ndarray, shape (n,)
+        The largest rate of each joint its URDF velocity limits allow, radians or metres per
+        second: its own limit, or where a mimic joint follows it with multiplier ``m`` and
+        a tighter limit ``L``, ``L / |m|``; ``inf`` where no limit is given (a limit of 0
+        counts as none).
+    velocity_limit_joints : tuple of str
+        Per joint, the joint whose limit :attr:`velocity_limits` holds: the joint itself or
+        the mimic joint following it.
     tilt : ndarray, shape (T, 2), or None
         With process windows (``tilt=``): the tilt of the tool's z from the target's, radians,
         ``(a, b)`` with the tool's z ``Rx(a) Ry(b)`` the target's (about the target's x, then
@@ -57,7 +65,36 @@ class JointSolution(Timed):
     position_error: FloatArray
     orientation_error: FloatArray
     reached: NDArray[np.bool_]
+    velocity_limits: FloatArray
+    velocity_limit_joints: tuple[str, ...]
     tilt: FloatArray | None = None
+
+    @property
+    def velocities(self) -> FloatArray:
+        """Joint rates (T, n), radians or metres per second, over the interval ending at each
+        sample: ``(q_i - q_{i-1}) / (t_i - t_{i-1})``, the first row 0. Two samples at one
+        time: 0 where the values are equal, infinite where they differ."""
+        rates = np.zeros_like(self.positions, dtype=float)
+        if self.positions.shape[0] < 2:
+            return rates
+        steps = np.diff(self.positions, axis=0)
+        durations = np.diff(self.times).astype(np.float64)[:, None] / 1e9  # seconds
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rates[1:] = np.where(steps == 0.0, 0.0, steps / durations)
+        rates[1:][(durations == 0.0) & (steps != 0.0)] = np.inf
+        return rates
+
+    @property
+    def joint_speed_ratios(self) -> FloatArray:
+        """``|velocity| / limit`` per sample and joint (T, n), see :attr:`velocity_limits`;
+        0 where a joint has no limit."""
+        return np.abs(self.velocities) / self.velocity_limits
+
+    @property
+    def speed_ratio(self) -> FloatArray:
+        """Per sample (T,), the largest of :attr:`joint_speed_ratios`: above 1 a joint moves
+        faster than its URDF velocity limit allows; 0 without limits."""
+        return self.joint_speed_ratios.max(axis=1, initial=0.0)
 
     @property
     def all_reached(self) -> bool:

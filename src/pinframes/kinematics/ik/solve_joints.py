@@ -43,6 +43,7 @@ from ._solved_joints import SolvedJoints, solved_joints
 from ._starts import track_from_the_best_start
 from ._tool_error import AXES, AxisMatch, PoseMatch, ToolMatch, WindowMatch, tilts_of
 from .joint_solution import JointSolution
+from .joint_speeds import require_within_speed, velocity_limits
 
 __all__ = ["SMALLEST_TOLERANCE", "STILL", "evaluate_solve_joints"]
 
@@ -124,13 +125,17 @@ def evaluate_solve_joints(
         parts.append(tracked)
         if strict and not tracked.reached.all():
             _raise_unreached(parts, offsets, plan.reference_time, tolerances, frame)
-    return JointSolution(
+    solution = JointSolution(
         solved.names, np.concatenate([part.positions for part in parts]),
         offsets.astype("timedelta64[ns]"), plan.reference_time,
         np.concatenate([part.position_error for part in parts]),
         np.concatenate([part.orientation_error for part in parts]),
         np.concatenate([part.reached for part in parts]),
+        *velocity_limits(solved.names, tree.joints_by_name),
         tilt=np.concatenate(tilts) if tilts else None)
+    if strict:
+        require_within_speed(solution, tree.joints_by_name, frame)
+    return solution
 
 
 def _solved_joints(tree: TreeDescription, path: PreparedPath, joints: Any) -> SolvedJoints:

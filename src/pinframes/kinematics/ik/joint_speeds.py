@@ -1,0 +1,78 @@
+"""Joint speeds against the URDF velocity limits: the limit each solved joint has (its own,
+or a mimic follower's), and the check of ``solve_joints(..., strict=True)``.
+
+Rates are radians per second (revolute, continuous) or metres per second (prismatic), in
+the units of the solved joint's value. A mimic joint at ``m * theta + c`` moves at
+``m * rate``, so its own limit ``L`` allows ``theta`` a rate of at most ``L / |m|``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ...errors import JointSpeedError
+from ...values.joint import Joint, mimic_primary
+from .joint_solution import JointSolution
+
+__all__ = ["require_within_speed", "speed_unit", "velocity_limits"]
+
+FloatArray = NDArray[np.float64]
+
+
+def velocity_limits(names: Sequence[str], joints: Mapping[str, Joint]
+                    ) -> tuple[FloatArray, tuple[str, ...]]:
+    """Per solved joint, the largest rate its URDF velocity limits allow, and the joint whose
+    limit that is: the joint itself, or a mimic joint following it whose own limit is the
+    tighter one. ``inf`` (and the joint itself) where no joint involved has a limit; a limit
+    that is not a positive number (URDFs write 0 for "not given") counts as none."""
+    rates = np.full(len(names), np.inf)
+    limiting = list(names)
+    column_of = {name: column for column, name in enumerate(names)}
+    for joint in joints.values():
+        limit = joint.velocity
+        if limit is None or not 0.0 < limit < math.inf:
+            continue
+        primary, multiplier = mimic_primary(joint, joints)
+        column = column_of.get(primary.name)
+        if column is None or multiplier == 0.0:
+            continue
+        allowed = limit / abs(multiplier)
+        if allowed < rates[column] or (allowed == rates[column] and joint.name == primary.name):
+            rates[column] = allowed
+            limiting[column] = joint.name
+    return rates, tuple(limiting)
+
+
+def speed_unit(joint: Joint) -> str:
+    """``"m/s"`` for a prismatic joint, else ``"rad/s"``."""
+    return "m/s" if joint.kind == "prismatic" else "rad/s"
+
+
+def require_within_speed(solution: JointSolution, joints: Mapping[str, Joint], frame: str
+                         ) -> None:
+    """Raise :class:`~pinframes.errors.JointSpeedError` at the first sample where a joint
+    moves faster than its URDF velocity limit, naming the joint whose limit it passes (a
+    mimic follower of a solved joint, where its limit is the tighter one), the time, its
+    speed and the ratio to its limit."""
+    ratios = solution.joint_speed_ratios
+    over = np.flatnonzero(ratios.max(axis=1, initial=0.0) > 1.0)
+    if not over.shape[0]:
+        return
+    index = int(over[0])
+    column = int(np.argmax(ratios[index]))
+    ratio = float(ratios[index, column])
+    solved, limiting = solution.joint_names[column], joints[solution.velocity_limit_joints[column]]
+    limit = limiting.velocity
+    assert limit is not None  # a finite velocity limit came from it
+    unit = speed_unit(limiting)
+    when = f"{int(solution.times[index].astype(np.int64)) / 1e9:.9g} s" + (
+        "" if solution.reference_time is None else f" after {solution.reference_time}")
+    follows = "" if limiting.name == solved else f" (it follows {solved!r})"
+    raise JointSpeedError(
+        f"{ratio * limit:.3g} {unit} at {when} (sample {index + 1} of {len(solution)}) is "
+        f"{ratio:.3g} times its velocity limit {limit:.3g} {unit}{follows}",
+        joint=limiting.name, frame=frame, field="velocity")

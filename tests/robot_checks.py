@@ -1,0 +1,46 @@
+"""Independent checks for solutions on URDF robots: placements by Pinocchio called directly,
+velocity limits read with yourdfpy."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pinocchio as pin
+import yourdfpy
+
+from pinframes import Pose
+
+
+def placements(urdf: Path, frame: str, configurations: np.ndarray) -> list[pin.SE3]:
+    """Placements of ``frame`` in the root of ``urdf`` (metres), one per row of
+    ``configurations`` (Pinocchio's ``q``), by ``framesForwardKinematics``."""
+    model = pin.buildModelFromUrdf(str(urdf))
+    data = model.createData()
+    frame_id = model.getFrameId(frame)
+    found = []
+    for q in np.atleast_2d(configurations):
+        pin.framesForwardKinematics(model, data, q)
+        found.append(data.oMf[frame_id].copy())
+    return found
+
+
+def as_pose(targets: list[pin.SE3], seconds: np.ndarray) -> Pose:
+    """A pinframes ``Pose`` with times (seconds) of Pinocchio placements."""
+    return Pose(np.array([p.translation for p in targets]),
+                np.array([p.rotation for p in targets]), times=seconds)
+
+
+def urdf_velocity_limits(urdf: Path) -> dict[str, float]:
+    """The ``<limit velocity=...>`` of each joint of ``urdf`` that has one, by yourdfpy."""
+    robot = yourdfpy.URDF.load(str(urdf), build_scene_graph=False, load_meshes=False,
+                               load_collision_meshes=False)
+    return {name: joint.limit.velocity for name, joint in robot.joint_map.items()
+            if joint.limit is not None and joint.limit.velocity is not None}
+
+
+def urdf_mimic_multiplier(urdf: Path, joint: str) -> float:
+    """The ``<mimic multiplier=...>`` of ``joint`` in ``urdf``, by yourdfpy."""
+    robot = yourdfpy.URDF.load(str(urdf), build_scene_graph=False, load_meshes=False,
+                               load_collision_meshes=False)
+    return float(robot.joint_map[joint].mimic.multiplier)
