@@ -29,7 +29,8 @@ class UnitCheck:
 
     def lengths(self, values: NDArray[np.float64], frame: str | None, field: str) -> None:
         """Positions (..., 3) in metres relative to the frame's parent."""
-        distances = np.linalg.norm(np.reshape(values, (-1, 3)), axis=1)
+        x, y, z = np.reshape(values, (-1, 3)).T
+        distances = np.hypot(np.hypot(x, y), z)  # no overflow for coordinates near 1e308
         if distances.shape[0] and float(distances.max()) > LARGEST_PLAUSIBLE_METRES:
             self._note("length", frame, field, f"{float(distances.max()):.6g} m from its "
                        "parent, implausible in metres: are the lengths in millimetres? "
