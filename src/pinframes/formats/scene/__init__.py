@@ -1,11 +1,11 @@
 """pinframes scene files: a welding cell (frames, layers, robots, tools) in one YAML file."""
 
 from .._registry import FileFormat
-from ._reader import (
+from ._reader import read_scene
+from ._recognise import (
     SCENE_FORMAT_KEY,
     SCENE_FORMAT_VERSION,
     is_scene,
-    read_scene,
     scene_files_read,
     scene_without_key,
 )

@@ -27,7 +27,7 @@ from .._snapshot import one_instant
 from .._writable import check_writable_tree, refuse_attached_data
 from ..atomic import atomic_write
 from ._geometry import geometry_entries
-from ._reader import SCENE_FORMAT_KEY, SCENE_FORMAT_VERSION
+from ._recognise import SCENE_FORMAT_KEY, SCENE_FORMAT_VERSION
 
 __all__ = ["write_scene"]
 
