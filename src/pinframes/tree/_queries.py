@@ -4,40 +4,32 @@ Poses (one pair, many pairs), points and vectors carried between frames, velocit
 Jacobians, the default sample times, the whole tree at one instant and as one Pinocchio
 model. Each method checks the frame names, then hands the tree's
 :class:`~pinframes.kinematics.TreeDescription` of this version to the kinematics, which does
-all the work. :class:`~pinframes.FrameTree` is this class with the data and the whole-tree
-operations added.
+all the work. :class:`~pinframes.FrameTree` is this class with the clearance
+(:mod:`._collision_queries`), the data and the whole-tree operations added.
 """
 
 from __future__ import annotations
 
-import fnmatch
-import os
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Sequence
 from functools import partial
 from typing import Any
 
 import numpy as np
 
 from ..errors import (
-    ArgumentTypeError,
-    FrameNotFoundError,
     GeometryError,
     InvalidPoseError,
     PinframesError,
     TreeStructureError,
-    near_misses,
 )
 from ..kinematics import (
-    Clearance,
     FrameJacobian,
     JointSolution,
     PinocchioTree,
     Snapshot,
     Velocity,
     WeldProcess,
-    clearance_times,
     default_times,
-    evaluate_clearance,
     evaluate_jacobian,
     evaluate_pose,
     evaluate_poses,
@@ -47,14 +39,13 @@ from ..kinematics import (
     paths_to_common_ancestor,
     snapshot,
 )
-from ..kinematics.collision.mesh_reader import DEFAULT_BOUNDS, MeshBounds
 from ..values.geometry import GEOMETRY_METADATA_KEY, FrameGeometry
 from ..values.numbers import require_finite_result
 from ..values.pose import Pose
 from ..values.pose_stack import PoseStack
 from ..values.timeconv import TimeAxis
 from ._structure import EditableTree
-from .robot_semantics import disabled_frame_pairs, group_joints, group_state_values
+from .robot_semantics import group_joints, group_state_values
 
 __all__ = ["TreeQueries"]
 
@@ -447,90 +438,6 @@ class TreeQueries(EditableTree):
                     if (geometry := self._recorded_geometry(frame)) is not None}
         return PinocchioTree(self._frozen(), recorded)
 
-    def clearance(
-        self, a: str | Sequence[str], b: str | Sequence[str], *, times: Any = None,
-        time_ref: Any = None, package_dirs: Iterable[str | os.PathLike[str]] = (),
-        geometry: str = "collision", exclude: Iterable[tuple[str, str]] = (),
-        extrapolation: str = "clamp", srdf_exclude: bool = True, limits: Any = None,
-    ) -> Clearance:
-        """The smallest distance between the shapes of the frames ``a`` and ``b``, per sample.
-
-        Parameters
-        ----------
-        a, b : str or sequence of str
-            Frame names or glob patterns over frame names (``"robot/*"``). Their geometry
-            is the ``<collision>`` (or, with ``geometry="visual"``, ``<visual>``) geometry
-            of the URDF links among them and the shapes :meth:`add_geometry` gave them:
-            boxes, cylinders, spheres and meshes. A frame
-            named outright must have such geometry; a pattern takes the frames it matches
-            that have some (a link such as ``tool0`` without any is left out, as
-            ``pinocchio.buildGeomFromUrdf`` leaves it out) and must take at least one.
-            Every pair of one frame of ``a`` and one of ``b`` (not the same frame) is
-            checked, each pair once.
-        times, time_ref, extrapolation
-            As for :meth:`pose`; ``times=None`` takes every keyframe and joint sample time
-            on the paths from the root to the frames of ``a`` and ``b``.
-        package_dirs : iterable of path
-            Folders searched first for ``package://``, ``model://`` and relative mesh names
-            (then those given when the robot was read, ``ROS_PACKAGE_PATH``, for
-            ``model://`` ``GAZEBO_MODEL_PATH``, then the URDF's folder and its ancestors).
-        geometry : {"collision", "visual"}
-            Which geometry of the links.
-        exclude : iterable of (str, str)
-            Pairs of frame names or patterns not to check, in either order (a torch that
-            works at the seam, a robot standing on its base).
-        srdf_exclude : bool
-            Also leave out the link pairs whose collisions the robots' SRDFs disable
-            (``srdf=`` when the robot was read; default True). The pairs left out are in
-            :attr:`Clearance.excluded`.
-        limits : pinframes.Limits or None
-            Its ``max_triangles`` bounds the triangles of each mesh file after
-            instancing, its ``max_decompressed_bytes`` the file's size (None: 1,000,000
-            triangles, any size; the command line passes its ``--max-...`` options).
-
-        Returns
-        -------
-        Clearance
-            ``distance`` (T,) m, smallest over the pairs, negative when primitives overlap;
-            ``closest`` (T, 2) the pair's frames; ``point_a``, ``point_b`` (T, 3) m in the
-            root's axes; ``times``, ``seconds``, ``reference_time``; ``first_contact``.
-            Distances are coal's, as ``pinocchio.computeDistances`` computes them on the
-            same URDF geometry; but a closed mesh is a solid here (a shape wholly inside it
-            is in contact, at minus the distance between their surfaces), and COLLADA
-            meshes are in the unit their file gives.
-
-        Raises
-        ------
-        GeometryError
-            A frame without geometry, a malformed shape, a mesh missing, unreadable or of more
-        triangles than ``max_triangles``, a shape not finite or placed beyond 1e9 m.
-        FrameNotFoundError
-            A name that is no frame and a pattern that matches none.
-        """
-        frames_a = self._frames_with_geometry(a, geometry, "a")
-        frames_b = self._frames_with_geometry(b, geometry, "b")
-        excluded = [(first, second) for pattern_a, pattern_b in exclude
-                    for first in self._frames_matching(pattern_a, "exclude")
-                    for second in self._frames_matching(pattern_b, "exclude")]
-        if srdf_exclude:
-            excluded += disabled_frame_pairs(self, [*frames_a, *frames_b])
-        recorded = {frame: self._recorded_geometry(frame) for frame in [*frames_a, *frames_b]}
-        bounds = DEFAULT_BOUNDS if limits is None else MeshBounds(
-            limits.max_triangles, limits.max_decompressed_bytes)
-        return evaluate_clearance(self._frozen(), recorded, frames_a, frames_b, excluded,
-                                  geometry, package_dirs, times, time_ref, extrapolation,
-                                  bounds)
-
-    def clearance_times(self, a: str | Sequence[str], b: str | Sequence[str], *,
-                        geometry: str = "collision") -> TimeAxis | None:
-        """The times :meth:`clearance` evaluates at when given none, without evaluating:
-        every keyframe and joint sample time on the paths from the root to the frames of
-        ``a`` and ``b`` (as a :class:`~pinframes.TimeAxis`); None when nothing on them moves.
-        """
-        frames = [*self._frames_with_geometry(a, geometry, "a"),
-                  *self._frames_with_geometry(b, geometry, "b")]
-        return clearance_times(self._frozen(), frames)
-
     # -- helpers ---------------------------------------------------------------------------
     def _recorded_geometry(self, frame: str) -> FrameGeometry | None:
         """The URDF geometry recorded for ``frame`` when its robot was attached, or None."""
@@ -540,44 +447,6 @@ class TreeQueries(EditableTree):
                                 f"{type(recorded).__name__}, not a FrameGeometry", frame=frame,
                                 field=GEOMETRY_METADATA_KEY)
         return recorded
-
-    def _frames_matching(self, names: str | Sequence[str], field: str) -> list[str]:
-        """The frames that ``names`` (names or glob patterns) name, each once, in order."""
-        if isinstance(names, str):
-            names = [names]
-        found: dict[str, None] = {}
-        for name in names:
-            if not isinstance(name, str):
-                raise ArgumentTypeError(f"expected frame names, got {type(name).__name__}",
-                                        field=field)
-            if name in self._children:
-                found[name] = None
-                continue
-            matched = fnmatch.filter(self._children, name) if _is_pattern(name) else []
-            if not matched:
-                raise FrameNotFoundError(
-                    f"{'pattern' if _is_pattern(name) else 'frame'} {name!r} names no frame"
-                    + near_misses(name, self._children), field=field)
-            found.update(dict.fromkeys(matched))
-        return list(found)
-
-    def _frames_with_geometry(self, names: str | Sequence[str], kind: str,
-                              field: str) -> list[str]:
-        """:meth:`_frames_matching`, keeping of what patterns match only the frames that have
-        ``kind`` geometry (one named outright is kept: the query then says what it lacks)."""
-        outright = {names} if isinstance(names, str) else set(names)
-        kept = []
-        for frame in self._frames_matching(names, field):
-            recorded = self._recorded_geometry(frame)
-            if frame in outright or (recorded is not None and (
-                    recorded.shapes(kind) or recorded.unreadable_shapes(kind))):
-                kept.append(frame)
-        if not kept:
-            raise GeometryError(f"{', '.join(map(repr, outright))} match no frame with {kind} "
-                                "geometry (only the links of attached URDFs and frames given "
-                                "shapes by add_geometry have some)",
-                                field=field)
-        return kept
 
     def _default_reference(self, frame: str, relative_to: str | None) -> str:
         """``relative_to``, or the parent of ``frame`` when it is None."""
@@ -601,8 +470,3 @@ def _located(transform: Callable[[Any], np.ndarray], data: Any, frame: str) -> n
         return transform(data)
     except PinframesError as exc:
         raise exc.located(frame=frame) from None
-
-
-def _is_pattern(name: str) -> bool:
-    """Whether ``name`` holds glob characters (``*``, ``?``, ``[``)."""
-    return any(character in name for character in "*?[")

@@ -24,13 +24,13 @@ from ..values.spatial_data import SpatialData, apply_pose
 from ..values.subsystem import Subsystem
 from ..values.timeconv import TimeAxis
 from . import grafting, tree_times
-from ._queries import TreeQueries
+from ._collision_queries import CollisionQueries
 from ._robot_formats import robot_mounter
 
 __all__ = ["FrameTree"]
 
 
-class FrameTree(TreeQueries):
+class FrameTree(CollisionQueries):
     """A tree of coordinate frames, compiled to Pinocchio to answer pose queries.
 
     Parameters
