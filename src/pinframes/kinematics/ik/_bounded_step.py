@@ -114,22 +114,22 @@ class LeastSquares:
         count, joints = rows.shape
         self._undamped = rows if damping == 0.0 and joints >= count else None
         if damping == 0.0 and count == joints:
-            correction = _of_size(self._lu, eigenpy.PartialPivLU, count).compute(rows).solve(
-                error)
+            lu = self._lu.get(count) or _of_size(self._lu, eigenpy.PartialPivLU, count)
+            correction = lu.compute(rows).solve(error)
         elif joints > count:  # c = A^T (A A^T + damping I)^-1 e
             normal = rows.dot(rows.T)  # .dot: a third of matmul's cost on these sizes
             if damping:
                 normal.flat[::count + 1] += damping
+            llt = self._llt.get(count) or _of_size(self._llt, eigenpy.LLT, count)
             # (y^T A)^T, not A^T y: the same numbers, a quarter less numpy overhead
-            correction = _of_size(self._llt, eigenpy.LLT, count).compute(normal).solve(
-                error).dot(rows)
+            correction = llt.compute(normal).solve(error).dot(rows)
         else:  # c = (A^T A + damping I)^-1 A^T e
             transposed = rows.T
             normal = transposed.dot(rows)
             if damping:
                 normal.flat[::joints + 1] += damping
-            correction = _of_size(self._llt, eigenpy.LLT, joints).compute(normal).solve(
-                transposed.dot(error))
+            llt = self._llt.get(joints) or _of_size(self._llt, eigenpy.LLT, joints)
+            correction = llt.compute(normal).solve(transposed.dot(error))
         # eigenpy returns a one-element solution as a (1, 1) matrix
         return correction if joints > 1 else correction.reshape(1)
 

@@ -328,6 +328,7 @@ class _SampleSolver:
             self.objective.carries_self_motion)
         self.objective_margin = -math.inf if self.objective is None else (
             self.objective.quiet_margin)
+        self.one_column = problem.model.nv == 1  # eigenpy hands such a Jacobian back as (6,)
         self.rows: FloatArray | None = None  # the task's rows at the latest linearisation
         self._asked_rows: FloatArray | None = None  # the rows at the solution being served
         self._asked_at = np.empty(0)  # and its configuration
@@ -458,6 +459,7 @@ class _SampleSolver:
         model, data, frame_id, reference_id = (self.model, self.data, self.frame_id,
                                                self.reference_id)
         joints, limits, least_squares = self.joints, self.limits, self.least_squares
+        moves_reference, one_column = joints.moves_reference, self.one_column
         position_region = self.position_region if trust_newton else -1.0
         orientation_region = self.orientation_region
         best, best_margin = theta, margin
@@ -485,7 +487,13 @@ class _SampleSolver:
                 best, best_margin, best_cost, best_position, best_orientation = (
                     theta, margin, cost, position, orientation)
                 damping = 0.0 if damping <= FIRST_DAMPING else damping / 10.0
-                rows = error.rows(joints.jacobian(self._tool_jacobian(q, tool_in_reference)))
+                if moves_reference:
+                    jacobian = self._tool_jacobian(q, tool_in_reference)
+                else:  # as _tool_jacobian, inlined: per sample
+                    jacobian = pin.computeFrameJacobian(model, data, q, frame_id, _LOCAL)
+                    if one_column:
+                        jacobian = jacobian.reshape(6, 1)
+                rows = error.rows(joints.jacobian(jacobian))
                 self.rows = rows
                 residual = vector
             else:  # take the step back, and damp it more
