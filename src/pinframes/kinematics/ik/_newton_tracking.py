@@ -4,17 +4,22 @@ Each sample starts from the previous solution carried on by the step between the
 (scaled by the ratio of the time steps), when both reached their targets and the time step is
 at most :data:`LONGEST_PREDICTION` times the one before; else from the previous solution; the
 first sample starts from the seed (:class:`TrackingHistory`). The carried step keeps only its
-part that moves the tool (its damped projection on the rows of the previous sample: all of it
-away from singular configurations, with as many joints as rows; all of the step when the
-secondary objective ``carries_self_motion``, as a frame kept flat does), and every Newton
-step is the smallest: with more joints than rows (a 7-axis arm, a free tool axis, a
-positioner solved with the robot) the solution is the smallest joint motion from the
-previous sample, with no self-motion carried on. So it follows one branch (no
-elbow or wrist flips), usually with one Newton step per sample. A sample whose target and
-everything else stand still starts from the last solution, already on it: a static target
-gives a static solution. The prediction comes with a lower bound of how far it lies inside the joint
-limits, carried from sample to sample: the limits are checked joint by joint only when that
-bound runs out.
+part that moves the tool (all of the step when the secondary objective
+``carries_self_motion``, as a frame kept flat does), and every Newton step is the smallest:
+with more joints than rows (a 7-axis arm, a free tool axis, a positioner solved with the
+robot) the solution is the smallest joint motion from the previous sample, with no
+self-motion carried on. There the first Newton step from a prediction is the smallest motion
+from the previous solution that the rows at the prediction take onto the target: it drops
+the part of the carried step that the tool does not feel there, and the motion it leaves
+lies in their row space, so that the next sample carries it on as it is. A motion taken any
+other way (served to the secondary objective, in a second iteration, bridged) is projected
+on the rows of its latest linearisation before it is carried on (damped by
+:data:`._bounded_step.NEAR_SINGULAR_DAMPING` after a damped step; with as many joints as
+rows all of it is kept). So it follows one branch (no elbow or wrist flips), usually with
+one Newton step per sample. A sample whose target and everything else stand still starts
+from the last solution, already on it: a static target gives a static solution. The
+prediction comes with a lower bound of how far it lies inside the joint limits, carried from
+sample to sample: the limits are checked joint by joint only when that bound runs out.
 
 A start whose tool lies far from its target (more than :data:`BRIDGE_LENGTH` or
 :data:`BRIDGE_ANGLE`: after a long gap between samples, from a seed, on the way back after
@@ -59,7 +64,7 @@ import numpy as np
 import pinocchio as pin
 from numpy.typing import NDArray
 
-from ._bounded_step import LeastSquares, bounded_step
+from ._bounded_step import AMPLIFICATION, LeastSquares, bounded_step
 from ._null_space import NullSpaceObjective, null_space_motion
 from ._solved_joints import SolvedJoints
 from ._tool_error import PoseMatch, ToolMatch
@@ -77,6 +82,11 @@ measured) and whether it reached its target."""
 Solved = tuple[FloatArray, float, float, bool, float]
 """A :data:`Solution` and a lower bound of how far it lies inside the limits
 (:meth:`JointLimits.margin`; 0: not known)."""
+
+Carried = tuple[FloatArray, FloatArray, float, float]
+"""A prediction's making: the last solution (n,), the step it is carried on by (n,), a lower
+bound of the last solution's margin inside the limits and the sum of the step's joint
+changes (radians or metres)."""
 
 MAX_ITERATIONS = 100
 """Newton iterations at most per sample (a tracked sample takes one or two)."""
@@ -273,8 +283,8 @@ def track_targets(problem: TrackingProblem, history: TrackingHistory,
             elif step is None:
                 solved = solve(index, last, margin, True, True)
             else:
-                theta, margin = predicted(last, step, margin)
-                solved = solve(index, theta, margin, True, False)
+                theta, margin, carried = predicted(last, step, margin)
+                solved = solve(index, theta, margin, True, False, carried=carried)
         else:
             solved = solve(index, history.last_on_target, 0.0, True, True)
             if not solved[3]:
@@ -329,42 +339,53 @@ class _SampleSolver:
         self.objective_margin = -math.inf if self.objective is None else (
             self.objective.quiet_margin)
         self.one_column = problem.model.nv == 1  # eigenpy hands such a Jacobian back as (6,)
-        self.rows: FloatArray | None = None  # the task's rows at the latest linearisation
+        # whether a step may have more joints than rows (a whole pose has six)
+        self.redundant = not self.carry_self_motion and (
+            len(problem.joints.names) > 6 or not isinstance(problem.error, PoseMatch))
+        # the rows the next carried step is projected on: the task's at the latest
+        # linearisation; None when there are none yet, or the latest solution's motion was
+        # taken in their row space already (a step that carried on the step before)
+        self.rows: FloatArray | None = None
         self._asked_rows: FloatArray | None = None  # the rows at the solution being served
         self._asked_at = np.empty(0)  # and its configuration
 
     def predicted(self, last: FloatArray, step: FloatArray, margin: float
-                  ) -> tuple[FloatArray, float]:
+                  ) -> tuple[FloatArray, float, Carried | None]:
         """``last`` carried on by the part of ``step`` that moves the tool (all of it for a
-        square system far from a singular configuration; its damped least-squares projection
-        on the last rows), and a lower bound of its margin inside the limits: ``last``'s less
-        the sum of the changes of the joints (NaN when one is)."""
+        square system far from a singular configuration, or a step taken in the row space
+        already; else its damped least-squares projection on the last rows), and a lower
+        bound of its margin inside the limits: ``last``'s less the sum of the changes of the
+        joints (NaN when one is); with more joints than rows possible, what was carried on
+        (:data:`Carried`, for the first Newton step to keep the smallest motion)."""
         if self.rows is not None and not self.carry_self_motion:
             step = self.least_squares.row_space_part(self.rows, step)
         changes = sum(map(abs, step.tolist()))
-        return last + step, margin - changes
+        carried = (last, step, margin, changes) if self.redundant else None
+        return last + step, margin - changes, carried
 
     def solve(self, index: int, theta: FloatArray, margin: float, trust_newton: bool,
-              bridge: bool, serve: bool = True) -> Solved:
+              bridge: bool, serve: bool = True, carried: Carried | None = None) -> Solved:
         """Sample ``index`` from ``theta``, with ``bridge`` bridged when far from its target
         (see the module docstring; a prediction is not far), then with ``serve`` offered to
         the secondary objective: the solution (the best configuration when the target is
         not reached), its position and orientation errors, whether it is reached and a lower
         bound of its margin inside the limits. ``margin`` is one of ``theta`` (0: not known, then
         ``theta`` is checked joint by joint). With ``trust_newton``, a full step from
-        within the quadratic region ends the sample unmeasured: errors NaN, reached True."""
+        within the quadratic region ends the sample unmeasured: errors NaN, reached True.
+        ``carried``: ``theta`` is a prediction, the last solution carried on by this."""
         q = self.configurations[index]  # the solved joints are written into it
         target = None if self.targets is None else pin.XYZQUATToSE3(self.targets[index])
         if not margin > 0.0:
             margin = self.limits.margin(theta.tolist())
             if not margin >= 0.0:  # a prediction past a limit
-                theta, margin = self.limits.clipped(theta), 0.0
+                theta, margin, carried = self.limits.clipped(theta), 0.0, None
         if bridge:
             bridged = self._bridge(q, target, theta)
             if bridged is not theta:
-                theta, margin = bridged, 0.0
+                theta, margin, carried = bridged, 0.0, None
         solved = self._newton(q, target, self.error, theta, margin, self.position_tolerance,
-                              self.orientation_tolerance, MAX_ITERATIONS, trust_newton)
+                              self.orientation_tolerance, MAX_ITERATIONS, trust_newton,
+                              carried)
         if serve and solved[3] and solved[4] <= self.objective_margin:  # inf: always
             return self._served(q, target, solved, bridge)
         return solved
@@ -450,12 +471,20 @@ class _SampleSolver:
 
     def _newton(self, q: FloatArray, target: pin.SE3 | None, error: ToolMatch,
                 theta: FloatArray, margin: float, position_tolerance: float,
-                orientation_tolerance: float, iterations: int, trust_newton: bool) -> Solved:
+                orientation_tolerance: float, iterations: int, trust_newton: bool,
+                carried: Carried | None = None) -> Solved:
         """Damped Newton from ``theta`` (within the limits, ``margin`` a lower bound of how
         far; 0: not known) until ``error`` is within the tolerances: the solution (the best
         configuration when not), its errors, whether reached, a lower bound of its margin.
         With ``trust_newton``, a full step from within the quadratic region ends unmeasured:
-        errors NaN, reached True."""
+        errors NaN, reached True.
+
+        ``carried``: ``theta`` is the last solution carried on by a step. With more joints
+        than rows, the first step is then the smallest motion from the last solution that
+        the rows at ``theta`` take onto the target, ``d = A^+ (A step - e)``: the Newton step
+        less the part of the carried step the tool does not feel (of second order, a step
+        of the step before), with one solve where projecting the carried step took another.
+        Its joint changes count as near-singular only past those carried on."""
         model, data, frame_id, reference_id = (self.model, self.data, self.frame_id,
                                                self.reference_id)
         joints, limits, least_squares = self.joints, self.limits, self.least_squares
@@ -464,8 +493,9 @@ class _SampleSolver:
         orientation_region = self.orientation_region
         best, best_margin = theta, margin
         best_cost = best_position = best_orientation = math.inf
-        rows = residual = theta  # set on the first iteration
-        first = True
+        rows = residual = step_from = theta  # set on the first iteration
+        step_error, step_margin, error_size = residual, margin, 0.0
+        first, folded = True, False
         damping = 0.0
         for _ in range(iterations):
             joints.set_configuration(q, theta)
@@ -478,6 +508,8 @@ class _SampleSolver:
                               else target.actInv(tool_in_reference))
             position, orientation, vector = error.measure(tool_in_target)
             if position <= position_tolerance and orientation <= orientation_tolerance:
+                if folded:  # its motion lies in the rows' row space: nothing to project
+                    self.rows = None
                 return theta, position, orientation, True, margin
             # (hypot: no overflow for a target 1e155 m away; inf compares as the largest)
             cost = math.hypot(position / position_tolerance,
@@ -495,16 +527,31 @@ class _SampleSolver:
                         jacobian = jacobian.reshape(6, 1)
                 rows = error.rows(joints.jacobian(jacobian))
                 self.rows = rows
-                residual = vector
+                residual = step_error = vector
+                step_from, step_margin = best, best_margin
+                error_size = best_position + best_orientation
+                folded = False
+                if carried is not None:  # the first step, from a prediction
+                    if rows.shape[0] < rows.shape[1]:  # the smallest motion from the last
+                        last, step, step_margin, changes = carried
+                        step_from, step_error = last, vector - rows.dot(step)
+                        error_size += changes / AMPLIFICATION
+                        folded = True
+                    carried = None
             else:  # take the step back, and damp it more
                 damping = max(10.0 * damping, FIRST_DAMPING)
                 if damping > MAX_DAMPING:
                     break
-            theta, full, margin = bounded_step(least_squares, rows, residual, best, limits,
-                                               damping, LONGEST_STEP, best_margin,
-                                               best_position + best_orientation)
+                step_from, step_error, step_margin = best, residual, best_margin
+                error_size = best_position + best_orientation
+                folded = False
+            theta, full, margin = bounded_step(least_squares, rows, step_error, step_from,
+                                               limits, damping, LONGEST_STEP, step_margin,
+                                               error_size)
             if (full and damping == 0.0 and best_position <= position_region
                     and best_orientation <= orientation_region):
+                if folded:
+                    self.rows = None
                 return theta, math.nan, math.nan, True, margin
         return best, best_position, best_orientation, False, best_margin
 
