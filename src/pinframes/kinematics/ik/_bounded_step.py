@@ -145,11 +145,13 @@ def _of_size(decompositions: dict[int, Any], kind: Any, size: int) -> Any:
 
 def bounded_step(solver: LeastSquares, rows: FloatArray, error: FloatArray, theta: FloatArray,
                  limits: JointLimits, damping: float, longest_step: float, margin: float,
-                 error_size: float) -> tuple[FloatArray, bool, float]:
+                 error_size: float) -> tuple[FloatArray, FloatArray | None, float, float]:
     """The joint values after a least-squares Newton step from ``theta``: at most
     ``longest_step`` (radians or metres) per joint, within the ``limits`` (joints that would
-    cross one are fixed on it); whether that was the full step (not shortened, not limited,
-    its system not singular); and a lower bound of their ``limits.margin`` (0: not known).
+    cross one are fixed on it); when that was the full step (not shortened, not limited, its
+    system not singular) its correction ``c`` (the values are ``theta - c``), else None; a
+    lower bound of their ``limits.margin`` (0: not known); and the sum of the joint changes
+    of the full step (radians or metres).
 
     ``margin``: a lower bound of ``limits.margin`` of ``theta`` (0: not known). A step whose
     joint changes sum to less than half of it stays inside the limits, by at least the
@@ -168,18 +170,18 @@ def bounded_step(solver: LeastSquares, rows: FloatArray, error: FloatArray, thet
         values = correction.tolist()
         total = sum(map(abs, values))
     elif total <= longest_step and total < margin / 2:  # (half: a margin for rounding)
-        return theta - correction, True, margin - total
+        return theta - correction, correction, margin - total, total
     longest = max(max(values), -min(values)) if values else 0.0
     if longest <= longest_step and not near_singular:
         stepped = theta - correction
         if limits.contain(stepped.tolist()):
-            return stepped, True, 0.0
+            return stepped, correction, 0.0, total
     step = _within_limits(solver, rows, error, theta, -correction, limits, damping)
     values = step.tolist()
     longest = max(max(values), -min(values)) if values else 0.0
     if longest > longest_step:
         step *= longest_step / longest
-    return theta + step, False, 0.0
+    return theta + step, None, 0.0, total
 
 
 def _within_limits(solver: LeastSquares, rows: FloatArray, error: FloatArray,

@@ -84,9 +84,14 @@ Solved = tuple[FloatArray, float, float, bool, float]
 (:meth:`JointLimits.margin`; 0: not known)."""
 
 Carried = tuple[FloatArray, FloatArray, float, float]
-"""A prediction's making: the last solution (n,), the step it is carried on by (n,), a lower
-bound of the last solution's margin inside the limits and the sum of the step's joint
-changes (radians or metres)."""
+"""A prediction's making: the last solution (n,), the step it is carried on by, reversed
+(n,: the prediction is the last solution less it), a lower bound of the last solution's
+margin inside the limits and the sum of the step's joint changes (radians or metres)."""
+
+StepBack = tuple[FloatArray, float]
+"""The step from a solution back to the one before (n,) and the sum of its joint changes
+(radians or metres): the correction of the Newton step that took the solver from the one
+to the other (see :class:`TrackingHistory`)."""
 
 MAX_ITERATIONS = 100
 """Newton iterations at most per sample (a tracked sample takes one or two)."""
@@ -238,25 +243,31 @@ class TrackingHistory:
         self._last_reached = False  # the seed is no solution
         self._last_margin = 0.0  # a lower bound of how far ``last`` lies inside the limits
         self._previous: FloatArray | None = None  # before ``last``, when both reached
+        self._back: StepBack | None = None  # from ``last`` to ``_previous``, when given
 
-    def start(self, ratio: float) -> tuple[FloatArray, FloatArray | None, float]:
-        """The last solution; the last step times ``ratio`` (the ratio of the time steps)
-        when both reached their targets and ``ratio`` is at most :data:`LONGEST_PREDICTION`,
-        else None; and a lower bound of how far the last solution lies inside the limits
-        (0: not known)."""
+    def start(self, ratio: float) -> tuple[FloatArray, FloatArray | None, float, float]:
+        """The last solution; the last step reversed (the solution before less the last:
+        the sign in which the solver's corrections come) times ``ratio`` (the ratio of the
+        time steps) when both reached their targets and ``ratio`` is at most
+        :data:`LONGEST_PREDICTION`, else None; a lower bound of how far the last solution
+        lies inside the limits (0: not known); and the sum of that step's joint changes
+        (NaN: not known)."""
         if self._previous is None or not ratio <= LONGEST_PREDICTION:
-            return self.last, None, self._last_margin
-        step = self.last - self._previous
+            return self.last, None, self._last_margin, math.nan
+        back, changes = (self._previous - self.last, math.nan) if self._back is None else (
+            self._back)
         if ratio != 1.0:
-            step *= ratio
-        return self.last, step, self._last_margin
+            back, changes = back * ratio, changes * ratio
+        return self.last, back, self._last_margin, changes
 
-    def add(self, theta: FloatArray, reached: bool, margin: float) -> None:
+    def add(self, theta: FloatArray, reached: bool, margin: float,
+            back: StepBack | None = None) -> None:
         """Record the solution of the sample just solved, with a lower bound of how far it
-        lies inside the limits (0: not known)."""
+        lies inside the limits (0: not known) and, when the solver knows it, the step from
+        it back to the last solution (the same numbers as ``last - theta`` but rounding)."""
         self._previous = self.last if reached and self._last_reached else None
         self.last, self._last_reached, self.after_a_miss = theta, reached, not reached
-        self._last_margin = margin
+        self._last_margin, self._back = margin, back
         if reached:
             self.last_on_target = theta
 
@@ -277,14 +288,14 @@ def track_targets(problem: TrackingProblem, history: TrackingHistory,
     stills = [False] * len(ratios) if problem.still is None else problem.still.tolist()
     for index, (ratio, still) in enumerate(zip(ratios, stills, strict=True)):
         if not history.after_a_miss:
-            last, step, margin = history.start(ratio)
+            last, back, margin, changes = history.start(ratio)
             if still:  # nothing moved: the last solution stands (no objective either)
                 solved = solve(index, last, margin, True, False, False)
-            elif step is None:
+            elif back is None:
                 solved = solve(index, last, margin, True, True)
             else:
-                theta, margin, carried = predicted(last, step, margin)
-                solved = solve(index, theta, margin, True, False, carried=carried)
+                theta, margin, carried = predicted(last, back, margin, changes)
+                solved = solve(index, theta, margin, True, False, True, carried)
         else:
             solved = solve(index, history.last_on_target, 0.0, True, True)
             if not solved[3]:
@@ -292,7 +303,7 @@ def track_targets(problem: TrackingProblem, history: TrackingHistory,
                 if closer[3] or _cost(problem, closer) < _cost(problem, solved):
                     solved = closer
         solutions.append(solved)
-        history.add(solved[0], solved[3], solved[4])
+        history.add(solved[0], solved[3], solved[4], sample_solver.back)
         if stop_when_unreached and not solved[3]:
             break
     thetas, position_error, orientation_error, reached, _ = zip(*solutions, strict=True)
@@ -346,22 +357,27 @@ class _SampleSolver:
         # linearisation; None when there are none yet, or the latest solution's motion was
         # taken in their row space already (a step that carried on the step before)
         self.rows: FloatArray | None = None
+        # the latest solution's step back to the one before, when one Newton step from that
+        # one gave it
+        self.back: StepBack | None = None
         self._asked_rows: FloatArray | None = None  # the rows at the solution being served
         self._asked_at = np.empty(0)  # and its configuration
 
-    def predicted(self, last: FloatArray, step: FloatArray, margin: float
+    def predicted(self, last: FloatArray, back: FloatArray, margin: float, changes: float
                   ) -> tuple[FloatArray, float, Carried | None]:
-        """``last`` carried on by the part of ``step`` that moves the tool (all of it for a
-        square system far from a singular configuration, or a step taken in the row space
-        already; else its damped least-squares projection on the last rows), and a lower
-        bound of its margin inside the limits: ``last``'s less the sum of the changes of the
-        joints (NaN when one is); with more joints than rows possible, what was carried on
-        (:data:`Carried`, for the first Newton step to keep the smallest motion)."""
+        """``last`` carried on by the part of the step ``-back`` that moves the tool (all of
+        it for a square system far from a singular configuration, or a step taken in the row
+        space already; else its damped least-squares projection on the last rows), and a
+        lower bound of its margin inside the limits: ``last``'s less the sum of the changes
+        of the joints (``changes`` when not NaN; NaN when one is); with more joints than rows
+        possible, what was carried on (:data:`Carried`, for the first Newton step to keep
+        the smallest motion)."""
         if self.rows is not None and not self.carry_self_motion:
-            step = self.least_squares.row_space_part(self.rows, step)
-        changes = sum(map(abs, step.tolist()))
-        carried = (last, step, margin, changes) if self.redundant else None
-        return last + step, margin - changes, carried
+            back, changes = self.least_squares.row_space_part(self.rows, back), math.nan
+        if not changes >= 0.0:  # not known
+            changes = sum(map(abs, back.tolist()))
+        carried = (last, back, margin, changes) if self.redundant else None
+        return last - back, margin - changes, carried
 
     def solve(self, index: int, theta: FloatArray, margin: float, trust_newton: bool,
               bridge: bool, serve: bool = True, carried: Carried | None = None) -> Solved:
@@ -375,6 +391,7 @@ class _SampleSolver:
         ``carried``: ``theta`` is a prediction, the last solution carried on by this."""
         q = self.configurations[index]  # the solved joints are written into it
         target = None if self.targets is None else pin.XYZQUATToSE3(self.targets[index])
+        self.back = None
         if not margin > 0.0:
             margin = self.limits.margin(theta.tolist())
             if not margin >= 0.0:  # a prediction past a limit
@@ -439,7 +456,7 @@ class _SampleSolver:
                                   self.orientation_tolerance, MAX_ITERATIONS, True)
             if not served[3]:
                 break
-            solved = served
+            solved, self.back = served, None
         return solved
 
     def _task_rows(self) -> FloatArray:
@@ -496,6 +513,7 @@ class _SampleSolver:
         rows = residual = step_from = theta  # set on the first iteration
         step_error, step_margin, error_size = residual, margin, 0.0
         first, folded = True, False
+        back: StepBack | None = None  # the latest step's, when full
         damping = 0.0
         for _ in range(iterations):
             joints.set_configuration(q, theta)
@@ -508,8 +526,8 @@ class _SampleSolver:
                               else target.actInv(tool_in_reference))
             position, orientation, vector = error.measure(tool_in_target)
             if position <= position_tolerance and orientation <= orientation_tolerance:
-                if folded:  # its motion lies in the rows' row space: nothing to project
-                    self.rows = None
+                if folded:  # one step from the last solution, in the rows' row space
+                    self.rows, self.back = None, back
                 return theta, position, orientation, True, margin
             # (hypot: no overflow for a target 1e155 m away; inf compares as the largest)
             cost = math.hypot(position / position_tolerance,
@@ -533,8 +551,8 @@ class _SampleSolver:
                 folded = False
                 if carried is not None:  # the first step, from a prediction
                     if rows.shape[0] < rows.shape[1]:  # the smallest motion from the last
-                        last, step, step_margin, changes = carried
-                        step_from, step_error = last, vector - rows.dot(step)
+                        last, carried_back, step_margin, changes = carried
+                        step_from, step_error = last, vector + rows.dot(carried_back)
                         error_size += changes / AMPLIFICATION
                         folded = True
                     carried = None
@@ -545,13 +563,17 @@ class _SampleSolver:
                 step_from, step_error, step_margin = best, residual, best_margin
                 error_size = best_position + best_orientation
                 folded = False
-            theta, full, margin = bounded_step(least_squares, rows, step_error, step_from,
-                                               limits, damping, LONGEST_STEP, step_margin,
-                                               error_size)
-            if (full and damping == 0.0 and best_position <= position_region
+            theta, correction, margin, changes = bounded_step(
+                least_squares, rows, step_error, step_from, limits, damping, LONGEST_STEP,
+                step_margin, error_size)
+            if correction is None:  # not the full step
+                folded = False
+                continue
+            back = correction, changes
+            if (damping == 0.0 and best_position <= position_region
                     and best_orientation <= orientation_region):
                 if folded:
-                    self.rows = None
+                    self.rows, self.back = None, back
                 return theta, math.nan, math.nan, True, margin
         return best, best_position, best_orientation, False, best_margin
 
