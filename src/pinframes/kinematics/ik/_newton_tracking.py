@@ -362,6 +362,10 @@ class _SampleSolver:
         self.back: StepBack | None = None
         self._asked_rows: FloatArray | None = None  # the rows at the solution being served
         self._asked_at = np.empty(0)  # and its configuration
+        # what every Newton iteration reads, in one lookup
+        self._newton_reads = (self.model, self.data, self.frame_id, self.reference_id,
+                              self.joints, self.limits, self.least_squares,
+                              self.joints.moves_reference, self.one_column)
 
     def predicted(self, last: FloatArray, back: FloatArray, margin: float, changes: float
                   ) -> tuple[FloatArray, float, Carried | None]:
@@ -502,14 +506,12 @@ class _SampleSolver:
         less the part of the carried step the tool does not feel (of second order, a step
         of the step before), with one solve where projecting the carried step took another.
         Its joint changes count as near-singular only past those carried on."""
-        model, data, frame_id, reference_id = (self.model, self.data, self.frame_id,
-                                               self.reference_id)
-        joints, limits, least_squares = self.joints, self.limits, self.least_squares
-        moves_reference, one_column = joints.moves_reference, self.one_column
+        (model, data, frame_id, reference_id, joints, limits, least_squares, moves_reference,
+         one_column) = self._newton_reads
         position_region = self.position_region if trust_newton else -1.0
         orientation_region = self.orientation_region
         best, best_margin = theta, margin
-        best_cost = best_position = best_orientation = math.inf
+        best_position = best_orientation = math.inf
         rows = residual = step_from = theta  # set on the first iteration
         step_error, step_margin, error_size = residual, margin, 0.0
         first, folded = True, False
@@ -529,13 +531,14 @@ class _SampleSolver:
                 if folded:  # one step from the last solution, in the rows' row space
                     self.rows, self.back = None, back
                 return theta, position, orientation, True, margin
-            # (hypot: no overflow for a target 1e155 m away; inf compares as the largest)
-            cost = math.hypot(position / position_tolerance,
-                              orientation / orientation_tolerance)
-            if cost < best_cost or first:
+            # the errors scaled by the tolerances, compared by their Euclidean norms (hypot:
+            # no overflow for a target 1e155 m away; inf compares as the largest)
+            if first or math.hypot(position / position_tolerance,
+                                   orientation / orientation_tolerance) < math.hypot(
+                    best_position / position_tolerance, best_orientation / orientation_tolerance):
                 first = False
-                best, best_margin, best_cost, best_position, best_orientation = (
-                    theta, margin, cost, position, orientation)
+                best, best_margin, best_position, best_orientation = (
+                    theta, margin, position, orientation)
                 damping = 0.0 if damping <= FIRST_DAMPING else damping / 10.0
                 if moves_reference:
                     jacobian = self._tool_jacobian(q, tool_in_reference)
