@@ -220,7 +220,10 @@ class Tracked:
 
 class TrackingHistory:
     """What the next sample starts from: the seed, the last two solutions when both reached
-    their targets, and the last solution that did.
+    their targets, and the last solution that did. The step between the last two is the
+    solver's own correction when one Newton step from the one gave the other (the same
+    numbers as their difference but rounding, with the sum of its joint changes: a
+    subtraction and a sum less per sample), else their difference.
 
     Parameters
     ----------
