@@ -368,7 +368,8 @@ class _SampleSolver:
         # what every Newton iteration reads, in one lookup
         self._newton_reads = (self.model, self.data, self.frame_id, self.reference_id,
                               self.joints, self.limits, self.least_squares,
-                              self.joints.moves_reference, self.one_column)
+                              self.joints.moves_reference, self.one_column,
+                              self.joints.whole_configuration)
 
     def predicted(self, last: FloatArray, back: FloatArray, margin: float, changes: float
                   ) -> tuple[FloatArray, float, Carried | None]:
@@ -510,7 +511,7 @@ class _SampleSolver:
         of the step before), with one solve where projecting the carried step took another.
         Its joint changes count as near-singular only past those carried on."""
         (model, data, frame_id, reference_id, joints, limits, least_squares, moves_reference,
-         one_column) = self._newton_reads
+         one_column, whole_configuration) = self._newton_reads
         position_region = self.position_region if trust_newton else -1.0
         orientation_region = self.orientation_region
         best, best_margin = theta, margin
@@ -520,9 +521,14 @@ class _SampleSolver:
         first, folded = True, False
         back: StepBack | None = None  # the latest step's, when full
         damping = 0.0
+        configuration = q
         for _ in range(iterations):
-            joints.set_configuration(q, theta)
-            pin.forwardKinematics(model, data, q)  # as _tool_in_reference, inlined: per sample
+            if whole_configuration:  # (``q`` is left as it was)
+                configuration = theta
+            else:
+                joints.set_configuration(q, theta)
+            # as _tool_in_reference, inlined: per sample
+            pin.forwardKinematics(model, data, configuration)
             tool_in_reference = pin.updateFramePlacement(model, data, frame_id)
             if reference_id is not None:
                 tool_in_reference = pin.updateFramePlacement(model, data, reference_id).actInv(
@@ -544,9 +550,10 @@ class _SampleSolver:
                     theta, margin, position, orientation)
                 damping = 0.0 if damping <= FIRST_DAMPING else damping / 10.0
                 if moves_reference:
-                    jacobian = self._tool_jacobian(q, tool_in_reference)
+                    jacobian = self._tool_jacobian(configuration, tool_in_reference)
                 else:  # as _tool_jacobian, inlined: per sample
-                    jacobian = pin.computeFrameJacobian(model, data, q, frame_id, _LOCAL)
+                    jacobian = pin.computeFrameJacobian(model, data, configuration, frame_id,
+                                                        _LOCAL)
                     if one_column:
                         jacobian = jacobian.reshape(6, 1)
                 rows = error.rows(joints.jacobian(jacobian))

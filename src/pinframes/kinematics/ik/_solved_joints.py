@@ -40,6 +40,9 @@ class SolvedJoints:
         joints it drives, in their velocity slots. ``J @ tangent`` is a Jacobian in ``theta``.
     moves_reference : bool
         Whether a solved joint moves the reference frame (joints on the target's side).
+    whole_configuration : bool
+        Whether ``theta`` is the model's whole configuration as it is (the solved joints are
+        all its joints, in order, none continuous or mimicked): Pinocchio can take it as ``q``.
     """
 
     def __init__(self, names: Sequence[str], model: CompiledModel, joints: Mapping[str, Joint],
@@ -68,6 +71,7 @@ class SolvedJoints:
         self._linear = _columns(linear)
         self._turning = _columns(turning)
         self._slice = _plain_slice(linear, turning, len(self.names))
+        self.whole_configuration = self._slice == slice(0, pinocchio_model.nq)
         self._velocity_slice = _selected_slice(self.tangent)
         self._every_velocity = self._velocity_slice == slice(0, pinocchio_model.nv)
         self.limits = JointLimits(*_bounds(self.names, joints))
