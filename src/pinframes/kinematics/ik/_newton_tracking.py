@@ -158,7 +158,8 @@ class TrackingProblem:
         model's root (its placements are already in it).
     configurations : ndarray, shape (N, nq)
         Per sample, the model's configuration with everything that is not solved for; the
-        solver writes the solved joints into it (no copy per iteration).
+        solver writes the solved joints into it (no copy per sample), but where they are the
+        whole configuration (Pinocchio then takes the solution itself).
     targets : ndarray, shape (N, 7), or None
         Per sample, the target in the reference frame as ``x y z qx qy qz qw`` (metres, unit
         quaternion); None: the reference frame itself.
