@@ -11,7 +11,7 @@ belongs to.
 from __future__ import annotations
 
 import contextlib
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
@@ -163,16 +163,21 @@ class TreeDescription:
             anchors[frame] = (anchor, compose(placement, (pose.rotation, pose.translation)))
         return anchors[name]
 
-    def path_layout(self, frame: str, relative_to: str) -> Transform | ModelLayout:
+    def path_layout(self, frame: str, relative_to: str, also: Sequence[str] = ()
+                    ) -> Transform | ModelLayout:
         """The path between two frames: the static pose of ``frame`` in ``relative_to``
-        when nothing between them moves, else the layout of a model rooted at their lowest
-        common ancestor holding both."""
+        when nothing between them moves and no other frame is asked for, else the layout of
+        a model rooted at the lowest common ancestor of both and the frames ``also``,
+        holding them all."""
         anchor, placement = self.anchor(frame)
         reference_anchor, reference_placement = self.anchor(relative_to)
-        if anchor == reference_anchor:
+        if anchor == reference_anchor and not also:
             return compose(inverse(reference_placement), placement)
-        up, _ = paths_to_common_ancestor(self.parents, self.depths, frame, relative_to)
-        return self.model_layout(up[-1], [frame, relative_to])
+        frames = [frame, relative_to, *also]
+        common = frame
+        for other in frames[1:]:
+            common = paths_to_common_ancestor(self.parents, self.depths, common, other)[0][-1]
+        return self.model_layout(common, frames)
 
     def model_layout(self, root: str, frames: list[str]) -> ModelLayout:
         """The layout of a model rooted at ``root`` holding ``frames`` (``root`` or below it)
