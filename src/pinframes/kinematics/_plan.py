@@ -7,7 +7,9 @@ timeline of the requested times (the reference-time rules of
 :mod:`pinframes.values.timeline`, the tree's reference time, the ``extrapolation`` policy)
 and each sampled source's shift onto its own time basis. Every query takes one or makes one
 with :func:`plan_query`; a query that needs another path at the same times asks the plan
-(:meth:`QueryPlan.on`), so requested times are parsed and planned once per call.
+(:meth:`QueryPlan.on`), so requested times are parsed and planned once per call; a query
+that reads several frames against each other plans one model holding them all
+(``also=``), sampled once for every pair of them.
 """
 
 from __future__ import annotations
@@ -48,11 +50,11 @@ class PreparedPath:
     """A query path prepared for repeated evaluation, once per tree version.
 
     Either ``static`` (the pose of the frame in the reference frame, when nothing between
-    them can move) or ``model`` with, per joint, how it is sampled (its
-    :mod:`._sampling` sampler), the moving things they read, and the joints without
-    samples (``resting``, held at their rest value). ``plans`` keeps what queries derive
-    from the path once (the one-time plan, the plan without times), so that it lives as
-    long as the path.
+    them can move) or ``model`` (holding both ends and any frames asked for beside them)
+    with, per joint, how it is sampled (its :mod:`._sampling` sampler), the moving things
+    they read, and the joints without samples (``resting``, held at their rest value).
+    ``plans`` keeps what queries derive from the path once (the one-time plan, the plan
+    without times), so that it lives as long as the path.
     """
 
     frame: str
