@@ -13,12 +13,13 @@ from __future__ import annotations
 import contextlib
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 from types import MappingProxyType
 from typing import Any
 
 import numpy as np
 
-from ..values.joint import Joint
+from ..values.joint import Drive, Joint, mimic_drives
 from ..values.joint_trajectory import JointTrajectory
 from ..values.pose import Pose
 from ..values.se3 import IDENTITY, Transform, compose, inverse
@@ -128,6 +129,12 @@ class TreeDescription:
                    MappingProxyType(dict(joint_trajectories)), reference_time,
                    has_frame_references,
                    MappingProxyType(_time_groups(joint_trajectories, reference_time)))
+
+    @cached_property
+    def drives(self) -> Mapping[str, Drive]:
+        """Per joint name, the actuated joint that finally drives it and how
+        (:func:`~pinframes.values.joint.mimic_drives`), once per version."""
+        return MappingProxyType(mimic_drives(self.joints_by_name))
 
     @property
     def frames(self) -> list[str]:
