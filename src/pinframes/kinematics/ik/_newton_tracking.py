@@ -473,8 +473,8 @@ class _SampleSolver:
         if self._asked_rows is None:
             q = self._asked_at
             tool_in_reference = self._tool_in_reference(q)
-            self._asked_rows = self.error.rows(self.joints.jacobian(
-                self._tool_jacobian(q, tool_in_reference)))
+            self._asked_rows = self.error.rows(self.joints.tool_jacobian(
+                self.model, self.data, q, self.frame_id, self.reference_id, tool_in_reference))
         return self._asked_rows
 
     def _tool_in_target(self, q: FloatArray, theta: FloatArray, target: pin.SE3 | None
@@ -551,13 +551,14 @@ class _SampleSolver:
                     theta, margin, position, orientation)
                 damping = 0.0 if damping <= FIRST_DAMPING else damping / 10.0
                 if moves_reference:
-                    jacobian = self._tool_jacobian(configuration, tool_in_reference)
-                else:  # as _tool_jacobian, inlined: per sample
+                    jacobian = joints.tool_jacobian(model, data, configuration, frame_id,
+                                                    reference_id, tool_in_reference)
+                else:  # as SolvedJoints.tool_jacobian, inlined: per sample
                     jacobian = pin.computeFrameJacobian(model, data, configuration, frame_id,
                                                         _LOCAL)
-                    if one_column:
-                        jacobian = jacobian.reshape(6, 1)
-                rows = error.rows(joints.jacobian(jacobian))
+                    jacobian = joints.jacobian(jacobian.reshape(6, 1) if one_column
+                                               else jacobian)
+                rows = error.rows(jacobian)
                 self.rows = rows
                 residual = step_error = vector
                 step_from, step_margin = best, best_margin
@@ -590,15 +591,3 @@ class _SampleSolver:
                     self.rows, self.back = None, back
                 return theta, math.nan, math.nan, True, margin
         return best, best_position, best_orientation, False, best_margin
-
-    def _tool_jacobian(self, q: FloatArray, tool_in_reference: pin.SE3) -> FloatArray:
-        """The tool's ``LOCAL`` Jacobian (6, nv) relative to the reference frame: when solved
-        joints move the reference too, its motion (seen in the tool's axes) counts against.
-        (eigenpy hands a one-column matrix back as a vector: reshaped.)"""
-        model, data = self.model, self.data
-        if not self.joints.moves_reference:
-            return pin.computeFrameJacobian(model, data, q, self.frame_id, _LOCAL).reshape(6, -1)
-        pin.computeJointJacobians(model, data, q)
-        tool = pin.getFrameJacobian(model, data, self.frame_id, _LOCAL).reshape(6, -1)
-        reference = pin.getFrameJacobian(model, data, self.reference_id, _LOCAL).reshape(6, -1)
-        return tool - tool_in_reference.inverse().action.dot(reference)

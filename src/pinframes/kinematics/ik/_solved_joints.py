@@ -16,9 +16,10 @@ import math
 from collections.abc import Mapping, Sequence
 
 import numpy as np
+import pinocchio as pin
 from numpy.typing import NDArray
 
-from ...errors import ArgumentTypeError, JointError, joint_not_found
+from ...errors import JointError
 from ...values.joint import Drive, Joint
 from .._model import CompiledModel
 from .._plan import PreparedPath
@@ -27,6 +28,9 @@ from ._bounded_step import JointLimits
 __all__ = ["SolvedJoints", "solved_joints"]
 
 FloatArray = NDArray[np.float64]
+
+_LOCAL = pin.ReferenceFrame.LOCAL
+"""Pinocchio's frame of a Jacobian in the tool's own axes."""
 
 
 class SolvedJoints:
@@ -111,6 +115,20 @@ class SolvedJoints:
         if self._velocity_slice is not None:
             return model_jacobian[:, self._velocity_slice]
         return model_jacobian.dot(self.tangent)
+
+    def tool_jacobian(self, model: pin.Model, data: pin.Data, q: FloatArray, tool_id: int,
+                      reference_id: int | None, tool_in_reference: pin.SE3) -> FloatArray:
+        """The tool's ``LOCAL`` Jacobian (6, n) in ``theta`` relative to the reference frame
+        at the configuration ``q`` (nq,), ``tool_in_reference`` its pose there: when solved
+        joints move the reference too, its motion (seen in the tool's axes) counts against.
+        (eigenpy hands a one-column matrix back as a vector: reshaped.)"""
+        if not self.moves_reference:
+            return self.jacobian(pin.computeFrameJacobian(model, data, q, tool_id, _LOCAL)
+                                 .reshape(6, -1))
+        pin.computeJointJacobians(model, data, q)
+        tool = pin.getFrameJacobian(model, data, tool_id, _LOCAL).reshape(6, -1)
+        reference = pin.getFrameJacobian(model, data, reference_id, _LOCAL).reshape(6, -1)
+        return self.jacobian(tool - tool_in_reference.inverse().action.dot(reference))
 
 
 def _columns(entries: list[tuple[int, int, float, float]]
@@ -214,34 +232,29 @@ def _joints_moving_frame(model: CompiledModel, drives: Mapping[str, Drive], fram
 
 
 def solved_joints(path: PreparedPath, joints: Mapping[str, Joint],
-                  drives: Mapping[str, Drive], requested: object) -> SolvedJoints:
+                  drives: Mapping[str, Drive], names: Sequence[str] | None) -> SolvedJoints:
     """The joints to solve on the moving ``path`` (its tool ``frame``, its reference
-    ``relative_to``): ``requested`` (names), or every joint that moves the tool relative to
-    the reference from the tool's side of the path; ``drives`` as
-    :attr:`~pinframes.kinematics._description.TreeDescription.drives`. Kept with the path
-    per request named by joint names (so once per tree version).
+    ``relative_to``): ``names`` (distinct actuated joints, checked by the caller), or every
+    joint that moves the tool relative to the reference from the tool's side of the path;
+    ``drives`` as :attr:`~pinframes.kinematics._description.TreeDescription.drives`. Kept
+    with the path per request (so made once per tree version).
 
-    Raises :class:`~pinframes.errors.JointError` (field ``joints``) for a name that is no
-    joint, a mimic joint, a repeat, a joint that moves neither frame, or nothing to solve.
+    Raises :class:`~pinframes.errors.JointError` (field ``joints``) for a joint that moves
+    neither frame, or nothing to solve.
     """
-    if requested is None or (isinstance(requested, (list, tuple))
-                             and all(isinstance(name, str) for name in requested)):
-        key = "solve_joints: " + ("every joint" if requested is None
-                                  else "named: " + "\0".join(requested))
-        cached = path.plans.get(key)
-        if cached is None:
-            cached = path.plans[key] = _solved_joints(path, joints, drives, requested)
-        assert isinstance(cached, SolvedJoints)
-        return cached
-    return _solved_joints(path, joints, drives, requested)
+    key = "solve_joints: " + ("every joint" if names is None else "named: " + "\0".join(names))
+    cached = path.plans.get(key)
+    if cached is None:
+        cached = path.plans[key] = _solved_joints(path, joints, drives, names)
+    assert isinstance(cached, SolvedJoints)
+    return cached
 
 
 def _solved_joints(path: PreparedPath, joints: Mapping[str, Joint],
-                   drives: Mapping[str, Drive], requested: object) -> SolvedJoints:
+                   drives: Mapping[str, Drive], names: Sequence[str] | None) -> SolvedJoints:
     """:func:`solved_joints`, made afresh."""
     model, frame, reference = path.model, path.frame, path.relative_to
     assert model is not None
-    names = None if requested is None else _joint_names(requested, joints, frame)
     own = _joints_moving_frame(model, drives, frame)
     if names is None:
         if not own:
@@ -254,22 +267,3 @@ def _solved_joints(path: PreparedPath, joints: Mapping[str, Joint],
             raise JointError(f"joint {name!r} moves neither {frame!r} nor {reference!r}",
                              frame=frame, field="joints")
     return SolvedJoints(names, model, joints, drives, reference)
-
-
-def _joint_names(requested: object, joints: Mapping[str, Joint], frame: str) -> list[str]:
-    """``requested`` as a list of distinct names of actuated joints, else an error."""
-    if isinstance(requested, str) or not isinstance(requested, Sequence):
-        raise ArgumentTypeError(f"expected a list of joint names, got {requested!r}",
-                                frame=frame, field="joints")
-    if not requested:
-        raise JointError("no joints to solve for", frame=frame, field="joints")
-    for name in requested:
-        if not isinstance(name, str) or name not in joints:
-            raise joint_not_found(name, joints, frame=frame, field="joints")
-        mimic = joints[name].mimic
-        if mimic is not None:
-            raise JointError(f"joint {name!r} mimics {mimic.joint!r} and follows it; solve "
-                             "for that joint", frame=frame, field="joints")
-    if len(set(requested)) != len(requested):
-        raise JointError("joint names repeat", frame=frame, field="joints")
-    return list(requested)
