@@ -6,10 +6,13 @@ their rest values. A path that the arm can follow from one branch may be lost fr
 value may be a singular configuration (a UR's stretched arm). So the first sample is solved
 from the default start and from :data:`SPREAD_STARTS` fixed configurations spread over the
 joint ranges (the same for every call: :data:`SPREAD_SEED`), these in the order of their
-distance from the default start. The distinct solutions (:data:`SAME_SOLUTION` apart) are
-tracked along the first stretch of samples, in that order; the first that reaches every
-sample of it is taken, else the one that reaches the most (the earlier on ties). A given
-seed is the only start.
+distance from the default start, until one is taken. Many starts are needed where the
+ranges are wide: from far away a solve often stops on a limit (an ABB GoFa's joints turn
+-180..180 degrees), so few starts end on a solution. The distinct solutions
+(:data:`SAME_SOLUTION` apart) are tracked along the first stretch of samples, in that order,
+at most :data:`TRACKED_SOLUTIONS` of them; the first that reaches every sample of it is
+taken, else the one that reaches the most (the earlier on ties). A given seed is the only
+start.
 """
 
 from __future__ import annotations
@@ -22,13 +25,16 @@ from numpy.typing import NDArray
 from ._bounded_step import JointLimits
 from ._newton_tracking import Tracked, TrackingHistory, TrackingProblem, solve_again, track_targets
 
-__all__ = ["SAME_SOLUTION", "SPREAD_SEED", "SPREAD_STARTS", "spread_starts",
+__all__ = ["SAME_SOLUTION", "SPREAD_SEED", "SPREAD_STARTS", "TRACKED_SOLUTIONS", "spread_starts",
            "track_from_the_best_start"]
 
 FloatArray = NDArray[np.float64]
 
-SPREAD_STARTS = 16
+SPREAD_STARTS = 64
 """Starts spread over the joint ranges, besides the default one."""
+
+TRACKED_SOLUTIONS = 16
+"""At most this many distinct first-sample solutions are tracked along the first stretch."""
 
 SPREAD_SEED = 20_240_301
 """Seed of the generator that spreads the starts (fixed: every call tries the same)."""
@@ -62,6 +68,8 @@ def track_from_the_best_start(problem: TrackingProblem, default: FloatArray,
         if not reached or any(np.max(np.abs(first - other)) <= SAME_SOLUTION
                               for other in tried):
             continue
+        if len(tried) == TRACKED_SOLUTIONS:
+            break
         tried.append(first)
         history = TrackingHistory(first)
         tracked = track_targets(problem, history, stop_when_unreached)
