@@ -12,6 +12,7 @@ import warnings
 from dataclasses import replace
 
 import numpy as np
+import pinocchio as pin
 import pytest
 
 from ik_paths import (
@@ -72,6 +73,21 @@ def test_without_a_seed_the_whole_path_is_reached(robot):
     assert solution.all_reached
     assert within_limits(model, solution.positions)
     assert largest_step(solution.positions) <= 2 * largest_step(trajectory)
+
+
+@pytest.mark.parametrize("robot", ARMS)
+def test_samples_out_of_reach_cost_no_reachable_one(robot):
+    """Five samples 3 m away from the path: no start reaches them all, so the solutions
+    that follow the path furthest are tracked to the end; every other sample is reached."""
+    _, targets, times = a_path(robot)
+    away = range(40, 45)
+    for index in away:
+        targets[index] = pin.SE3(targets[index].rotation,
+                                 targets[index].translation + np.array([3.0, 0.0, 0.0]))
+    solution = solved(robot, targets, times)
+    reached = on_target(robot.model(), robot.tool, solution.positions, targets)
+    np.testing.assert_array_equal(np.flatnonzero(~reached), list(away))
+    np.testing.assert_array_equal(reached, solution.reached)
 
 
 @pytest.mark.parametrize("robot", ARMS)
