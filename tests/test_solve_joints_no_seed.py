@@ -128,3 +128,54 @@ def test_the_start_taken_is_the_same_on_every_call(robot):
     _, targets, times = a_path(robot)
     first, again = solved(robot, targets, times), solved(robot, targets, times)
     np.testing.assert_array_equal(first.positions, again.positions)
+
+
+# -- many ROS-Industrial six-axis arms ---------------------------------------------------------
+INDUSTRIAL = sorted((DATA / "ros_industrial_arms").glob("*/*.urdf"))
+"""Fanuc, Yaskawa Motoman, ABB and KUKA arms as ROS-Industrial describes them (tests/data)."""
+
+
+def far_paths(robot: Arm, count: int) -> list[np.ndarray]:
+    """``count`` trajectories (101 samples at 50 Hz) swinging about configurations drawn
+    uniformly inside the limits (within -pi..pi), each at least 1.5 rad (Euclidean) from
+    the rest values; the same on every run."""
+    model = robot.model()
+    lower = np.maximum(model.lowerPositionLimit, -np.pi)
+    upper = np.minimum(model.upperPositionLimit, np.pi)
+    swing = np.minimum(robot.swing, (upper - lower) / 4)
+    generator = np.random.default_rng(20261127)
+    times = np.arange(SAMPLES) / RATE_HZ
+    paths = []
+    while len(paths) < count:
+        home = generator.uniform(lower + swing, upper - swing)
+        if np.linalg.norm(home) >= 1.5:
+            paths.append(swinging(home, swing, times))
+    return paths
+
+
+def industrial(urdf) -> Arm:
+    return Arm(f"{urdf.parent.name}/{urdf.stem}", urdf, "tool0", 6, (0.0,) * 6,
+               (0.4, 0.3, 0.3, 0.5, 0.4, 0.8))
+
+
+def assert_followed_without_a_seed(robot: Arm, count: int) -> None:
+    model = robot.model()
+    times = np.arange(SAMPLES) / RATE_HZ
+    for trajectory in far_paths(robot, count):
+        targets = frame_poses(model, robot.tool, trajectory)
+        solution = solved(robot, targets, times)
+        assert on_target(model, robot.tool, solution.positions, targets).all(), trajectory[0]
+        assert within_limits(model, solution.positions)
+
+
+@pytest.mark.parametrize("urdf", INDUSTRIAL, ids=lambda urdf: urdf.stem)
+def test_industrial_arms_follow_paths_far_from_rest_without_a_seed(urdf):
+    """Issue 33 found 26 of 124 industrial six-axis arms missing paths they can follow
+    when started from their rest values; here 25 of ROS-Industrial's, two paths each."""
+    assert_followed_without_a_seed(industrial(urdf), 2)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("urdf", INDUSTRIAL, ids=lambda urdf: urdf.stem)
+def test_industrial_arms_follow_many_paths_without_a_seed(urdf):
+    assert_followed_without_a_seed(industrial(urdf), 20)
