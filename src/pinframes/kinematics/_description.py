@@ -11,14 +11,15 @@ belongs to.
 from __future__ import annotations
 
 import contextlib
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from functools import cached_property
 from types import MappingProxyType
 from typing import Any
 
 import numpy as np
 
-from ..values.joint import Joint
+from ..values.joint import Drive, Joint, mimic_drives
 from ..values.joint_trajectory import JointTrajectory
 from ..values.pose import Pose
 from ..values.se3 import IDENTITY, Transform, compose, inverse
@@ -129,6 +130,12 @@ class TreeDescription:
                    has_frame_references,
                    MappingProxyType(_time_groups(joint_trajectories, reference_time)))
 
+    @cached_property
+    def drives(self) -> Mapping[str, Drive]:
+        """Per joint name, the actuated joint that finally drives it and how
+        (:func:`~pinframes.values.joint.mimic_drives`), once per version."""
+        return MappingProxyType(mimic_drives(self.joints_by_name))
+
     @property
     def frames(self) -> list[str]:
         """Every frame, root first, every parent before its children."""
@@ -163,16 +170,21 @@ class TreeDescription:
             anchors[frame] = (anchor, compose(placement, (pose.rotation, pose.translation)))
         return anchors[name]
 
-    def path_layout(self, frame: str, relative_to: str) -> Transform | ModelLayout:
+    def path_layout(self, frame: str, relative_to: str, also: Sequence[str] = ()
+                    ) -> Transform | ModelLayout:
         """The path between two frames: the static pose of ``frame`` in ``relative_to``
-        when nothing between them moves, else the layout of a model rooted at their lowest
-        common ancestor holding both."""
+        when nothing between them moves and no other frame is asked for, else the layout of
+        a model rooted at the lowest common ancestor of both and the frames ``also``,
+        holding them all."""
         anchor, placement = self.anchor(frame)
         reference_anchor, reference_placement = self.anchor(relative_to)
-        if anchor == reference_anchor:
+        if anchor == reference_anchor and not also:
             return compose(inverse(reference_placement), placement)
-        up, _ = paths_to_common_ancestor(self.parents, self.depths, frame, relative_to)
-        return self.model_layout(up[-1], [frame, relative_to])
+        frames = [frame, relative_to, *also]
+        common = frame
+        for other in frames[1:]:
+            common = paths_to_common_ancestor(self.parents, self.depths, common, other)[0][-1]
+        return self.model_layout(common, frames)
 
     def model_layout(self, root: str, frames: list[str]) -> ModelLayout:
         """The layout of a model rooted at ``root`` holding ``frames`` (``root`` or below it)

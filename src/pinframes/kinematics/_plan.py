@@ -7,12 +7,14 @@ timeline of the requested times (the reference-time rules of
 :mod:`pinframes.values.timeline`, the tree's reference time, the ``extrapolation`` policy)
 and each sampled source's shift onto its own time basis. Every query takes one or makes one
 with :func:`plan_query`; a query that needs another path at the same times asks the plan
-(:meth:`QueryPlan.on`), so requested times are parsed and planned once per call.
+(:meth:`QueryPlan.on`), so requested times are parsed and planned once per call; a query
+that reads several frames against each other plans one model holding them all
+(``also=``), sampled once for every pair of them.
 """
 
 from __future__ import annotations
 
-from collections.abc import Collection, Iterable, Iterator
+from collections.abc import Collection, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -48,11 +50,11 @@ class PreparedPath:
     """A query path prepared for repeated evaluation, once per tree version.
 
     Either ``static`` (the pose of the frame in the reference frame, when nothing between
-    them can move) or ``model`` with, per joint, how it is sampled (its
-    :mod:`._sampling` sampler), the moving things they read, and the joints without
-    samples (``resting``, held at their rest value). ``plans`` keeps what queries derive
-    from the path once (the one-time plan, the plan without times), so that it lives as
-    long as the path.
+    them can move) or ``model`` (holding both ends and any frames asked for beside them)
+    with, per joint, how it is sampled (its :mod:`._sampling` sampler), the moving things
+    they read, and the joints without samples (``resting``, held at their rest value).
+    ``plans`` keeps what queries derive from the path once (the one-time plan, the plan
+    without times), so that it lives as long as the path.
     """
 
     frame: str
@@ -65,13 +67,18 @@ class PreparedPath:
     plans: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
 
 
-def prepare_path(tree: TreeDescription, frame: str, relative_to: str) -> PreparedPath:
-    """The query path from ``frame`` to ``relative_to``, compiled once per tree version."""
-    key = (frame, relative_to)
+def prepare_path(tree: TreeDescription, frame: str, relative_to: str,
+                 also: Sequence[str] = ()) -> PreparedPath:
+    """The query path from ``frame`` to ``relative_to``, compiled once per tree version.
+
+    With frames ``also``, always a compiled model, rooted at the lowest common ancestor of
+    them all and holding them all: one sampling of it serves every pair of its frames.
+    """
+    key = (frame, relative_to, *also)
     cached = tree.cached(key)
     if cached is not None:
         return cached
-    layout = tree.path_layout(frame, relative_to)
+    layout = tree.path_layout(frame, relative_to, also)
     if not isinstance(layout, ModelLayout):
         require_finite_pose(layout[1], frame, relative_to)
         path = PreparedPath(frame, relative_to, layout)
@@ -165,12 +172,13 @@ class QueryPlan:
 def plan_query(
     tree: TreeDescription, frame: str, relative_to: str, times: Any, time_ref: Any,
     extrapolation: str, sources: Iterable[TimedSource] | None = None,
-    held: Collection[str] = (), extra: Iterable[TimedSource] = (),
+    held: Collection[str] = (), extra: Iterable[TimedSource] = (), also: Sequence[str] = (),
 ) -> QueryPlan:
     """The plan of a query from the caller's arguments: the path from ``frame`` to
-    ``relative_to`` and the timeline of ``times`` / ``time_ref`` on ``sources`` (by default
-    the moving things of the path but the ``held`` joints, whose values the caller gives,
-    and the ``extra`` ones, a target's; others where the times are those of other
+    ``relative_to`` (its model holding the frames ``also`` too, :func:`prepare_path`) and
+    the timeline of ``times`` / ``time_ref`` on ``sources`` (by default the moving things
+    of the path but the ``held`` joints, whose values the caller gives, and the ``extra``
+    ones, a target's or another path's; others where the times are those of other
     things).
 
     Warns (once per tree version) when a joint of the path holds its rest value.
@@ -178,7 +186,7 @@ def plan_query(
     if extrapolation not in EXTRAPOLATION_POLICIES:
         raise ExtrapolationError(f"expected one of {', '.join(EXTRAPOLATION_POLICIES)}, "
                                  f"got {extrapolation!r}", field="extrapolation")
-    path = prepare_path(tree, frame, relative_to)
+    path = prepare_path(tree, frame, relative_to, also)
     own_sources = sources is None and not held and not extra
     without_times = times is None and own_sources
     if without_times:  # the same plan every time: kept with the path

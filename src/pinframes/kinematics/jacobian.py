@@ -27,7 +27,7 @@ from ._description import TreeDescription
 from ._plan import plan_query
 from ._sampled_path import SampledPath, sampled_parts
 from ._sampling import DrivenJoint
-from ._twists import Twist, jacobian_columns
+from ._twists import Twist, jacobian_columns, joint_signs
 
 __all__ = ["FrameJacobian", "evaluate_jacobian"]
 
@@ -66,19 +66,22 @@ def evaluate_jacobian(tree: TreeDescription, frame: str, relative_to: str, times
     column_of = {name: column for column, name in enumerate(names)}
     plan = plan_query(tree, frame, relative_to, times, time_ref, extrapolation)
     matrix = np.zeros((plan.count, 6, len(names)))
-    if plan.path.static is None:
-        for part, path in sampled_parts(tree, plan):
-            matrix[part] = _columns_in_reference(path, column_of)
+    if plan.path.model is not None:
+        signs = joint_signs(plan.path.model, frame, relative_to)
+        for part, path in sampled_parts(plan):
+            matrix[part] = _columns_in_reference(path, signs, frame, relative_to, column_of)
     return FrameJacobian(matrix, tuple(names), plan.result_times, plan.reference_time)
 
 
-def _columns_in_reference(path: SampledPath, column_of: dict[str, int]) -> FloatArray:
-    """``(N, 6, n)`` Jacobians of one chunk, rows in the axes of the reference frame."""
+def _columns_in_reference(path: SampledPath, signs: dict[int, float], frame: str,
+                          relative_to: str, column_of: dict[str, int]) -> FloatArray:
+    """``(N, 6, n)`` Jacobians of one chunk, rows in the axes of the reference frame
+    (``signs``: :func:`._twists.joint_signs` of the two)."""
     count = path.times.shape[0]
     unit_twists: dict[int, Twist] = {}
     targets: dict[int, tuple[int, float]] = {}
     for position, sampler in enumerate(path.samplers):
-        if not isinstance(sampler, DrivenJoint) or position not in path.signs:
+        if not isinstance(sampler, DrivenJoint) or position not in signs:
             continue
         column = column_of.get(sampler.primary)
         if column is None:
@@ -86,12 +89,12 @@ def _columns_in_reference(path: SampledPath, column_of: dict[str, int]) -> Float
         unit_twists[position] = path.unit_twists[position]
         targets[position] = (column, sampler.multiplier)
     root_matrix = np.zeros((count, 6, len(column_of)))
-    for position, (linear, angular) in jacobian_columns(path.signs, path.origins, unit_twists,
-                                                        path.frame[1]).items():
+    for position, (linear, angular) in jacobian_columns(signs, path.origins, unit_twists,
+                                                        path.placements[frame][1]).items():
         column, multiplier = targets[position]
         root_matrix[:, :3, column] += multiplier * linear
         root_matrix[:, 3:, column] += multiplier * angular
-    rotation = path.relative_to[0]
+    rotation = path.placements[relative_to][0]
     if rotation is IDENTITY[0]:  # the root's own axes
         return root_matrix
     # R.T @ (3, n) blocks, element by element: row i is sum_j R[j, i] * block[j]

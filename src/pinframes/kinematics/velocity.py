@@ -12,6 +12,7 @@ model's root) or, rotated, in those of ``frame`` (Pinocchio's ``LOCAL``).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -24,10 +25,10 @@ from ._description import TreeDescription
 from ._plan import QueryPlan, plan_query
 from ._sampled_path import SampledPath, sampled_parts
 from ._sampling import MovingFrame
-from ._twists import Twist, rotate, velocity_sum
+from ._twists import Twist, joint_signs, rotate, velocity_sum
 from .pose import planned_transforms
 
-__all__ = ["Velocity", "evaluate_velocity", "planned_velocity"]
+__all__ = ["Velocity", "evaluate_velocity", "planned_velocity", "velocities_in_root"]
 
 FloatArray = NDArray[np.float64]
 
@@ -77,9 +78,9 @@ def planned_velocity(tree: TreeDescription, plan: QueryPlan, expressed_in: str) 
     frame, relative_to = plan.path.frame, plan.path.relative_to
     linear, angular = np.zeros((plan.count, 3)), np.zeros((plan.count, 3))
     if plan.path.static is None:
-        for part, path in sampled_parts(tree, plan):
-            linear_c, angular_c = _velocity_in_root(path)
-            axes = (path.frame if expressed_in == frame else path.relative_to)[0]
+        for part, path in sampled_parts(plan):
+            ((linear_c, angular_c),) = velocities_in_root(path, [(frame, relative_to)])
+            axes = path.placements[frame if expressed_in == frame else relative_to][0]
             if axes is not IDENTITY[0]:  # the root's own axes need no turn
                 rotation_t = np.swapaxes(axes, -1, -2)
                 linear_c, angular_c = rotate(rotation_t, linear_c), rotate(rotation_t, angular_c)
@@ -94,13 +95,20 @@ def planned_velocity(tree: TreeDescription, plan: QueryPlan, expressed_in: str) 
                     relative_to, expressed_in)
 
 
-def _velocity_in_root(path: SampledPath) -> tuple[FloatArray, FloatArray]:
-    """``(v, w)`` of the frame relative to the reference frame, in the root's axes: per
-    joint that moves an end, a moving frame's exact rate (its interpolation scheme's), or a
-    robot joint's unit twist times its driver's rate and the mimic links' multipliers."""
+def velocities_in_root(path: SampledPath, pairs: Sequence[tuple[str, str]]
+                       ) -> list[tuple[FloatArray, FloatArray]]:
+    """Per pair ``(frame, relative_to)`` of the path's frames, ``(v, w)`` of ``frame``
+    relative to ``relative_to`` in the axes of the model's root.
+
+    Each joint that moves one end of a pair gives its twist once for every pair: a moving
+    frame's exact rate (its interpolation scheme's), or a robot joint's unit twist times
+    its driver's rate and the mimic links' multipliers.
+    """
+    signs = [joint_signs(path.model, frame, relative_to) for frame, relative_to in pairs]
+    moving = set().union(*signs)
     twists: dict[int, Twist] = {}
     for position, sampler in enumerate(path.samplers):
-        if position not in path.signs:
+        if position not in moving:
             continue
         if isinstance(sampler, MovingFrame):  # a moving frame's free-flyer
             keyframes = sampler.placed
@@ -121,4 +129,5 @@ def _velocity_in_root(path: SampledPath) -> tuple[FloatArray, FloatArray]:
         sliding, turning = path.unit_twists[position]
         twists[position] = (None if sliding is None else sliding * rates[:, None],
                             None if turning is None else turning * rates[:, None])
-    return velocity_sum(path.signs, path.origins, twists, path.frame[1])
+    return [velocity_sum(moved, path.origins, twists, path.placements[frame][1])
+            for moved, (frame, _) in zip(signs, pairs, strict=True)]

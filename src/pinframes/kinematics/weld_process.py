@@ -29,13 +29,14 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InvalidDataError
-from ..values.numbers import float_array
-from ..values.se3 import compose, inverse, samples_first, samples_last
+from ..values.numbers import float_array, require_finite_pose
 from ..values.timed import Timed
-from ._description import TreeDescription, paths_to_common_ancestor
-from ._plan import plan_query, prepare_path
+from ._description import TreeDescription
+from ._plan import QueryPlan, plan_query, prepare_path
+from ._sampled_path import sampled_parts
+from ._twists import rotate
 from .pose import planned_transforms
-from .velocity import planned_velocity
+from .velocity import velocities_in_root
 
 __all__ = ["ALONG_TRAVEL_RAD", "WeldProcess", "evaluate_weld_process", "welding_positions"]
 
@@ -47,7 +48,8 @@ the work angle of such a wire, the rotation of such an upward direction, are NaN
 
 _QUARTER = np.pi / 4
 _POSITION_BOUNDS = np.radians([22.5, 67.5, 112.5, 157.5])
-_FACE_POSITIONS = np.array(["PA", "PB", "PC", "PD", "PE"])
+_POSITIONS = np.array(["PA", "PB", "PC", "PD", "PE", "PF", "PG"])
+"""By the face's turn past each bound (0 to 4), then vertical up (5) and down (6)."""
 
 
 @dataclass(frozen=True)
@@ -124,10 +126,9 @@ def welding_positions(slope: ArrayLike, rotation: ArrayLike) -> NDArray[np.str_]
     """
     slope_array = np.asarray(slope, dtype=float)
     turned = np.abs(np.asarray(rotation, dtype=float))
-    face = _FACE_POSITIONS[np.searchsorted(_POSITION_BOUNDS, np.nan_to_num(turned),
-                                           side="right")]
-    return np.where(slope_array >= _QUARTER, "PF",
-                    np.where(slope_array <= -_QUARTER, "PG", face)).astype("<U2")
+    face = sum(turned >= bound for bound in _POSITION_BOUNDS)  # NaN: past none, flat
+    return np.asarray(_POSITIONS[np.where(slope_array >= _QUARTER, 5,
+                                          np.where(slope_array <= -_QUARTER, 6, face))])
 
 
 def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: Any,
@@ -135,57 +136,34 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
                           contact_tip: str | None, up: Any = None) -> WeldProcess:
     """``tree.weld_process(...)``; frame names already checked.
 
-    Five queries on one plan: the seam and the torch in their lowest common ancestor (the
-    torch in the seam is composed from them), the ancestor in the root, and the torch's and
-    the seam's velocities relative to the workpiece. Without times, the samples are every
-    keyframe and joint sample that moves the torch or the seam relative to the workpiece,
-    the seam in the root (its welding position) or the contact tip relative to the torch.
-    ``up`` is the upward direction in the root's axes, default +z.
+    One plan, one sampling: the seam on the workpiece, on a model that also holds the torch
+    and the contact tip, rooted at the lowest common ancestor of them all, so that each
+    moving thing between them is sampled once for every pose and velocity the process
+    reads; the ancestor's turn in the root (mostly none) gives the upward direction. Without
+    times, the samples are every keyframe and joint sample that moves one of these frames
+    or the seam in the root. ``up`` is the upward direction in the root's axes, default +z.
     """
     upward = _unit_up(up)
-    # every path below moves only with these sources: planned on them, without times a
-    # path on which nothing moves has one sample, and otherwise every path has them all
-    paths = [(torch, workpiece), (seam, workpiece), (seam, tree.root)]
-    if contact_tip is not None:
-        paths.append((contact_tip, torch))
-    moving = {source.name: source for frame, other in paths
-              for source in prepare_path(tree, frame, other).sources}
-    # both ends in their lowest common ancestor, then the torch in the seam from them, as
-    # the model of that path composes it; the seam's moving things are sampled once for the
-    # process and for the upward direction (the ancestor's turn in the root, mostly none)
-    common = paths_to_common_ancestor(tree.parents, tree.depths, torch, seam)[0][-1]
-    plan = plan_query(tree, seam, common, times, time_ref, extrapolation,
-                      sources=moving.values())
-    seam_in_common = planned_transforms(tree, plan)
-    torch_in_common = planned_transforms(tree, plan.on(tree, torch, common))
-    rotation, origin = samples_first(compose(inverse(samples_last(seam_in_common)),
-                                             samples_last(torch_in_common)))
-
-    def velocity(frame: str) -> tuple[FloatArray, FloatArray]:
-        """Of ``frame`` relative to the workpiece, in ``frame``'s own axes (no extra pose
-        query)."""
-        found = planned_velocity(tree, plan.on(tree, frame, workpiece), frame)
-        return found.linear, found.angular
-
-    # the torch's, turned into seam axes by the torch's rotation in the seam
-    torch_linear, torch_angular = (np.einsum("tij,tj->ti", rotation, vector)
-                                   for vector in velocity(torch))
-    wire = rotation[:, :, 2]  # the torch z axis in seam axes
-    speed = _weld_point_speed(origin, wire, (torch_linear, torch_angular), velocity(seam))
-    ctwd = None
-    if contact_tip is not None:
-        tip_in_torch = planned_transforms(tree, plan.on(tree, contact_tip, torch))[1]
-        tip = np.einsum("tij,tj->ti", rotation, tip_in_torch) + origin
-        ctwd = _along_wire_to_plane(tip[:, 2], wire[:, 2])
-    up_in_common = upward @ planned_transforms(tree, plan.on(tree, common, tree.root))[0]
-    up_in_seam = np.einsum("tji,tj->ti", seam_in_common[0], up_in_common)
-    slope = np.arctan2(up_in_seam[:, 0], np.hypot(up_in_seam[:, 1], up_in_seam[:, 2]))
+    plan = plan_query(tree, seam, workpiece, times, time_ref, extrapolation,
+                      also=[torch, *([] if contact_tip is None else [contact_tip])],
+                      extra=prepare_path(tree, seam, tree.root).sources)
+    model = plan.path.model
+    assert model is not None, "a path with other frames is always compiled"
+    if model.root != tree.root:  # the ancestor's turn in the root: upward in its axes
+        turn = planned_transforms(tree, plan.on(tree, model.root, tree.root))[0]
+        upward = rotate(np.swapaxes(turn, 1, 2), upward)
+    seen = _SeamAxes.sampled(plan, torch, seam, workpiece, contact_tip, upward)
+    wire = seen.wire
+    speed = _weld_point_speed(seen.origin, wire, seen.torch_rates, seen.seam_rates)
+    ctwd = None if seen.tip is None else _along_wire_to_plane(seen.tip[:, 2], wire[:, 2])
+    up_in_seam = seen.up
+    slope = np.arctan2(up_in_seam[:, 0], _across_length(up_in_seam[:, 1], up_in_seam[:, 2]))
     face_rotation = _across_angle(up_in_seam[:, 1], up_in_seam[:, 2])
     return WeldProcess(
         travel_speed=speed,
         travel_angle=np.arcsin(np.clip(wire[:, 0], -1.0, 1.0)),
         work_angle=_across_angle(-wire[:, 2], -wire[:, 1]),
-        offset=origin,
+        offset=np.ascontiguousarray(seen.origin),
         ctwd=ctwd,
         slope=slope,
         rotation=face_rotation,
@@ -197,6 +175,50 @@ def evaluate_weld_process(tree: TreeDescription, torch: str, seam: str, times: A
         workpiece=workpiece,
         contact_tip=contact_tip,
     )
+
+
+@dataclass(frozen=True)
+class _SeamAxes:
+    """What the process reads, per sample, in the seam's axes (x along the travel): the
+    torch's origin (m) and wire axis (its z), the torch's and the seam's velocities
+    relative to the workpiece (``(linear, angular)``, m/s and rad/s), the unit upward
+    direction, and the contact tip's origin (m) when there is one."""
+
+    origin: FloatArray
+    wire: FloatArray
+    torch_rates: tuple[FloatArray, FloatArray]
+    seam_rates: tuple[FloatArray, FloatArray]
+    up: FloatArray
+    tip: FloatArray | None
+
+    @classmethod
+    def sampled(cls, plan: QueryPlan, torch: str, seam: str, workpiece: str,
+                contact_tip: str | None, up: FloatArray) -> _SeamAxes:
+        """Each chunk of ``plan`` (on a model holding every frame named) sampled once and
+        turned into the seam's axes; ``up`` is the upward direction in the model root's
+        axes, static or per sample."""
+        def vectors() -> FloatArray:  # (count, 3), each component one contiguous row:
+            return np.empty((3, plan.count)).T  # the arithmetic below reads components
+
+        seen = cls(vectors(), vectors(), (vectors(), vectors()), (vectors(), vectors()),
+                   vectors(), None if contact_tip is None else vectors())
+        for part, path in sampled_parts(plan):
+            rates = velocities_in_root(path, [(torch, workpiece), (seam, workpiece)])
+            seam_rotation, seam_origin = path.placements[seam]
+            torch_rotation, torch_origin = path.placements[torch]
+            into_seam = np.swapaxes(seam_rotation, -1, -2)
+            seen.origin[part] = rotate(into_seam, torch_origin - seam_origin)
+            seen.wire[part] = rotate(into_seam, torch_rotation[..., :, 2])
+            for into, (linear, angular) in zip((seen.torch_rates, seen.seam_rates), rates,
+                                               strict=True):
+                into[0][part], into[1][part] = (rotate(into_seam, linear),
+                                                rotate(into_seam, angular))
+            seen.up[part] = rotate(into_seam, up if up.ndim == 1 else up[part])
+            if seen.tip is not None and contact_tip is not None:
+                seen.tip[part] = rotate(into_seam,
+                                        path.placements[contact_tip][1] - seam_origin)
+        require_finite_pose(seen.origin, torch, seam)
+        return seen
 
 
 def _weld_point_speed(origin: FloatArray, wire: FloatArray,
@@ -240,8 +262,14 @@ def _along_wire_to_plane(height: FloatArray, wire_z: FloatArray) -> FloatArray:
 def _across_angle(along_y: FloatArray, along_z: FloatArray) -> FloatArray:
     """atan2 of a direction's y and z parts in seam axes; NaN where the direction lies
     along the seam's x axis (its y-z part below sin :data:`ALONG_TRAVEL_RAD`)."""
-    return np.where(np.hypot(along_y, along_z) > np.sin(ALONG_TRAVEL_RAD),
+    return np.where(_across_length(along_y, along_z) > np.sin(ALONG_TRAVEL_RAD),
                     np.arctan2(along_y, along_z), np.nan)
+
+
+def _across_length(along_y: FloatArray, along_z: FloatArray) -> FloatArray:
+    """The length of a unit direction's y-z part in seam axes (no overflow to guard
+    against: ``np.hypot``, which guards, took ten times as long)."""
+    return np.sqrt(along_y * along_y + along_z * along_z)
 
 
 def _unit_up(up: Any) -> FloatArray:

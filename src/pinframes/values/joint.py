@@ -20,7 +20,7 @@ from ..errors import JointError
 from ._trigonometry import cos_sin
 from .se3 import rotated_vector, rotation_product, turned
 
-__all__ = ["JOINT_KINDS", "Joint", "Mimic", "mimic_chain", "mimic_primary"]
+__all__ = ["JOINT_KINDS", "Drive", "Joint", "Mimic", "mimic_chain", "mimic_drives"]
 
 JOINT_KINDS = ("revolute", "continuous", "prismatic")
 """Joint kinds driven by one value each."""
@@ -217,13 +217,29 @@ def mimic_chain(joint: Joint, joints: Mapping[str, Joint]) -> list[Joint]:
     return chain
 
 
-def mimic_primary(joint: Joint, joints: Mapping[str, Joint]) -> tuple[Joint, float]:
-    """The joint that finally drives ``joint`` (itself if it mimics none), and the rate of
-    ``joint`` per unit rate of that joint: the product of the multipliers on the way."""
-    chain = mimic_chain(joint, joints)
-    multiplier = 1.0
-    for link in chain[:-1]:
-        if link.mimic is not None:
-            multiplier *= link.mimic.multiplier
-    return chain[-1], multiplier
+@dataclass(frozen=True)
+class Drive:
+    """How a joint follows the actuated joint that finally drives it through a chain of
+    mimics: ``value = multiplier * value(primary) + offset`` (radians or metres)."""
 
+    primary: str
+    multiplier: float = 1.0
+    offset: float = 0.0
+
+
+def mimic_drives(joints: Mapping[str, Joint]) -> dict[str, Drive]:
+    """Per joint of ``joints`` (by name), its :class:`Drive`: a joint that mimics none
+    drives itself (multiplier 1, offset 0).
+
+    Raises :class:`~pinframes.errors.JointError` as :func:`mimic_chain` does.
+    """
+    drives: dict[str, Drive] = {}
+    for joint in joints.values():
+        chain = mimic_chain(joint, joints)
+        multiplier, offset = 1.0, 0.0
+        for link in reversed(chain[:-1]):  # from the primary out to the joint
+            assert link.mimic is not None
+            multiplier, offset = (link.mimic.multiplier * multiplier,
+                                  link.mimic.multiplier * offset + link.mimic.offset)
+        drives[joint.name] = Drive(chain[-1].name, multiplier, offset)
+    return drives

@@ -1,8 +1,10 @@
 """Inverse kinematics: joint values that put a tool frame on a target frame along a path.
 
 :mod:`.solve_joints` is the query (``FrameTree.solve_joints``) and :mod:`.joint_solution` its
-result. Its steps: the solved joints (``_solved_joints``), the tool's error (``_tool_error``),
-the step within limits (``_bounded_step``), the solver loop (``_newton_tracking``) and the
+result. Its steps: the solved joints (``_solved_joints``), where the solve starts
+(``_starts``), the solve chunk by chunk (``_path_chunks``), the solver loop sample by sample
+(``_newton_tracking``) with the tool's error (``_tool_error``), the step within limits
+(``_bounded_step``) and the secondary objectives (``_null_space``, ``_flat``), and the
 batched check of its samples (``_batch_check``). The planning and sampling it shares with
 the other queries are the ``_`` modules of :mod:`pinframes.kinematics`.
 """

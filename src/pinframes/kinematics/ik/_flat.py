@@ -35,7 +35,6 @@ from numpy.typing import NDArray
 from ...errors import ArgumentTypeError, InvalidDataError, JointError
 from .._description import TreeDescription
 from .._model import CompiledModel
-from .._plan import prepare_path
 from ._bounded_step import LeastSquares
 from ._solved_joints import SolvedJoints
 
@@ -198,8 +197,14 @@ def _turn_across(axes: FloatArray, up: FloatArray, tolerance: float) -> FloatArr
 def flat_objective(tree: TreeDescription, model: CompiledModel, joints: SolvedJoints,
                    flat: str, up: Any, frame: str, solver: LeastSquares) -> FlatFrame:
     """The :class:`FlatFrame` of ``solve_joints(frame, ..., flat=flat, up=up)`` on the
-    compiled path ``model``; ``up`` a 3-vector in the tree root's axes (None: its +z)."""
+    compiled path ``model``; ``up`` a 3-vector in the tree root's axes (None: its +z), which
+    the root of ``model`` (where tool and target meet) must not turn."""
+    up_in_root = _unit_vector(up, frame)
     anchor, (rotation_on_anchor, _) = tree.anchor(flat)
+    model_root_anchor, (model_root_in_root, _) = tree.anchor(model.root)
+    if model_root_anchor != tree.root:
+        raise JointError(f"flat= takes up in the root's axes, and {model.root!r} (where tool "
+                         f"and target meet) moves in the root", frame=model.root, field="up")
     carriers = [index + 1 for index, joint in enumerate(model.joints) if joint.frame == anchor]
     pinocchio_model = model.model
     if carriers:
@@ -210,9 +215,8 @@ def flat_objective(tree: TreeDescription, model: CompiledModel, joints: SolvedJo
         raise JointError(f"no solved joint turns {flat!r}: flat= needs a frame that the solved "
                          f"joints move (the workpiece on a positioner solved with "
                          f"joints=[...])", frame=frame, field="flat")
-    direction = _up_in_model_root(tree, model.root, _unit_vector(up, frame))
     return FlatFrame(pinocchio_model, model.data, joints, carriers[0], rotation_on_anchor,
-                     direction, solver)
+                     model_root_in_root.T.dot(up_in_root), solver)
 
 
 def _unit_vector(up: Any, frame: str) -> FloatArray:
@@ -229,15 +233,3 @@ def _unit_vector(up: Any, frame: str) -> FloatArray:
         raise InvalidDataError(f"expected a finite, non-zero 3-vector, got {up!r}", frame=frame,
                                field="up")
     return vector / length
-
-
-def _up_in_model_root(tree: TreeDescription, model_root: str, up: FloatArray) -> FloatArray:
-    """``up`` (tree root's axes) in the axes of the compiled path's root, which must not
-    turn in the tree's root."""
-    if model_root == tree.root:
-        return up
-    path = prepare_path(tree, model_root, tree.root)
-    if path.static is None:
-        raise JointError(f"flat= takes up in the root's axes, and {model_root!r} (where tool and "
-                         f"target meet) moves in the root", frame=model_root, field="up")
-    return path.static[0].T.dot(up)  # type: ignore[no-any-return]

@@ -5,22 +5,26 @@ The unknowns are the values ``theta`` (radians or metres) of ``n`` actuated join
 joint of the compiled model that one of them drives (itself, or a mimic joint following it
 through a chain of mimics) takes ``multiplier * theta + offset``; a continuous joint about an
 aligned axis is stored by Pinocchio as ``(cos, sin)``. Moving frames and the other joints keep
-their sampled values.
+their sampled values. Each solved joint is bounded by its own position limits and those of
+the mimic joints that follow it, and moves at most as fast as its own URDF velocity limit and
+theirs allow (a follower at ``m * theta + c`` with limit ``L`` allows ``theta`` ``L / |m|``).
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping, Sequence
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ...errors import ArgumentTypeError, JointError, joint_not_found
-from ...values.joint import Joint, mimic_chain
+from ...values.joint import Drive, Joint
 from .._model import CompiledModel
+from .._plan import PreparedPath
 from ._bounded_step import JointLimits
 
-__all__ = ["SolvedJoints", "joints_moving_frame", "solved_joints"]
+__all__ = ["SolvedJoints", "solved_joints"]
 
 FloatArray = NDArray[np.float64]
 
@@ -40,10 +44,16 @@ class SolvedJoints:
         joints it drives, in their velocity slots. ``J @ tangent`` is a Jacobian in ``theta``.
     moves_reference : bool
         Whether a solved joint moves the reference frame (joints on the target's side).
+    velocity_limits : ndarray, shape (n,)
+        Per joint, the largest rate (rad/s or m/s) its URDF velocity limit and those of its
+        mimic followers allow (inf where none has one; a limit that is not a positive number,
+        URDFs write 0 for "not given", counts as none).
+    velocity_limit_joints : tuple of str
+        Per joint, the joint whose limit that is: itself, or the tighter follower.
     """
 
     def __init__(self, names: Sequence[str], model: CompiledModel, joints: Mapping[str, Joint],
-                 frame: str, reference: str) -> None:
+                 drives: Mapping[str, Drive], reference: str) -> None:
         self.names = tuple(names)
         column_of = {name: column for column, name in enumerate(self.names)}
         pinocchio_model = model.model
@@ -56,9 +66,11 @@ class SolvedJoints:
         for position, compiled in enumerate(model.joints):
             if compiled.joint is None:
                 continue
-            column, multiplier, offset = _driver(compiled.joint, joints, column_of)
+            drive = drives[compiled.joint.name]
+            column = column_of.get(drive.primary, -1)
             if column < 0:
                 continue
+            multiplier, offset = drive.multiplier, drive.offset
             joint_id = position + 1  # Pinocchio's joint 0 is the universe
             self.tangent[pinocchio_model.idx_vs[joint_id], column] = multiplier
             slot = pinocchio_model.idx_qs[joint_id]
@@ -70,7 +82,10 @@ class SolvedJoints:
         self._slice = _plain_slice(linear, turning, len(self.names))
         self._velocity_slice = _selected_slice(self.tangent)
         self._every_velocity = self._velocity_slice == slice(0, pinocchio_model.nv)
-        self.limits = JointLimits(*_bounds(self.names, joints))
+        self.velocity_limits, self.velocity_limit_joints = _velocity_limits(
+            self.names, joints, drives)
+        lower, upper = _bounds(self.names, joints, drives)
+        self.limits = JointLimits(lower, upper)
 
     def set_configuration(self, q: FloatArray, theta: FloatArray) -> None:
         """Put the solved joints of the configuration ``q`` (nq,) at ``theta``, in place."""
@@ -92,19 +107,6 @@ class SolvedJoints:
         if self._velocity_slice is not None:
             return model_jacobian[:, self._velocity_slice]
         return model_jacobian.dot(self.tangent)
-
-
-def _driver(joint: Joint, joints: Mapping[str, Joint], column_of: Mapping[str, int]
-            ) -> tuple[int, float, float]:
-    """The column of the solved joint that drives ``joint`` (-1: none) and the
-    ``(multiplier, offset)`` with which: ``value = multiplier * theta + offset``."""
-    chain = mimic_chain(joint, joints)
-    multiplier, offset = 1.0, 0.0
-    for link in reversed(chain[:-1]):  # from the primary out to the joint
-        assert link.mimic is not None
-        multiplier, offset = (link.mimic.multiplier * multiplier,
-                              link.mimic.multiplier * offset + link.mimic.offset)
-    return column_of.get(chain[-1].name, -1), multiplier, offset
 
 
 def _columns(entries: list[tuple[int, int, float, float]]
@@ -140,7 +142,8 @@ def _selected_slice(tangent: FloatArray) -> slice | None:
     return slice(start, start + count) if np.array_equal(tangent, plain) else None
 
 
-def _bounds(names: Sequence[str], joints: Mapping[str, Joint]) -> tuple[FloatArray, FloatArray]:
+def _bounds(names: Sequence[str], joints: Mapping[str, Joint], drives: Mapping[str, Drive]
+            ) -> tuple[FloatArray, FloatArray]:
     """Limits of each solved joint: its own, narrowed by its mimic followers' (a follower
     at ``m * theta + c`` within ``[lower, upper]`` bounds ``theta`` by ``(lower - c) / m`` and
     ``(upper - c) / m``, swapped when ``m < 0``). Continuous joints are unbounded."""
@@ -150,7 +153,9 @@ def _bounds(names: Sequence[str], joints: Mapping[str, Joint]) -> tuple[FloatArr
     for joint in joints.values():
         if joint.kind == "continuous":
             continue
-        column, multiplier, offset = _driver(joint, joints, column_of)
+        drive = drives[joint.name]
+        column, multiplier, offset = (column_of.get(drive.primary, -1), drive.multiplier,
+                                      drive.offset)
         if column < 0 or multiplier == 0.0:
             continue
         sign = 1.0 if multiplier > 0 else -1.0
@@ -167,8 +172,29 @@ def _bounds(names: Sequence[str], joints: Mapping[str, Joint]) -> tuple[FloatArr
     return lower, upper
 
 
-def joints_moving_frame(model: CompiledModel, joints: Mapping[str, Joint], frame: str
-                        ) -> list[str]:
+def _velocity_limits(names: Sequence[str], joints: Mapping[str, Joint],
+                     drives: Mapping[str, Drive]) -> tuple[FloatArray, tuple[str, ...]]:
+    """:attr:`SolvedJoints.velocity_limits` and :attr:`SolvedJoints.velocity_limit_joints`
+    (the joint itself on ties)."""
+    rates = np.full(len(names), np.inf)
+    limiting = list(names)
+    column_of = {name: column for column, name in enumerate(names)}
+    for joint in joints.values():
+        limit = joint.velocity
+        drive = drives[joint.name]
+        column = column_of.get(drive.primary)
+        if limit is None or not 0.0 < limit < math.inf or column is None or (
+                drive.multiplier == 0.0):
+            continue
+        allowed = limit / abs(drive.multiplier)
+        if allowed < rates[column] or (allowed == rates[column] and joint.name == drive.primary):
+            rates[column] = allowed
+            limiting[column] = joint.name
+    return rates, tuple(limiting)
+
+
+def _joints_moving_frame(model: CompiledModel, drives: Mapping[str, Drive], frame: str
+                         ) -> list[str]:
     """The actuated joints (mimic primaries) of the robot joints between ``frame`` and the
     root of ``model``, from the root out."""
     pinocchio_model = model.model
@@ -177,44 +203,69 @@ def joints_moving_frame(model: CompiledModel, joints: Mapping[str, Joint], frame
     for joint_id in list(support)[1:]:
         compiled = model.joints[joint_id - 1]
         if compiled.joint is not None:
-            primary = mimic_chain(compiled.joint, joints)[-1].name
+            primary = drives[compiled.joint.name].primary
             if primary not in names:
                 names.append(primary)
     return names
 
 
-def solved_joints(model: CompiledModel, joints: Mapping[str, Joint], requested: object,
-                  frame: str, reference: str) -> SolvedJoints:
-    """The joints to solve: ``requested`` (names), or every joint that moves ``frame``
-    relative to ``reference`` from ``frame``'s side of the path.
+def solved_joints(path: PreparedPath, joints: Mapping[str, Joint],
+                  drives: Mapping[str, Drive], requested: object) -> SolvedJoints:
+    """The joints to solve on the moving ``path`` (its tool ``frame``, its reference
+    ``relative_to``): ``requested`` (names), or every joint that moves the tool relative to
+    the reference from the tool's side of the path; ``drives`` as
+    :attr:`~pinframes.kinematics._description.TreeDescription.drives`. Kept with the path
+    per request named by joint names (so once per tree version).
 
     Raises :class:`~pinframes.errors.JointError` (field ``joints``) for a name that is no
     joint, a mimic joint, a repeat, a joint that moves neither frame, or nothing to solve.
     """
-    movers = joints_moving_frame(model, joints, frame) + joints_moving_frame(
-        model, joints, reference)
-    if requested is None:
-        names = joints_moving_frame(model, joints, frame)
-        if not names:
+    if requested is None or (isinstance(requested, (list, tuple))
+                             and all(isinstance(name, str) for name in requested)):
+        key = "solve_joints: " + ("every joint" if requested is None
+                                  else "named: " + "\0".join(requested))
+        cached = path.plans.get(key)
+        if cached is None:
+            cached = path.plans[key] = _solved_joints(path, joints, drives, requested)
+        assert isinstance(cached, SolvedJoints)
+        return cached
+    return _solved_joints(path, joints, drives, requested)
+
+
+def _solved_joints(path: PreparedPath, joints: Mapping[str, Joint],
+                   drives: Mapping[str, Drive], requested: object) -> SolvedJoints:
+    """:func:`solved_joints`, made afresh."""
+    model, frame, reference = path.model, path.frame, path.relative_to
+    assert model is not None
+    names = None if requested is None else _joint_names(requested, joints, frame)
+    own = _joints_moving_frame(model, drives, frame)
+    if names is None:
+        if not own:
             raise JointError(f"no robot joint moves {frame!r} relative to {reference!r}",
                              frame=frame, field="joints")
-        return SolvedJoints(names, model, joints, frame, reference)
+        return SolvedJoints(own, model, joints, drives, reference)
+    movers = own + _joints_moving_frame(model, drives, reference)
+    for name in names:
+        if name not in movers:
+            raise JointError(f"joint {name!r} moves neither {frame!r} nor {reference!r}",
+                             frame=frame, field="joints")
+    return SolvedJoints(names, model, joints, drives, reference)
+
+
+def _joint_names(requested: object, joints: Mapping[str, Joint], frame: str) -> list[str]:
+    """``requested`` as a list of distinct names of actuated joints, else an error."""
     if isinstance(requested, str) or not isinstance(requested, Sequence):
         raise ArgumentTypeError(f"expected a list of joint names, got {requested!r}",
                                 frame=frame, field="joints")
-    names = list(requested)
-    if not names:
+    if not requested:
         raise JointError("no joints to solve for", frame=frame, field="joints")
-    for name in names:
+    for name in requested:
         if not isinstance(name, str) or name not in joints:
             raise joint_not_found(name, joints, frame=frame, field="joints")
         mimic = joints[name].mimic
         if mimic is not None:
             raise JointError(f"joint {name!r} mimics {mimic.joint!r} and follows it; solve "
                              "for that joint", frame=frame, field="joints")
-        if name not in movers:
-            raise JointError(f"joint {name!r} moves neither {frame!r} nor {reference!r}",
-                             frame=frame, field="joints")
-    if len(set(names)) != len(names):
+    if len(set(requested)) != len(requested):
         raise JointError("joint names repeat", frame=frame, field="joints")
-    return SolvedJoints(names, model, joints, frame, reference)
+    return list(requested)

@@ -1,9 +1,11 @@
-"""Where a solve without a seed starts: several starts for the first sample, one taken.
+"""Where a solve starts: the caller's seed, else several starts for the first sample, one taken.
 
-The default start is the joints' own values at the first time (their trajectories), else
-their rest values. A path that the arm can follow from one branch may be lost from another
-(an elbow down where the path needs it up, a wrist whose turn runs into a limit), and a rest
-value may be a singular configuration (a UR's stretched arm). So the first sample is solved
+A seed names joint values (a mapping by name, possibly partial, or one value per joint)
+within the limits; the joints it leaves out start from their defaults. The default start is
+the joints' own values at the first time (their trajectories), else their rest values. A
+path that the arm can follow from one branch may be lost from another (an elbow down where
+the path needs it up, a wrist whose turn runs into a limit), and a rest value may be a
+singular configuration (a UR's stretched arm). So without a seed the first sample is solved
 from the default start and from :data:`SPREAD_STARTS` fixed configurations spread over the
 joint ranges (the same for every call: :data:`SPREAD_SEED`), these in the order of their
 distance from the default start, until one is taken. Many starts are needed where the
@@ -19,15 +21,22 @@ start.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from ...errors import ArgumentTypeError, InvalidDataError, JointError
+from ...values.joint import Joint
+from ...values.joint_trajectory import JointTrajectory
+from .._plan import QueryPlan
 from ._bounded_step import JointLimits
 from ._newton_tracking import Tracked, TrackingHistory, TrackingProblem, solve_again, track_targets
+from ._solved_joints import SolvedJoints
 
-__all__ = ["SAME_SOLUTION", "SPREAD_SEED", "SPREAD_STARTS", "TRACKED_SOLUTIONS", "spread_starts",
-           "track_from_the_best_start"]
+__all__ = ["SAME_SOLUTION", "SPREAD_SEED", "SPREAD_STARTS", "TRACKED_SOLUTIONS", "first_start",
+           "spread_starts", "track_from_the_best_start"]
 
 FloatArray = NDArray[np.float64]
 
@@ -43,6 +52,64 @@ SPREAD_SEED = 20_240_301
 SAME_SOLUTION = 1e-3
 """Radians or metres (largest joint difference) within which two first-sample solutions are
 one."""
+
+
+def first_start(solved: SolvedJoints, seed: Any, plan: QueryPlan, joints: Mapping[str, Joint],
+                trajectories: Mapping[str, JointTrajectory], frame: str) -> FloatArray:
+    """Joint values of the first sample's start: ``seed`` where it gives them, else each
+    joint's trajectory at the plan's first time, else its rest value; defaults are put
+    within the limits, a given seed must be. Errors name ``frame`` and the field ``seed``."""
+    names, limits = solved.names, solved.limits
+    given = _given_seed(seed, names, frame)
+    first = int(plan.sample_times[0])
+    start = np.empty(len(names))
+    for column, name in enumerate(names):
+        trajectory = trajectories.get(name)
+        start[column] = (joints[name].rest_value if trajectory is None else
+                         trajectory.value_at(first - plan.shifts.get(name, 0)))
+    start = np.minimum(np.maximum(start, limits.lower), limits.upper)
+    for column, number in given.items():
+        name = names[column]
+        low, high = limits.lower[column], limits.upper[column]
+        if not low <= number <= high:
+            raise JointError(f"seed {number:.6g} of joint {name!r} is outside its limits "
+                             f"[{low:.6g}, {high:.6g}]", frame=frame, field="seed")
+        start[column] = number
+    return start
+
+
+def _given_seed(seed: Any, names: tuple[str, ...], frame: str) -> dict[int, float]:
+    """The values ``seed`` gives, by column (none for None), each a finite number."""
+    if seed is None:
+        return {}
+    given: dict[int, Any]
+    if isinstance(seed, Mapping):
+        unknown = [name for name in seed if name not in names]
+        if unknown:
+            raise JointError(f"seed names {unknown[0]!r}, which is not solved for (joints: "
+                             f"{', '.join(names)})", frame=frame, field="seed")
+        given = {names.index(name): value for name, value in seed.items()}
+    else:
+        try:
+            values = np.asarray(seed, dtype=float)
+        except (TypeError, ValueError):
+            raise ArgumentTypeError(f"expected joint values by name or one per joint, got "
+                                    f"{seed!r}", frame=frame, field="seed") from None
+        if values.shape != (len(names),):
+            raise InvalidDataError(f"expected {len(names)} values (joints {', '.join(names)}), "
+                                   f"got shape {values.shape}", frame=frame, field="seed")
+        given = dict(enumerate(values.tolist()))
+    numbers: dict[int, float] = {}
+    for column, value in given.items():
+        try:
+            number = float(value)
+        except (TypeError, ValueError):
+            number = math.nan
+        if not math.isfinite(number):
+            raise InvalidDataError(f"expected a finite number for joint {names[column]!r}, "
+                                   f"got {value!r}", frame=frame, field="seed")
+        numbers[column] = number
+    return numbers
 
 
 def spread_starts(limits: JointLimits, default: FloatArray) -> list[FloatArray]:

@@ -1,50 +1,25 @@
-"""Joint speeds against the URDF velocity limits: the limit each solved joint has (its own,
-or a mimic follower's), and the check of ``solve_joints(..., strict=True)``.
+"""Joint speeds against the URDF velocity limits: the check of
+``solve_joints(..., strict=True)``.
 
 Rates are radians per second (revolute, continuous) or metres per second (prismatic), in
-the units of the solved joint's value. A mimic joint at ``m * theta + c`` moves at
-``m * rate``, so its own limit ``L`` allows ``theta`` a rate of at most ``L / |m|``.
+the units of the solved joint's value; each solved joint's limit is its own or a mimic
+follower's (:class:`~pinframes.kinematics.ik._solved_joints.SolvedJoints`).
 """
 
 from __future__ import annotations
 
-import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ...errors import JointSpeedError
-from ...values.joint import Joint, mimic_primary
+from ...values.joint import Joint
 from .joint_solution import JointSolution
 
-__all__ = ["require_within_speed", "speed_unit", "velocity_limits"]
+__all__ = ["require_within_speed", "speed_unit"]
 
 FloatArray = NDArray[np.float64]
-
-
-def velocity_limits(names: Sequence[str], joints: Mapping[str, Joint]
-                    ) -> tuple[FloatArray, tuple[str, ...]]:
-    """Per solved joint, the largest rate its URDF velocity limits allow, and the joint whose
-    limit that is: the joint itself, or a mimic joint following it whose own limit is the
-    tighter one. ``inf`` (and the joint itself) where no joint involved has a limit; a limit
-    that is not a positive number (URDFs write 0 for "not given") counts as none."""
-    rates = np.full(len(names), np.inf)
-    limiting = list(names)
-    column_of = {name: column for column, name in enumerate(names)}
-    for joint in joints.values():
-        limit = joint.velocity
-        if limit is None or not 0.0 < limit < math.inf:
-            continue
-        primary, multiplier = mimic_primary(joint, joints)
-        column = column_of.get(primary.name)
-        if column is None or multiplier == 0.0:
-            continue
-        allowed = limit / abs(multiplier)
-        if allowed < rates[column] or (allowed == rates[column] and joint.name == primary.name):
-            rates[column] = allowed
-            limiting[column] = joint.name
-    return rates, tuple(limiting)
 
 
 def speed_unit(joint: Joint) -> str:

@@ -1,0 +1,181 @@
+"""A planned solve, chunk by chunk: the samples of ``solve_joints`` in chunks of
+:data:`~pinframes.kinematics._sampling.KERNEL_CHUNK`.
+
+Per chunk, everything that is not solved for is sampled into Pinocchio configurations (the
+solved joints held; :func:`~pinframes.kinematics._sampling.sample_configurations`) and the
+target into ``x y z qx qy qz qw`` rows; :mod:`._newton_tracking` solves sample after sample,
+each from the one before (the first chunk without a seed from the start :mod:`._starts`
+takes); :mod:`._batch_check` measures the samples the loop took as solved, all at once.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ...errors import TargetNotReachedError
+from ...values.pose import Pose
+from ...values.rotations import quaternion_from_matrix
+from ...values.se3 import Transform
+from .._plan import QueryPlan
+from .._sampling import KERNEL_CHUNK, sample_configurations
+from ._batch_check import check_unmeasured, tilts_at
+from ._bounded_step import LeastSquares
+from ._flat import FlatFrame
+from ._newton_tracking import Tracked, TrackingHistory, TrackingProblem, track_targets
+from ._null_space import NullSpaceObjective
+from ._solved_joints import SolvedJoints
+from ._starts import track_from_the_best_start
+from ._tool_error import ToolMatch, WindowMatch
+
+__all__ = ["STILL", "TARGET_SOURCE", "PathToSolve", "track_in_chunks"]
+
+FloatArray = NDArray[np.float64]
+
+STILL = 1e-12
+"""Metres, radians or quaternion components by which a sample may differ from the one
+before and still stand still (interpolation between equal keyframes rounds)."""
+
+TARGET_SOURCE = "<target pose>"
+"""Name of a time-dependent target pose among the timeline's sources."""
+
+
+@dataclass(frozen=True)
+class PathToSolve:
+    """What a solve asks on its plan.
+
+    Attributes
+    ----------
+    plan : QueryPlan
+        The path from the tool to the reference frame (moving), and the solve's times.
+    joints : SolvedJoints
+        The unknowns, held out of the sampled configurations.
+    target : Pose or None
+        The target in the reference frame (None: the reference frame itself).
+    error : ToolMatch
+        What must match.
+    position_tolerance, orientation_tolerance : float
+        Metres and radians.
+    objective : NullSpaceObjective
+        The secondary objective.
+    solver : LeastSquares
+        The linear algebra of the steps (shared with the objective).
+    """
+
+    plan: QueryPlan
+    joints: SolvedJoints
+    target: Pose | None
+    error: ToolMatch
+    position_tolerance: float
+    orientation_tolerance: float
+    objective: NullSpaceObjective
+    solver: LeastSquares
+
+
+def track_in_chunks(request: PathToSolve, start: FloatArray, search_starts: bool,
+                    strict: bool, frame: str) -> tuple[Tracked, FloatArray | None]:
+    """The solutions of every sample of ``request``'s plan, from ``start`` (with
+    ``search_starts``: the default of the first sample's several starts), and per sample
+    the tool's tilts about its target's x and y (radians, (T, 2)) with a
+    :class:`WindowMatch` (else None).
+
+    With ``strict``, raises :class:`~pinframes.errors.TargetNotReachedError` (naming
+    ``frame``) at the first sample not reached.
+    """
+    plan, joints = request.plan, request.joints
+    path = plan.path
+    model = path.model
+    assert model is not None
+    moments, shifts = plan.sample_times, plan.shifts
+    held = dict.fromkeys(joints.names, 0.0)
+    ratios = _step_ratios(moments)
+    reference = path.relative_to
+    reference_frame = model.model.frames[model.frame_ids[reference]]
+    reference_id = None if reference_frame.parentJoint == 0 and (
+        reference_frame.placement.isIdentity()) else model.frame_ids[reference]
+    parts: list[Tracked] = []
+    tilts: list[FloatArray] = []
+    for begin in range(0, moments.shape[0], KERNEL_CHUNK):
+        part = slice(begin, begin + KERNEL_CHUNK)
+        targets = _targets(request.target, moments[part], shifts.get(TARGET_SOURCE, 0))
+        target_rows = None if targets is None else np.concatenate(
+            [targets[1], quaternion_from_matrix(targets[0])], axis=1)
+        configurations = sample_configurations(model, path.samplers, moments[part], shifts,
+                                               held)
+        problem = TrackingProblem(
+            model.model, model.data, model.frame_ids[path.frame], reference_id, configurations,
+            target_rows, joints, request.error, request.position_tolerance,
+            request.orientation_tolerance, ratios[part], request.solver, request.objective,
+            _standing_still(configurations, target_rows))
+        if begin == 0 and search_starts:
+            if isinstance(request.objective, FlatFrame):
+                start = request.objective.turned_up(start, configurations[0])
+            tracked, history = track_from_the_best_start(problem, start, strict)
+        else:
+            if begin == 0:
+                history = TrackingHistory(start)
+            tracked = track_targets(problem, history, stop_when_unreached=strict)
+        check_unmeasured(path, moments[part], shifts, targets, problem, tracked)
+        if isinstance(request.error, WindowMatch):
+            tilts.append(tilts_at(path, moments[part], shifts, joints.names,
+                                  tracked.positions, targets))
+        parts.append(tracked)
+        if strict and not tracked.reached.all():
+            _raise_unreached(parts, request, frame)
+    whole = Tracked(*(np.concatenate([getattr(part, name) for part in parts])
+                      for name in ("positions", "position_error", "orientation_error",
+                                   "reached", "measured")))
+    return whole, np.concatenate(tilts) if tilts else None
+
+
+def _step_ratios(moments: NDArray[np.int64]) -> FloatArray:
+    """Per sample, its time step over the previous one (1 where there is none)."""
+    ratios = np.ones(moments.shape[0])
+    if moments.shape[0] > 2:
+        steps = np.diff(moments).astype(float)
+        before = steps[:-1]
+        # a step after a repeated time (none before it) is not predicted: inf
+        ratios[2:] = np.divide(steps[1:], before, out=np.full(before.shape, np.inf),
+                               where=before > 0)
+    return ratios
+
+
+def _targets(target: Pose | None, moments: NDArray[np.int64], shift: int
+             ) -> Transform | None:
+    """The target in the reference frame at each of ``moments``: ``(N, 3, 3)`` rotations
+    and ``(N, 3)`` translations (None: the frame itself)."""
+    if target is None:
+        return None
+    if target.is_time_dependent:
+        return target.keyframes.sample(moments - shift)
+    count = moments.shape[0]
+    return (np.broadcast_to(target.rotation, (count, 3, 3)),
+            np.broadcast_to(target.translation, (count, 3)))
+
+
+def _standing_still(configurations: FloatArray, targets: FloatArray | None
+                    ) -> NDArray[np.bool_]:
+    """Per sample, whether its configuration (everything not solved for) and its target
+    rows are those of the sample before, to :data:`STILL` (False for the first)."""
+    still = np.zeros(configurations.shape[0], dtype=bool)
+    still[1:] = np.all(np.abs(configurations[1:] - configurations[:-1]) <= STILL, axis=1)
+    if targets is not None:
+        still[1:] &= np.all(np.abs(targets[1:] - targets[:-1]) <= STILL, axis=1)
+    return still
+
+
+def _raise_unreached(parts: list[Tracked], request: PathToSolve, frame: str) -> None:
+    """The :class:`TargetNotReachedError` of ``strict=True`` at the last sample solved."""
+    plan = request.plan
+    index = sum(part.reached.shape[0] for part in parts) - 1
+    last = parts[-1]
+    offsets = np.zeros(1, dtype=np.int64) if plan.offsets is None else plan.offsets
+    when = f"{offsets[index] / 1e9:.9g} s" + (
+        "" if plan.reference_time is None else f" after {plan.reference_time}")
+    raise TargetNotReachedError(
+        f"target not reached at {when} (sample {index + 1} of {offsets.shape[0]}): position "
+        f"error {last.position_error[-1]:.3g} m, orientation error "
+        f"{last.orientation_error[-1]:.3g} rad (tolerances {request.position_tolerance:g} m, "
+        f"{request.orientation_tolerance:g} rad)", frame=frame, field="target")
