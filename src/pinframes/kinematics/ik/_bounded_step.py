@@ -114,22 +114,22 @@ class LeastSquares:
         count, joints = rows.shape
         self._undamped = rows if damping == 0.0 and joints >= count else None
         if damping == 0.0 and count == joints:
-            correction = _of_size(self._lu, eigenpy.PartialPivLU, count).compute(rows).solve(
-                error)
+            lu = self._lu.get(count) or _of_size(self._lu, eigenpy.PartialPivLU, count)
+            correction = lu.compute(rows).solve(error)
         elif joints > count:  # c = A^T (A A^T + damping I)^-1 e
             normal = rows.dot(rows.T)  # .dot: a third of matmul's cost on these sizes
             if damping:
                 normal.flat[::count + 1] += damping
+            llt = self._llt.get(count) or _of_size(self._llt, eigenpy.LLT, count)
             # (y^T A)^T, not A^T y: the same numbers, a quarter less numpy overhead
-            correction = _of_size(self._llt, eigenpy.LLT, count).compute(normal).solve(
-                error).dot(rows)
+            correction = llt.compute(normal).solve(error).dot(rows)
         else:  # c = (A^T A + damping I)^-1 A^T e
             transposed = rows.T
             normal = transposed.dot(rows)
             if damping:
                 normal.flat[::joints + 1] += damping
-            correction = _of_size(self._llt, eigenpy.LLT, joints).compute(normal).solve(
-                transposed.dot(error))
+            llt = self._llt.get(joints) or _of_size(self._llt, eigenpy.LLT, joints)
+            correction = llt.compute(normal).solve(transposed.dot(error))
         # eigenpy returns a one-element solution as a (1, 1) matrix
         return correction if joints > 1 else correction.reshape(1)
 
@@ -145,11 +145,13 @@ def _of_size(decompositions: dict[int, Any], kind: Any, size: int) -> Any:
 
 def bounded_step(solver: LeastSquares, rows: FloatArray, error: FloatArray, theta: FloatArray,
                  limits: JointLimits, damping: float, longest_step: float, margin: float,
-                 error_size: float) -> tuple[FloatArray, bool, float]:
+                 error_size: float) -> tuple[FloatArray, FloatArray | None, float, float]:
     """The joint values after a least-squares Newton step from ``theta``: at most
     ``longest_step`` (radians or metres) per joint, within the ``limits`` (joints that would
-    cross one are fixed on it); whether that was the full step (not shortened, not limited,
-    its system not singular); and a lower bound of their ``limits.margin`` (0: not known).
+    cross one are fixed on it); when that was the full step (not shortened, not limited, its
+    system not singular) its correction ``c`` (the values are ``theta - c``), else None; a
+    lower bound of their ``limits.margin`` (0: not known); and the sum of the joint changes
+    of the full step (radians or metres).
 
     ``margin``: a lower bound of ``limits.margin`` of ``theta`` (0: not known). A step whose
     joint changes sum to less than half of it stays inside the limits, by at least the
@@ -168,18 +170,18 @@ def bounded_step(solver: LeastSquares, rows: FloatArray, error: FloatArray, thet
         values = correction.tolist()
         total = sum(map(abs, values))
     elif total <= longest_step and total < margin / 2:  # (half: a margin for rounding)
-        return theta - correction, True, margin - total
+        return theta - correction, correction, margin - total, total
     longest = max(max(values), -min(values)) if values else 0.0
     if longest <= longest_step and not near_singular:
         stepped = theta - correction
         if limits.contain(stepped.tolist()):
-            return stepped, True, 0.0
+            return stepped, correction, 0.0, total
     step = _within_limits(solver, rows, error, theta, -correction, limits, damping)
     values = step.tolist()
     longest = max(max(values), -min(values)) if values else 0.0
     if longest > longest_step:
         step *= longest_step / longest
-    return theta + step, False, 0.0
+    return theta + step, None, 0.0, total
 
 
 def _within_limits(solver: LeastSquares, rows: FloatArray, error: FloatArray,

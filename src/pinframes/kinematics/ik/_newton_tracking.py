@@ -4,17 +4,22 @@ Each sample starts from the previous solution carried on by the step between the
 (scaled by the ratio of the time steps), when both reached their targets and the time step is
 at most :data:`LONGEST_PREDICTION` times the one before; else from the previous solution; the
 first sample starts from the seed (:class:`TrackingHistory`). The carried step keeps only its
-part that moves the tool (its damped projection on the rows of the previous sample: all of it
-away from singular configurations, with as many joints as rows; all of the step when the
-secondary objective ``carries_self_motion``, as a frame kept flat does), and every Newton
-step is the smallest: with more joints than rows (a 7-axis arm, a free tool axis, a
-positioner solved with the robot) the solution is the smallest joint motion from the
-previous sample, with no self-motion carried on. So it follows one branch (no
-elbow or wrist flips), usually with one Newton step per sample. A sample whose target and
-everything else stand still starts from the last solution, already on it: a static target
-gives a static solution. The prediction comes with a lower bound of how far it lies inside the joint
-limits, carried from sample to sample: the limits are checked joint by joint only when that
-bound runs out.
+part that moves the tool (all of the step when the secondary objective
+``carries_self_motion``, as a frame kept flat does), and every Newton step is the smallest:
+with more joints than rows (a 7-axis arm, a free tool axis, a positioner solved with the
+robot) the solution is the smallest joint motion from the previous sample, with no
+self-motion carried on. There the first Newton step from a prediction is the smallest motion
+from the previous solution that the rows at the prediction take onto the target: it drops
+the part of the carried step that the tool does not feel there, and the motion it leaves
+lies in their row space, so that the next sample carries it on as it is. A motion taken any
+other way (served to the secondary objective, in a second iteration, bridged) is projected
+on the rows of its latest linearisation before it is carried on (damped by
+:data:`._bounded_step.NEAR_SINGULAR_DAMPING` after a damped step; with as many joints as
+rows all of it is kept). So it follows one branch (no elbow or wrist flips), usually with
+one Newton step per sample. A sample whose target and everything else stand still starts
+from the last solution, already on it: a static target gives a static solution. The
+prediction comes with a lower bound of how far it lies inside the joint limits, carried from
+sample to sample: the limits are checked joint by joint only when that bound runs out.
 
 A start whose tool lies far from its target (more than :data:`BRIDGE_LENGTH` or
 :data:`BRIDGE_ANGLE`: after a long gap between samples, from a seed, on the way back after
@@ -59,7 +64,7 @@ import numpy as np
 import pinocchio as pin
 from numpy.typing import NDArray
 
-from ._bounded_step import LeastSquares, bounded_step
+from ._bounded_step import AMPLIFICATION, LeastSquares, bounded_step
 from ._null_space import NullSpaceObjective, null_space_motion
 from ._solved_joints import SolvedJoints
 from ._tool_error import PoseMatch, ToolMatch
@@ -77,6 +82,16 @@ measured) and whether it reached its target."""
 Solved = tuple[FloatArray, float, float, bool, float]
 """A :data:`Solution` and a lower bound of how far it lies inside the limits
 (:meth:`JointLimits.margin`; 0: not known)."""
+
+Carried = tuple[FloatArray, FloatArray, float, float]
+"""A prediction's making: the last solution (n,), the step it is carried on by, reversed
+(n,: the prediction is the last solution less it), a lower bound of the last solution's
+margin inside the limits and the sum of the step's joint changes (radians or metres)."""
+
+StepBack = tuple[FloatArray, float]
+"""The step from a solution back to the one before (n,) and the sum of its joint changes
+(radians or metres): the correction of the Newton step that took the solver from the one
+to the other (see :class:`TrackingHistory`)."""
 
 MAX_ITERATIONS = 100
 """Newton iterations at most per sample (a tracked sample takes one or two)."""
@@ -143,7 +158,8 @@ class TrackingProblem:
         model's root (its placements are already in it).
     configurations : ndarray, shape (N, nq)
         Per sample, the model's configuration with everything that is not solved for; the
-        solver writes the solved joints into it (no copy per iteration).
+        solver writes the solved joints into it (no copy per sample), but where they are the
+        whole configuration (Pinocchio then takes the solution itself).
     targets : ndarray, shape (N, 7), or None
         Per sample, the target in the reference frame as ``x y z qx qy qz qw`` (metres, unit
         quaternion); None: the reference frame itself.
@@ -205,7 +221,10 @@ class Tracked:
 
 class TrackingHistory:
     """What the next sample starts from: the seed, the last two solutions when both reached
-    their targets, and the last solution that did.
+    their targets, and the last solution that did. The step between the last two is the
+    solver's own correction when one Newton step from the one gave the other (the same
+    numbers as their difference but rounding, with the sum of its joint changes: a
+    subtraction and a sum less per sample), else their difference.
 
     Parameters
     ----------
@@ -228,25 +247,31 @@ class TrackingHistory:
         self._last_reached = False  # the seed is no solution
         self._last_margin = 0.0  # a lower bound of how far ``last`` lies inside the limits
         self._previous: FloatArray | None = None  # before ``last``, when both reached
+        self._back: StepBack | None = None  # from ``last`` to ``_previous``, when given
 
-    def start(self, ratio: float) -> tuple[FloatArray, FloatArray | None, float]:
-        """The last solution; the last step times ``ratio`` (the ratio of the time steps)
-        when both reached their targets and ``ratio`` is at most :data:`LONGEST_PREDICTION`,
-        else None; and a lower bound of how far the last solution lies inside the limits
-        (0: not known)."""
+    def start(self, ratio: float) -> tuple[FloatArray, FloatArray | None, float, float]:
+        """The last solution; the last step reversed (the solution before less the last:
+        the sign in which the solver's corrections come) times ``ratio`` (the ratio of the
+        time steps) when both reached their targets and ``ratio`` is at most
+        :data:`LONGEST_PREDICTION`, else None; a lower bound of how far the last solution
+        lies inside the limits (0: not known); and the sum of that step's joint changes
+        (NaN: not known)."""
         if self._previous is None or not ratio <= LONGEST_PREDICTION:
-            return self.last, None, self._last_margin
-        step = self.last - self._previous
+            return self.last, None, self._last_margin, math.nan
+        back, changes = (self._previous - self.last, math.nan) if self._back is None else (
+            self._back)
         if ratio != 1.0:
-            step *= ratio
-        return self.last, step, self._last_margin
+            back, changes = back * ratio, changes * ratio
+        return self.last, back, self._last_margin, changes
 
-    def add(self, theta: FloatArray, reached: bool, margin: float) -> None:
+    def add(self, theta: FloatArray, reached: bool, margin: float,
+            back: StepBack | None = None) -> None:
         """Record the solution of the sample just solved, with a lower bound of how far it
-        lies inside the limits (0: not known)."""
+        lies inside the limits (0: not known) and, when the solver knows it, the step from
+        it back to the last solution (the same numbers as ``last - theta`` but rounding)."""
         self._previous = self.last if reached and self._last_reached else None
         self.last, self._last_reached, self.after_a_miss = theta, reached, not reached
-        self._last_margin = margin
+        self._last_margin, self._back = margin, back
         if reached:
             self.last_on_target = theta
 
@@ -267,14 +292,14 @@ def track_targets(problem: TrackingProblem, history: TrackingHistory,
     stills = [False] * len(ratios) if problem.still is None else problem.still.tolist()
     for index, (ratio, still) in enumerate(zip(ratios, stills, strict=True)):
         if not history.after_a_miss:
-            last, step, margin = history.start(ratio)
+            last, back, margin, changes = history.start(ratio)
             if still:  # nothing moved: the last solution stands (no objective either)
                 solved = solve(index, last, margin, True, False, False)
-            elif step is None:
+            elif back is None:
                 solved = solve(index, last, margin, True, True)
             else:
-                theta, margin = predicted(last, step, margin)
-                solved = solve(index, theta, margin, True, False)
+                theta, margin, carried = predicted(last, back, margin, changes)
+                solved = solve(index, theta, margin, True, False, True, carried)
         else:
             solved = solve(index, history.last_on_target, 0.0, True, True)
             if not solved[3]:
@@ -282,7 +307,7 @@ def track_targets(problem: TrackingProblem, history: TrackingHistory,
                 if closer[3] or _cost(problem, closer) < _cost(problem, solved):
                     solved = closer
         solutions.append(solved)
-        history.add(solved[0], solved[3], solved[4])
+        history.add(solved[0], solved[3], solved[4], sample_solver.back)
         if stop_when_unreached and not solved[3]:
             break
     thetas, position_error, orientation_error, reached, _ = zip(*solutions, strict=True)
@@ -328,42 +353,65 @@ class _SampleSolver:
             self.objective.carries_self_motion)
         self.objective_margin = -math.inf if self.objective is None else (
             self.objective.quiet_margin)
-        self.rows: FloatArray | None = None  # the task's rows at the latest linearisation
+        self.one_column = problem.model.nv == 1  # eigenpy hands such a Jacobian back as (6,)
+        # whether a step may have more joints than rows (a whole pose has six)
+        self.redundant = not self.carry_self_motion and (
+            len(problem.joints.names) > 6 or not isinstance(problem.error, PoseMatch))
+        # the rows the next carried step is projected on: the task's at the latest
+        # linearisation; None when there are none yet, or the latest solution's motion was
+        # taken in their row space already (a step that carried on the step before)
+        self.rows: FloatArray | None = None
+        # the latest solution's step back to the one before, when one Newton step from that
+        # one gave it
+        self.back: StepBack | None = None
         self._asked_rows: FloatArray | None = None  # the rows at the solution being served
         self._asked_at = np.empty(0)  # and its configuration
+        # what every Newton iteration reads, in one lookup
+        self._newton_reads = (self.model, self.data, self.frame_id, self.reference_id,
+                              self.joints, self.limits, self.least_squares,
+                              self.joints.moves_reference, self.one_column,
+                              self.joints.whole_configuration)
 
-    def predicted(self, last: FloatArray, step: FloatArray, margin: float
-                  ) -> tuple[FloatArray, float]:
-        """``last`` carried on by the part of ``step`` that moves the tool (all of it for a
-        square system far from a singular configuration; its damped least-squares projection
-        on the last rows), and a lower bound of its margin inside the limits: ``last``'s less
-        the sum of the changes of the joints (NaN when one is)."""
+    def predicted(self, last: FloatArray, back: FloatArray, margin: float, changes: float
+                  ) -> tuple[FloatArray, float, Carried | None]:
+        """``last`` carried on by the part of the step ``-back`` that moves the tool (all of
+        it for a square system far from a singular configuration, or a step taken in the row
+        space already; else its damped least-squares projection on the last rows), and a
+        lower bound of its margin inside the limits: ``last``'s less the sum of the changes
+        of the joints (``changes`` when not NaN; NaN when one is); with more joints than rows
+        possible, what was carried on (:data:`Carried`, for the first Newton step to keep
+        the smallest motion)."""
         if self.rows is not None and not self.carry_self_motion:
-            step = self.least_squares.row_space_part(self.rows, step)
-        changes = sum(map(abs, step.tolist()))
-        return last + step, margin - changes
+            back, changes = self.least_squares.row_space_part(self.rows, back), math.nan
+        if not changes >= 0.0:  # not known
+            changes = sum(map(abs, back.tolist()))
+        carried = (last, back, margin, changes) if self.redundant else None
+        return last - back, margin - changes, carried
 
     def solve(self, index: int, theta: FloatArray, margin: float, trust_newton: bool,
-              bridge: bool, serve: bool = True) -> Solved:
+              bridge: bool, serve: bool = True, carried: Carried | None = None) -> Solved:
         """Sample ``index`` from ``theta``, with ``bridge`` bridged when far from its target
         (see the module docstring; a prediction is not far), then with ``serve`` offered to
         the secondary objective: the solution (the best configuration when the target is
         not reached), its position and orientation errors, whether it is reached and a lower
         bound of its margin inside the limits. ``margin`` is one of ``theta`` (0: not known, then
         ``theta`` is checked joint by joint). With ``trust_newton``, a full step from
-        within the quadratic region ends the sample unmeasured: errors NaN, reached True."""
+        within the quadratic region ends the sample unmeasured: errors NaN, reached True.
+        ``carried``: ``theta`` is a prediction, the last solution carried on by this."""
         q = self.configurations[index]  # the solved joints are written into it
         target = None if self.targets is None else pin.XYZQUATToSE3(self.targets[index])
+        self.back = None
         if not margin > 0.0:
             margin = self.limits.margin(theta.tolist())
             if not margin >= 0.0:  # a prediction past a limit
-                theta, margin = self.limits.clipped(theta), 0.0
+                theta, margin, carried = self.limits.clipped(theta), 0.0, None
         if bridge:
             bridged = self._bridge(q, target, theta)
             if bridged is not theta:
-                theta, margin = bridged, 0.0
+                theta, margin, carried = bridged, 0.0, None
         solved = self._newton(q, target, self.error, theta, margin, self.position_tolerance,
-                              self.orientation_tolerance, MAX_ITERATIONS, trust_newton)
+                              self.orientation_tolerance, MAX_ITERATIONS, trust_newton,
+                              carried)
         if serve and solved[3] and solved[4] <= self.objective_margin:  # inf: always
             return self._served(q, target, solved, bridge)
         return solved
@@ -417,7 +465,7 @@ class _SampleSolver:
                                   self.orientation_tolerance, MAX_ITERATIONS, True)
             if not served[3]:
                 break
-            solved = served
+            solved, self.back = served, None
         return solved
 
     def _task_rows(self) -> FloatArray:
@@ -449,25 +497,39 @@ class _SampleSolver:
 
     def _newton(self, q: FloatArray, target: pin.SE3 | None, error: ToolMatch,
                 theta: FloatArray, margin: float, position_tolerance: float,
-                orientation_tolerance: float, iterations: int, trust_newton: bool) -> Solved:
+                orientation_tolerance: float, iterations: int, trust_newton: bool,
+                carried: Carried | None = None) -> Solved:
         """Damped Newton from ``theta`` (within the limits, ``margin`` a lower bound of how
         far; 0: not known) until ``error`` is within the tolerances: the solution (the best
         configuration when not), its errors, whether reached, a lower bound of its margin.
         With ``trust_newton``, a full step from within the quadratic region ends unmeasured:
-        errors NaN, reached True."""
-        model, data, frame_id, reference_id = (self.model, self.data, self.frame_id,
-                                               self.reference_id)
-        joints, limits, least_squares = self.joints, self.limits, self.least_squares
+        errors NaN, reached True.
+
+        ``carried``: ``theta`` is the last solution carried on by a step. With more joints
+        than rows, the first step is then the smallest motion from the last solution that
+        the rows at ``theta`` take onto the target, ``d = A^+ (A step - e)``: the Newton step
+        less the part of the carried step the tool does not feel (of second order, a step
+        of the step before), with one solve where projecting the carried step took another.
+        Its joint changes count as near-singular only past those carried on."""
+        (model, data, frame_id, reference_id, joints, limits, least_squares, moves_reference,
+         one_column, whole_configuration) = self._newton_reads
         position_region = self.position_region if trust_newton else -1.0
         orientation_region = self.orientation_region
         best, best_margin = theta, margin
-        best_cost = best_position = best_orientation = math.inf
-        rows = residual = theta  # set on the first iteration
-        first = True
+        best_position = best_orientation = math.inf
+        rows = residual = step_from = theta  # set on the first iteration
+        step_error, step_margin, error_size = residual, margin, 0.0
+        first, folded = True, False
+        back: StepBack | None = None  # the latest step's, when full
         damping = 0.0
+        configuration = q
         for _ in range(iterations):
-            joints.set_configuration(q, theta)
-            pin.forwardKinematics(model, data, q)  # as _tool_in_reference, inlined: per sample
+            if whole_configuration:  # (``q`` is left as it was)
+                configuration = theta
+            else:
+                joints.set_configuration(q, theta)
+            # as _tool_in_reference, inlined: per sample
+            pin.forwardKinematics(model, data, configuration)
             tool_in_reference = pin.updateFramePlacement(model, data, frame_id)
             if reference_id is not None:
                 tool_in_reference = pin.updateFramePlacement(model, data, reference_id).actInv(
@@ -476,27 +538,56 @@ class _SampleSolver:
                               else target.actInv(tool_in_reference))
             position, orientation, vector = error.measure(tool_in_target)
             if position <= position_tolerance and orientation <= orientation_tolerance:
+                if folded:  # one step from the last solution, in the rows' row space
+                    self.rows, self.back = None, back
                 return theta, position, orientation, True, margin
-            # (hypot: no overflow for a target 1e155 m away; inf compares as the largest)
-            cost = math.hypot(position / position_tolerance,
-                              orientation / orientation_tolerance)
-            if cost < best_cost or first:
+            # the errors scaled by the tolerances, compared by their Euclidean norms (hypot:
+            # no overflow for a target 1e155 m away; inf compares as the largest)
+            if first or math.hypot(position / position_tolerance,
+                                   orientation / orientation_tolerance) < math.hypot(
+                    best_position / position_tolerance, best_orientation / orientation_tolerance):
                 first = False
-                best, best_margin, best_cost, best_position, best_orientation = (
-                    theta, margin, cost, position, orientation)
+                best, best_margin, best_position, best_orientation = (
+                    theta, margin, position, orientation)
                 damping = 0.0 if damping <= FIRST_DAMPING else damping / 10.0
-                rows = error.rows(joints.jacobian(self._tool_jacobian(q, tool_in_reference)))
+                if moves_reference:
+                    jacobian = self._tool_jacobian(configuration, tool_in_reference)
+                else:  # as _tool_jacobian, inlined: per sample
+                    jacobian = pin.computeFrameJacobian(model, data, configuration, frame_id,
+                                                        _LOCAL)
+                    if one_column:
+                        jacobian = jacobian.reshape(6, 1)
+                rows = error.rows(joints.jacobian(jacobian))
                 self.rows = rows
-                residual = vector
+                residual = step_error = vector
+                step_from, step_margin = best, best_margin
+                error_size = best_position + best_orientation
+                folded = False
+                if carried is not None:  # the first step, from a prediction
+                    if rows.shape[0] < rows.shape[1]:  # the smallest motion from the last
+                        last, carried_back, step_margin, changes = carried
+                        step_from, step_error = last, vector + rows.dot(carried_back)
+                        error_size += changes / AMPLIFICATION
+                        folded = True
+                    carried = None
             else:  # take the step back, and damp it more
                 damping = max(10.0 * damping, FIRST_DAMPING)
                 if damping > MAX_DAMPING:
                     break
-            theta, full, margin = bounded_step(least_squares, rows, residual, best, limits,
-                                               damping, LONGEST_STEP, best_margin,
-                                               best_position + best_orientation)
-            if (full and damping == 0.0 and best_position <= position_region
+                step_from, step_error, step_margin = best, residual, best_margin
+                error_size = best_position + best_orientation
+                folded = False
+            theta, correction, margin, changes = bounded_step(
+                least_squares, rows, step_error, step_from, limits, damping, LONGEST_STEP,
+                step_margin, error_size)
+            if correction is None:  # not the full step
+                folded = False
+                continue
+            back = correction, changes
+            if (damping == 0.0 and best_position <= position_region
                     and best_orientation <= orientation_region):
+                if folded:
+                    self.rows, self.back = None, back
                 return theta, math.nan, math.nan, True, margin
         return best, best_position, best_orientation, False, best_margin
 

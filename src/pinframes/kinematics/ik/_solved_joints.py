@@ -44,6 +44,9 @@ class SolvedJoints:
         joints it drives, in their velocity slots. ``J @ tangent`` is a Jacobian in ``theta``.
     moves_reference : bool
         Whether a solved joint moves the reference frame (joints on the target's side).
+    whole_configuration : bool
+        Whether ``theta`` is the model's whole configuration as it is (the solved joints are
+        all its joints, in order, none continuous or mimicked): Pinocchio can take it as ``q``.
     velocity_limits : ndarray, shape (n,)
         Per joint, the largest rate (rad/s or m/s) its URDF velocity limit and those of its
         mimic followers allow (inf where none has one; a limit that is not a positive number,
@@ -80,6 +83,7 @@ class SolvedJoints:
         self._linear = _columns(linear)
         self._turning = _columns(turning)
         self._slice = _plain_slice(linear, turning, len(self.names))
+        self.whole_configuration = self._slice == slice(0, pinocchio_model.nq)
         self._velocity_slice = _selected_slice(self.tangent)
         self._every_velocity = self._velocity_slice == slice(0, pinocchio_model.nv)
         self.velocity_limits, self.velocity_limit_joints = _velocity_limits(
