@@ -8,10 +8,14 @@ the path needs it up, a wrist whose turn runs into a limit), and a rest value ma
 singular configuration (a UR's stretched arm). So without a seed the first sample is solved
 from the default start and from :data:`SPREAD_STARTS` fixed configurations spread over the
 joint ranges (the same for every call: :data:`SPREAD_SEED`), these in the order of their
-distance from the default start. The distinct solutions (:data:`SAME_SOLUTION` apart) are
-tracked along the first stretch of samples, in that order; the first that reaches every
-sample of it is taken, else the one that reaches the most (the earlier on ties). A given
-seed is the only start.
+distance from the default start, until one is taken. Many starts are needed where the
+ranges are wide: from far away a solve often stops on a limit (an ABB GoFa's joints turn
+-180..180 degrees), so few starts end on a solution. The distinct solutions
+(:data:`SAME_SOLUTION` apart), at most :data:`TRACKED_SOLUTIONS` of them, are tracked along
+the first stretch of samples in that order; the first that reaches every sample of it is
+taken. Else, of those that follow the path furthest before their first miss, the one that
+reaches the most of the stretch is taken (the earlier on ties). A given seed is the only
+start.
 """
 
 from __future__ import annotations
@@ -31,13 +35,16 @@ from ._bounded_step import JointLimits
 from ._newton_tracking import Tracked, TrackingHistory, TrackingProblem, solve_again, track_targets
 from ._solved_joints import SolvedJoints
 
-__all__ = ["SAME_SOLUTION", "SPREAD_SEED", "SPREAD_STARTS", "first_start", "spread_starts",
-           "track_from_the_best_start"]
+__all__ = ["SAME_SOLUTION", "SPREAD_SEED", "SPREAD_STARTS", "TRACKED_SOLUTIONS", "first_start",
+           "spread_starts", "track_from_the_best_start"]
 
 FloatArray = NDArray[np.float64]
 
-SPREAD_STARTS = 16
+SPREAD_STARTS = 64
 """Starts spread over the joint ranges, besides the default one."""
+
+TRACKED_SOLUTIONS = 16
+"""At most this many distinct first-sample solutions are tracked along the first stretch."""
 
 SPREAD_SEED = 20_240_301
 """Seed of the generator that spreads the starts (fixed: every call tries the same)."""
@@ -120,24 +127,51 @@ def spread_starts(limits: JointLimits, default: FloatArray) -> list[FloatArray]:
 def track_from_the_best_start(problem: TrackingProblem, default: FloatArray,
                               stop_when_unreached: bool) -> tuple[Tracked, TrackingHistory]:
     """The samples of ``problem`` tracked from the start taken by the rule of the module
-    docstring, and the history to go on from."""
-    tried: list[FloatArray] = []
-    best: tuple[Tracked, TrackingHistory] | None = None
-    best_count = -1
+    docstring, and the history to go on from.
+
+    A solution is first tracked up to its first miss only: on a branch that loses the path
+    every later sample is a miss, and a miss costs many iterations. Only when none reaches
+    every sample are those that followed furthest tracked to the end and counted (with
+    ``stop_when_unreached`` the furthest is returned as it stopped)."""
+    samples = problem.step_ratios.shape[0]
+    firsts: list[FloatArray] = []
+    followed: list[int] = []  # per solution, the samples tracked up to its first miss
+    furthest: tuple[Tracked, TrackingHistory] | None = None
     for start in [default, *spread_starts(problem.joints.limits, default)]:
         first, _, _, reached = solve_again(problem, 0, start)
         if not reached or any(np.max(np.abs(first - other)) <= SAME_SOLUTION
-                              for other in tried):
+                              for other in firsts):
             continue
-        tried.append(first)
+        if len(firsts) == TRACKED_SOLUTIONS:
+            break
         history = TrackingHistory(first)
-        tracked = track_targets(problem, history, stop_when_unreached)
+        tracked = track_targets(problem, history, stop_when_unreached=True)
+        if tracked.reached.shape[0] == samples and tracked.reached.all():
+            return tracked, history
+        firsts.append(first)
+        followed.append(tracked.reached.shape[0])
+        if followed[-1] > max(followed[:-1], default=0):
+            furthest = tracked, history
+    if furthest is None:  # no start reaches the first sample: the default's closest approach
+        history = TrackingHistory(default)
+        return track_targets(problem, history, stop_when_unreached), history
+    if stop_when_unreached:
+        return furthest
+    return _most_reached(problem, [first for first, count in zip(firsts, followed, strict=True)
+                                   if count == max(followed)])
+
+
+def _most_reached(problem: TrackingProblem, firsts: list[FloatArray]
+                  ) -> tuple[Tracked, TrackingHistory]:
+    """The samples tracked to the end from each of ``firsts``: the tracking that reaches the
+    most (the earlier on ties)."""
+    best: tuple[Tracked, TrackingHistory] | None = None
+    best_count = -1
+    for first in firsts:
+        history = TrackingHistory(first)
+        tracked = track_targets(problem, history)
         count = int(np.count_nonzero(tracked.reached))
         if count > best_count:
             best, best_count = (tracked, history), count
-        if count == problem.step_ratios.shape[0]:
-            break
-    if best is None:  # no start reaches the first sample: the default's closest approach
-        history = TrackingHistory(default)
-        return track_targets(problem, history, stop_when_unreached), history
+    assert best is not None
     return best
