@@ -26,6 +26,7 @@ from ik_paths import (
     within_limits,
 )
 from pinframes import JointSolution
+from pinframes.errors import TargetNotReachedError
 
 SAMPLES = 101
 RATE_HZ = 50.0
@@ -179,3 +180,47 @@ def test_industrial_arms_follow_paths_far_from_rest_without_a_seed(urdf):
 @pytest.mark.parametrize("urdf", INDUSTRIAL, ids=lambda urdf: urdf.stem)
 def test_industrial_arms_follow_many_paths_without_a_seed(urdf):
     assert_followed_without_a_seed(industrial(urdf), 20)
+
+
+def test_a_path_that_first_stands_longer_than_a_chunk_is_followed():
+    """The starts are compared where the path moves: a target that stands for 4,200 samples
+    (more than the 4,096 of a chunk) tells no branch from another, and comparing them there
+    took one that lost 76 samples of the path after it."""
+    _, moving, moving_times = a_path(CRB15000_OVER)
+    hold = 4200
+    targets = [moving[0]] * hold + moving
+    times = np.concatenate([np.arange(hold) / RATE_HZ, hold / RATE_HZ + moving_times])
+    solution = solved(CRB15000_OVER, targets, times)
+    assert on_target(CRB15000_OVER.model(), CRB15000_OVER.tool, solution.positions,
+                     targets).all()
+    assert solution.all_reached
+    np.testing.assert_array_equal(solution.positions[:hold], solution.positions[[0] * hold])
+
+
+def test_a_standing_start_out_of_reach_is_reported_at_the_first_sample():
+    """With ``strict=True`` the first sample not reached is the one reported, also when the
+    samples that stand on it fill more than a chunk."""
+    _, moving, moving_times = a_path(KR5)
+    away = pin.SE3(moving[0].rotation, moving[0].translation + np.array([3.0, 0.0, 0.0]))
+    hold = 4200
+    times = np.concatenate([np.arange(hold) / RATE_HZ, hold / RATE_HZ + moving_times])
+    with pytest.raises(TargetNotReachedError, match=r"sample 1 of 4301"):
+        solved(KR5, [away] * hold + moving, times, strict=True)
+
+
+def test_tilts_of_a_standing_start_are_those_of_its_first_sample():
+    """Process windows report a tilt per sample, the standing ones included; the tilts
+    are Pinocchio's tool in its target (about x, then y)."""
+    _, moving, moving_times = a_path(KR5)
+    hold = 4200
+    targets = [moving[0]] * hold + moving
+    times = np.concatenate([np.arange(hold) / RATE_HZ, hold / RATE_HZ + moving_times])
+    solution = solved(KR5, targets, times, tilt=(0.2, 0.2))
+    assert solution.all_reached and solution.tilt is not None
+    assert solution.tilt.shape == (len(targets), 2)
+    tools = frame_poses(KR5.model(), KR5.tool, solution.positions[[0, hold - 1, hold + 50]])
+    for tool, index in zip(tools, [0, hold - 1, hold + 50], strict=True):
+        in_target = targets[index].actInv(tool).rotation
+        about_x = np.arctan2(-in_target[1, 2], in_target[2, 2])
+        about_y = np.arcsin(np.clip(in_target[0, 2], -1.0, 1.0))
+        np.testing.assert_allclose(solution.tilt[index], [about_x, about_y], atol=1e-9)

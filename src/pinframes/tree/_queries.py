@@ -335,8 +335,8 @@ class TreeQueries(EditableTree):
             a robot's SRDF (``"home"``). Default: the joints' trajectories at the first
             time, else their rest values, tried first among 64 fixed starts spread over the
             joint ranges; of their distinct solutions (at most 16), the first that reaches
-            every sample of the first 4,096 is taken, else, of those that follow the path
-            furthest before a miss, the one reaching the most.
+            every sample of the first 4,096 in which the path moves is taken, else, of those
+            that follow the path furthest before a miss, the one reaching the most.
         position_tolerance, orientation_tolerance : float
             A sample is reached when the tool's origin is within this many metres of the
             target's and its rotation within this many radians (at least 1e-12).

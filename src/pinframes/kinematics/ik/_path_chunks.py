@@ -11,6 +11,7 @@ takes); :mod:`._batch_check` measures the samples the loop took as solved, all a
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -81,53 +82,126 @@ def track_in_chunks(request: PathToSolve, start: FloatArray, search_starts: bool
     the tool's tilts about its target's x and y (radians, (T, 2)) with a
     :class:`WindowMatch` (else None).
 
+    The starts are compared on the first chunk in which the path moves: whole chunks that
+    stand on the first sample (its target and everything not solved for, to :data:`STILL`)
+    tell no branch from another, so the search takes the first sample and then that chunk,
+    and the standing samples take the first sample's solution.
+
     With ``strict``, raises :class:`~pinframes.errors.TargetNotReachedError` (naming
     ``frame``) at the first sample not reached.
     """
-    plan, joints = request.plan, request.joints
-    path = plan.path
-    model = path.model
-    assert model is not None
-    moments, shifts = plan.sample_times, plan.shifts
-    held = dict.fromkeys(joints.names, 0.0)
+    moments = request.plan.sample_times
+    count = moments.shape[0]
     ratios = _step_ratios(moments)
-    reference = path.relative_to
-    reference_frame = model.model.frames[model.frame_ids[reference]]
-    reference_id = None if reference_frame.parentJoint == 0 and (
-        reference_frame.placement.isIdentity()) else model.frame_ids[reference]
     parts: list[Tracked] = []
     tilts: list[FloatArray] = []
-    for begin in range(0, moments.shape[0], KERNEL_CHUNK):
-        part = slice(begin, begin + KERNEL_CHUNK)
-        targets = _targets(request.target, moments[part], shifts.get(TARGET_SOURCE, 0))
-        target_rows = None if targets is None else np.concatenate(
-            [targets[1], quaternion_from_matrix(targets[0])], axis=1)
-        configurations = sample_configurations(model, path.samplers, moments[part], shifts,
-                                               held)
-        problem = TrackingProblem(
-            model.model, model.data, model.frame_ids[path.frame], reference_id, configurations,
-            target_rows, joints, request.error, request.position_tolerance,
-            request.orientation_tolerance, ratios[part], request.solver, request.objective,
-            _standing_still(configurations, target_rows))
-        if begin == 0 and search_starts:
+    history: TrackingHistory | None = None
+    first: _Chunk | None = None  # the first chunk, while it and those after it stand
+    standing = 0  # samples standing on the first sample, before the search
+    for begin in range(0, count, KERNEL_CHUNK):
+        chunk = _Chunk.sampled(request, slice(begin, begin + KERNEL_CHUNK), ratios)
+        if history is None and search_starts:
+            first = first or chunk
+            if begin + KERNEL_CHUNK < count and first.stands_on(chunk):
+                standing += chunk.moments.shape[0]
+                continue
+            if standing:
+                chunk = first.leading(chunk)
+            problem = chunk.problem(request)
             if isinstance(request.objective, FlatFrame):
-                start = request.objective.turned_up(start, configurations[0])
+                start = request.objective.turned_up(start, problem.configurations[0])
             tracked, history = track_from_the_best_start(problem, start, strict)
         else:
-            if begin == 0:
+            problem = chunk.problem(request)
+            if history is None:
                 history = TrackingHistory(start)
             tracked = track_targets(problem, history, stop_when_unreached=strict)
-        check_unmeasured(path, moments[part], shifts, targets, problem, tracked)
-        if isinstance(request.error, WindowMatch):
-            tilts.append(tilts_at(path, moments[part], shifts, joints.names,
-                                  tracked.positions, targets))
+        check_unmeasured(request.plan.path, chunk.moments, request.plan.shifts, chunk.targets,
+                         problem, tracked)
+        chunk_tilts = None if not isinstance(request.error, WindowMatch) else tilts_at(
+            request.plan.path, chunk.moments, request.plan.shifts, request.joints.names,
+            tracked.positions, chunk.targets)
+        if standing:  # the lead stands for every standing sample
+            lead = 1 if strict and not tracked.reached[0] else standing
+            rows = np.concatenate([np.zeros(lead, dtype=np.intp),
+                                   np.arange(1, tracked.reached.shape[0])])
+            tracked = Tracked(*(getattr(tracked, name)[rows] for name in _TRACKED))
+            chunk_tilts = None if chunk_tilts is None else chunk_tilts[rows]
+            standing = 0
+        if chunk_tilts is not None:
+            tilts.append(chunk_tilts)
         parts.append(tracked)
         if strict and not tracked.reached.all():
             _raise_unreached(parts, request, frame)
     whole = Tracked(*(np.concatenate([getattr(part, name) for part in parts])
-                      for name in ("positions", "position_error", "orientation_error",
-                                   "reached", "measured")))
+                      for name in _TRACKED))
     return whole, np.concatenate(tilts) if tilts else None
+
+
+_TRACKED = ("positions", "position_error", "orientation_error", "reached", "measured")
+"""The per-sample fields of :class:`Tracked`, in its order."""
+
+
+@dataclass(frozen=True)
+class _Chunk:
+    """The samples of one chunk: their times (timeline basis, ns), step ratios, targets in
+    the reference frame (``(N, 3, 3)`` rotations, ``(N, 3)`` translations; None: the frame
+    itself) and their rows ``x y z qx qy qz qw``, and Pinocchio's configurations with
+    everything not solved for."""
+
+    moments: NDArray[np.int64]
+    ratios: FloatArray
+    targets: Transform | None
+    target_rows: FloatArray | None
+    configurations: FloatArray
+
+    @classmethod
+    def sampled(cls, request: PathToSolve, part: slice, ratios: FloatArray) -> _Chunk:
+        """The samples ``part`` of ``request``'s plan (``ratios``: of the whole plan)."""
+        plan = request.plan
+        model = plan.path.model
+        assert model is not None
+        moments = plan.sample_times[part]
+        targets = _targets(request.target, moments, plan.shifts.get(TARGET_SOURCE, 0))
+        target_rows = None if targets is None else np.concatenate(
+            [targets[1], quaternion_from_matrix(targets[0])], axis=1)
+        configurations = sample_configurations(model, plan.path.samplers, moments, plan.shifts,
+                                               dict.fromkeys(request.joints.names, 0.0))
+        return cls(moments, ratios[part], targets, target_rows, configurations)
+
+    def stands_on(self, other: _Chunk) -> bool:
+        """Whether every sample of ``other`` is this chunk's first, to :data:`STILL`."""
+        still = bool(np.all(np.abs(other.configurations - self.configurations[0]) <= STILL))
+        if self.target_rows is not None and other.target_rows is not None:
+            still &= bool(np.all(np.abs(other.target_rows - self.target_rows[0]) <= STILL))
+        return still
+
+    def leading(self, other: _Chunk) -> _Chunk:
+        """``other`` led by this chunk's first sample, which it stands on up to ``other``
+        (so ``other``'s step ratios hold as they are)."""
+        def led(first: NDArray[Any], rest: NDArray[Any]) -> NDArray[Any]:
+            return np.concatenate([first[:1], rest])
+        targets = None if self.targets is None or other.targets is None else (
+            led(self.targets[0], other.targets[0]), led(self.targets[1], other.targets[1]))
+        target_rows = None if self.target_rows is None or other.target_rows is None else led(
+            self.target_rows, other.target_rows)
+        return _Chunk(led(self.moments, other.moments), led(np.ones(1), other.ratios), targets,
+                      target_rows, led(self.configurations, other.configurations))
+
+    def problem(self, request: PathToSolve) -> TrackingProblem:
+        """The :class:`TrackingProblem` of these samples."""
+        path = request.plan.path
+        model = path.model
+        assert model is not None
+        reference_frame = model.model.frames[model.frame_ids[path.relative_to]]
+        reference_id = None if reference_frame.parentJoint == 0 and (
+            reference_frame.placement.isIdentity()) else model.frame_ids[path.relative_to]
+        return TrackingProblem(
+            model.model, model.data, model.frame_ids[path.frame], reference_id,
+            self.configurations, self.target_rows, request.joints, request.error,
+            request.position_tolerance, request.orientation_tolerance, self.ratios,
+            request.solver, request.objective,
+            _standing_still(self.configurations, self.target_rows))
 
 
 def _step_ratios(moments: NDArray[np.int64]) -> FloatArray:

@@ -12,7 +12,8 @@ distance from the default start, until one is taken. Many starts are needed wher
 ranges are wide: from far away a solve often stops on a limit (an ABB GoFa's joints turn
 -180..180 degrees), so few starts end on a solution. The distinct solutions
 (:data:`SAME_SOLUTION` apart), at most :data:`TRACKED_SOLUTIONS` of them, are tracked along
-the first stretch of samples in that order; the first that reaches every sample of it is
+the first stretch of samples in that order (the first chunk in which the path moves, led
+by its first sample: see :mod:`._path_chunks`); the first that reaches every sample of it is
 taken. Else, of those that follow the path furthest before their first miss, the one that
 reaches the most of the stretch is taken (the earlier on ties). A given seed is the only
 start.
