@@ -14,7 +14,7 @@ import numpy as np
 from ..errors import UnsupportedFeatureError
 from ..tree import FrameTree
 from ..values.interpolation import DEFAULT_FRAME_INTERPOLATION
-from ..values.joint import mimic_chain
+from ..values.joint import mimic_drive
 
 __all__ = ["check_joint_steps"]
 
@@ -26,10 +26,9 @@ def check_joint_steps(tree: FrameTree, name: str) -> None:
     joint = tree.joint_of(name)
     if joint is None or joint.kind == "prismatic":
         return
-    chain = mimic_chain(joint, tree.joints)
-    multiplier = float(np.prod([link.mimic.multiplier for link in chain[:-1]
-                                if link.mimic is not None]))
-    trajectory = tree.joint_trajectory(chain[-1].name)
+    drive = mimic_drive(joint, tree.joints)
+    multiplier = drive.multiplier
+    trajectory = tree.joint_trajectory(drive.primary)
     largest = DEFAULT_FRAME_INTERPOLATION.largest_uniform_turn
     if trajectory is not None and np.any(np.abs(np.diff(trajectory.values) * multiplier)
                                          >= largest):

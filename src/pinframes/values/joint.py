@@ -20,7 +20,7 @@ from ..errors import JointError
 from ._trigonometry import cos_sin
 from .se3 import rotated_vector, rotation_product, turned
 
-__all__ = ["JOINT_KINDS", "Drive", "Joint", "Mimic", "mimic_chain", "mimic_drives"]
+__all__ = ["JOINT_KINDS", "Drive", "Joint", "Mimic", "mimic_chain", "mimic_drive", "mimic_drives"]
 
 JOINT_KINDS = ("revolute", "continuous", "prismatic")
 """Joint kinds driven by one value each."""
@@ -227,19 +227,22 @@ class Drive:
     offset: float = 0.0
 
 
-def mimic_drives(joints: Mapping[str, Joint]) -> dict[str, Drive]:
-    """Per joint of ``joints`` (by name), its :class:`Drive`: a joint that mimics none
-    drives itself (multiplier 1, offset 0).
+def mimic_drive(joint: Joint, joints: Mapping[str, Joint]) -> Drive:
+    """How ``joint`` follows the actuated joint at the end of its mimic chain: through
+    ``v2 = m2 (m1 v0 + o1) + o2 = (m2 m1) v0 + (m2 o1 + o2)`` down the chain (itself,
+    multiplier 1, offset 0, for a joint that mimics none).
 
     Raises :class:`~pinframes.errors.JointError` as :func:`mimic_chain` does.
     """
-    drives: dict[str, Drive] = {}
-    for joint in joints.values():
-        chain = mimic_chain(joint, joints)
-        multiplier, offset = 1.0, 0.0
-        for link in reversed(chain[:-1]):  # from the primary out to the joint
-            assert link.mimic is not None
-            multiplier, offset = (link.mimic.multiplier * multiplier,
-                                  link.mimic.multiplier * offset + link.mimic.offset)
-        drives[joint.name] = Drive(chain[-1].name, multiplier, offset)
-    return drives
+    chain = mimic_chain(joint, joints)
+    multiplier, offset = 1.0, 0.0
+    for link in reversed(chain[:-1]):  # from the primary out to the joint
+        assert link.mimic is not None  # every joint but the chain's last mimics the next
+        multiplier, offset = (link.mimic.multiplier * multiplier,
+                              link.mimic.multiplier * offset + link.mimic.offset)
+    return Drive(chain[-1].name, multiplier, offset)
+
+
+def mimic_drives(joints: Mapping[str, Joint]) -> dict[str, Drive]:
+    """Per joint of ``joints`` (by name), its :func:`mimic_drive`."""
+    return {joint.name: mimic_drive(joint, joints) for joint in joints.values()}

@@ -14,7 +14,7 @@ from ...errors import UnsupportedFeatureError
 from ...kinematics import Snapshot
 from ...tree import FrameTree
 from ...values.geometry import GEOMETRY_METADATA_KEY, FrameGeometry
-from ...values.joint import Joint, mimic_chain
+from ...values.joint import Joint, mimic_drive
 from ...values.rotations import rpy_from_matrix
 from .._snapshot import moving_parts, one_instant
 from .._writable import check_writable_tree, refuse_attached_data
@@ -242,27 +242,11 @@ def _driven_elements(element: ET.Element, joint: Joint, joints: dict[str, Joint]
     written = {key: repr(float(value)) for key, value in limits.items() if value is not None}
     if written:
         ET.SubElement(element, "limit", written)
-    if joint.mimic is not None:
-        primary, multiplier, offset = _mimic_of_driven_joint(joint, joints)
-        ET.SubElement(element, "mimic", joint=primary, multiplier=repr(multiplier),
-                      offset=repr(offset))
-
-
-def _mimic_of_driven_joint(joint: Joint, joints: dict[str, Joint]) -> tuple[str, float, float]:
-    """The joint at the end of ``joint``'s mimic chain, and the multiplier and offset that
-    give ``joint``'s value from it.
-
-    URDF readers such as Pinocchio's refuse a mimic of a mimic, so a chain is written as one
-    mimic of the driven joint: ``v2 = m2 (m1 v0 + o1) + o2 = (m2 m1) v0 + (m2 o1 + o2)``.
-    """
-    chain = mimic_chain(joint, joints)
-    multiplier, offset = 1.0, 0.0
-    for link in reversed(chain[:-1]):
-        mimic = link.mimic
-        assert mimic is not None  # every joint but the chain's last mimics the next
-        multiplier, offset = (mimic.multiplier * multiplier,
-                              mimic.multiplier * offset + mimic.offset)
-    return chain[-1].name, float(multiplier), float(offset)
+    if joint.mimic is not None:  # URDF readers such as Pinocchio's refuse a mimic of a
+        # mimic: a chain is written as one mimic of the actuated joint at its end
+        drive = mimic_drive(joint, joints)
+        ET.SubElement(element, "mimic", joint=drive.primary,
+                      multiplier=repr(float(drive.multiplier)), offset=repr(float(drive.offset)))
 
 
 def _free_name(wanted: str, used: set[str]) -> str:
