@@ -44,6 +44,13 @@ CRB15000_OVER = replace(CRB15000, home=(2.7, 2.0, 0.1, 0.3, -0.6, 0.8))
 CRB15000_UNDER = replace(CRB15000, home=(1.9, -1.6, -1.3, -1.3, -2.7, -0.9))
 """Leaning back, wrist bent to -2.7 rad, near its limit."""
 WIDE_RANGES = [pytest.param(CRB15000_OVER, id="over"), pytest.param(CRB15000_UNDER, id="under")]
+WHOLE_TURNS = [
+    pytest.param(replace(CRB15000, home=home), id=name) for name, home in [
+        ("wrist-down", (1.465, -0.83, -0.871, -1.491, 0.483, -1.421)),
+        ("folded-back", (-1.934, -2.456, -1.301, -2.56, 0.426, -2.274))]]
+"""GoFa paths whose first sample the 64 spread starts reached only on branches that lose
+the path, the Newton of the others stopping on a joint's limit at -pi or pi (72 of 101
+reached on each)."""
 
 
 def a_path(robot: Arm) -> tuple[np.ndarray, list, np.ndarray]:
@@ -224,3 +231,17 @@ def test_tilts_of_a_standing_start_are_those_of_its_first_sample():
         about_x = np.arctan2(-in_target[1, 2], in_target[2, 2])
         about_y = np.arcsin(np.clip(in_target[0, 2], -1.0, 1.0))
         np.testing.assert_allclose(solution.tilt[index], [about_x, about_y], atol=1e-9)
+
+
+@pytest.mark.parametrize("robot", WHOLE_TURNS)
+def test_joints_that_turn_a_whole_turn_do_not_stop_a_start_on_a_limit(robot):
+    """Five of the GoFa's joints turn -pi..pi: a value past pi is the same pose as that
+    value less a turn. Solved from a start far away, such a joint turns the short way and
+    comes back into its range, where it stopped on the limit before: the branch that
+    follows the path is among the first sample's solutions."""
+    trajectory, targets, times = a_path(robot)
+    solution = solved(robot, targets, times)
+    model = robot.model()
+    assert on_target(model, robot.tool, solution.positions, targets).all()
+    assert within_limits(model, solution.positions)
+    assert largest_step(solution.positions) <= 2 * largest_step(trajectory)

@@ -12,6 +12,7 @@ theirs allow (a follower at ``m * theta + c`` with limit ``L`` allows ``theta`` 
 
 from __future__ import annotations
 
+import copy
 import math
 from collections.abc import Mapping, Sequence
 
@@ -25,9 +26,16 @@ from .._model import CompiledModel
 from .._plan import PreparedPath
 from ._bounded_step import JointLimits
 
-__all__ = ["SolvedJoints", "solved_joints"]
+__all__ = ["TURN_SLACK", "SolvedJoints", "solved_joints"]
 
 FloatArray = NDArray[np.float64]
+
+_TURN = 2.0 * math.pi
+"""One turn of a revolute joint, radians."""
+
+TURN_SLACK = 1e-3
+"""Radians by which a joint's range may fall short of a whole turn and still count as one
+(URDFs write 3.1415 for pi)."""
 
 _LOCAL = pin.ReferenceFrame.LOCAL
 """Pinocchio's frame of a Jacobian in the tool's own axes."""
@@ -57,6 +65,10 @@ class SolvedJoints:
         URDFs write 0 for "not given", counts as none).
     velocity_limit_joints : tuple of str
         Per joint, the joint whose limit that is: itself, or the tighter follower.
+    whole_turns : ndarray of bool, shape (n,)
+        Per joint, whether it is a revolute joint that no mimic joint follows and whose
+        range covers a whole turn (to :data:`TURN_SLACK`): its value and that value plus or
+        minus a turn put every frame in the same place.
     """
 
     def __init__(self, names: Sequence[str], model: CompiledModel, joints: Mapping[str, Joint],
@@ -94,6 +106,36 @@ class SolvedJoints:
             self.names, joints, drives)
         lower, upper = _bounds(self.names, joints, drives)
         self.limits = JointLimits(lower, upper)
+        followed = {drive.primary for name, drive in drives.items() if drive.primary != name}
+        self.whole_turns = np.array([joints[name].kind == "revolute" and name not in followed
+                                     for name in self.names], dtype=bool) & (
+            upper - lower >= _TURN - TURN_SLACK)
+
+    def turning_freely(self) -> SolvedJoints:
+        """These joints with the limits of the :attr:`whole_turns` joints taken away (a
+        solve from far away then turns them the short way instead of stopping on a limit;
+        :meth:`into_ranges` brings its solution back); themselves when there are none."""
+        if not self.whole_turns.any():
+            return self
+        free = copy.copy(self)
+        free.limits = JointLimits(np.where(self.whole_turns, -np.inf, self.limits.lower),
+                                  np.where(self.whole_turns, np.inf, self.limits.upper))
+        return free
+
+    def into_ranges(self, theta: FloatArray) -> FloatArray:
+        """``theta`` (n,) with each :attr:`whole_turns` joint outside its range moved by whole
+        turns to within half a turn of the middle of the range (the same pose of every
+        frame, and the most room either way; onto a limit where the range falls short of a
+        turn by :data:`TURN_SLACK`); a new array."""
+        lower, upper = self.limits.lower, self.limits.upper
+        outside = self.whole_turns & ((theta < lower) | (theta > upper))
+        moved = theta.copy()
+        if outside.any():
+            lower, upper = lower[outside], upper[outside]
+            middle = 0.5 * (lower + upper)
+            moved[outside] = np.clip(
+                middle + np.mod(theta[outside] - middle + math.pi, _TURN) - math.pi, lower, upper)
+        return moved
 
     def set_configuration(self, q: FloatArray, theta: FloatArray) -> None:
         """Put the solved joints of the configuration ``q`` (nq,) at ``theta``, in place."""

@@ -10,7 +10,10 @@ from the default start and from :data:`SPREAD_STARTS` fixed configurations sprea
 joint ranges (the same for every call: :data:`SPREAD_SEED`), these in the order of their
 distance from the default start, until one is taken. Many starts are needed where the
 ranges are wide: from far away a solve often stops on a limit (an ABB GoFa's joints turn
--180..180 degrees), so few starts end on a solution. The distinct solutions
+-180..180 degrees), so few starts end on a solution. A joint that may turn a whole turn
+(:attr:`SolvedJoints.whole_turns`) is not stopped by its limits while a start is solved: it
+turns the short way, and its solution is brought back into its range by whole turns (the
+same pose). The distinct solutions
 (:data:`SAME_SOLUTION` apart), at most :data:`TRACKED_SOLUTIONS` of them, are tracked along
 the first stretch of samples in that order (the first chunk in which the path moves, led
 by its first sample: see :mod:`._path_chunks`); the first that reaches every sample of it is
@@ -23,6 +26,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -138,8 +142,11 @@ def track_from_the_best_start(problem: TrackingProblem, default: FloatArray,
     firsts: list[FloatArray] = []
     followed: list[int] = []  # per solution, the samples tracked up to its first miss
     furthest: tuple[Tracked, TrackingHistory] | None = None
+    # from far away a joint that may turn a whole turn turns the short way, not onto a limit
+    turning = replace(problem, joints=problem.joints.turning_freely())
     for start in [default, *spread_starts(problem.joints.limits, default)]:
-        first, _, _, reached = solve_again(problem, 0, start)
+        first, _, _, reached = solve_again(turning, 0, start)
+        first = problem.joints.into_ranges(first)
         if not reached or any(np.max(np.abs(first - other)) <= SAME_SOLUTION
                               for other in firsts):
             continue
