@@ -9,26 +9,13 @@ import numpy as np
 import pinocchio as pin
 import yourdfpy
 
-from pinframes import Pose
+from ik_paths import frame_poses
 
 
 def placements(urdf: Path, frame: str, configurations: np.ndarray) -> list[pin.SE3]:
     """Placements of ``frame`` in the root of ``urdf`` (metres), one per row of
     ``configurations`` (Pinocchio's ``q``), by ``framesForwardKinematics``."""
-    model = pin.buildModelFromUrdf(str(urdf))
-    data = model.createData()
-    frame_id = model.getFrameId(frame)
-    found = []
-    for q in np.atleast_2d(configurations):
-        pin.framesForwardKinematics(model, data, q)
-        found.append(data.oMf[frame_id].copy())
-    return found
-
-
-def as_pose(targets: list[pin.SE3], seconds: np.ndarray) -> Pose:
-    """A pinframes ``Pose`` with times (seconds) of Pinocchio placements."""
-    return Pose(np.array([p.translation for p in targets]),
-                np.array([p.rotation for p in targets]), times=seconds)
+    return frame_poses(pin.buildModelFromUrdf(str(urdf)), frame, np.atleast_2d(configurations))
 
 
 def urdf_velocity_limits(urdf: Path) -> dict[str, float]:

@@ -15,9 +15,10 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
+from ik_paths import as_pose
 from pinframes import FrameTree, JointSpeedError, Pose
 from pinframes.errors import JointError, PinframesError
-from robot_checks import as_pose, placements, urdf_mimic_multiplier, urdf_velocity_limits
+from robot_checks import placements, urdf_mimic_multiplier, urdf_velocity_limits
 
 ROBOT = Path(__file__).resolve().parents[1] / "models" / "welding_robot" / "welding_robot.urdf"
 ARM = [f"robot/joint_{index}" for index in range(1, 7)]
