@@ -72,7 +72,7 @@ def first_start(solved: SolvedJoints, seed: Any, plan: QueryPlan, joints: Mappin
         trajectory = trajectories.get(name)
         start[column] = (joints[name].rest_value if trajectory is None else
                          trajectory.value_at(first - plan.shifts.get(name, 0)))
-    start = np.minimum(np.maximum(start, limits.lower), limits.upper)
+    start = limits.clipped(start)
     for column, number in given.items():
         name = names[column]
         low, high = limits.lower[column], limits.upper[column]
