@@ -11,6 +11,7 @@ takes); :mod:`._batch_check` measures the samples the loop took as solved, all a
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -73,6 +74,17 @@ class PathToSolve:
     orientation_tolerance: float
     objective: NullSpaceObjective
     solver: LeastSquares
+
+    @cached_property
+    def reference_id(self) -> int | None:
+        """The Pinocchio frame id of the frame the target is given in, or None when that is
+        the compiled model's root (its placements are already in it)."""
+        path = self.plan.path
+        assert path.model is not None
+        frame_ids = path.model.frame_ids
+        frame = path.model.model.frames[frame_ids[path.relative_to]]
+        return None if frame.parentJoint == 0 and frame.placement.isIdentity() else (
+            frame_ids[path.relative_to])
 
 
 def track_in_chunks(request: PathToSolve, start: FloatArray, search_starts: bool,
@@ -193,11 +205,8 @@ class _Chunk:
         path = request.plan.path
         model = path.model
         assert model is not None
-        reference_frame = model.model.frames[model.frame_ids[path.relative_to]]
-        reference_id = None if reference_frame.parentJoint == 0 and (
-            reference_frame.placement.isIdentity()) else model.frame_ids[path.relative_to]
         return TrackingProblem(
-            model.model, model.data, model.frame_ids[path.frame], reference_id,
+            model.model, model.data, model.frame_ids[path.frame], request.reference_id,
             self.configurations, self.target_rows, request.joints, request.error,
             request.position_tolerance, request.orientation_tolerance, self.ratios,
             request.solver, request.objective,
