@@ -285,10 +285,9 @@ def solved_joints(path: PreparedPath, joints: Mapping[str, Joint],
     neither frame, or nothing to solve.
     """
     key = "solve_joints: " + ("every joint" if names is None else "named: " + "\0".join(names))
-    cached = path.plans.get(key)
+    cached = path.plans.get(SolvedJoints, key)
     if cached is None:
-        cached = path.plans[key] = _solved_joints(path, joints, drives, names)
-    assert isinstance(cached, SolvedJoints)
+        cached = path.plans.keep(SolvedJoints, key, _solved_joints(path, joints, drives, names))
     return cached
 
 

@@ -12,16 +12,15 @@ joints, whose samples are what is being solved for, and the first sample's start
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
 
-from ...errors import ArgumentTypeError, InvalidDataError, JointError, joint_not_found
-from ...values.joint import Joint
+from ...errors import ArgumentTypeError, InvalidDataError, JointError
 from ...values.pose import Pose
 from ...values.timeline import TimedSource
 from .._description import TreeDescription
+from .._joint_argument import named_joints
 from .._plan import plan_query, prepare_path
 from ._bounded_step import LeastSquares
 from ._flat import flat_objective
@@ -54,7 +53,9 @@ def evaluate_solve_joints(
                                 "too", frame=frame, field="up")
     tolerances = (_tolerance(position_tolerance, "position_tolerance", frame),
                   _tolerance(orientation_tolerance, "orientation_tolerance", frame))
-    names = None if joints is None else _joint_names(joints, tree.joints_by_name, frame)
+    names = None if joints is None else named_joints(joints, tree.joints_by_name, frame)
+    if names is not None and not names:
+        raise JointError("no joints to solve for", frame=frame, field="joints")
     # a time-dependent target's times are the solve's, beside those of what moves
     target_times = None if target_pose is None else target_pose.times
     extra = () if target_pose is None or target_times is None else (
@@ -140,23 +141,3 @@ def _tolerance(value: Any, field: str, frame: str) -> float:
                                f"robot (at least {SMALLEST_TOLERANCE:g})", frame=frame,
                                field=field)
     return number
-
-
-def _joint_names(requested: object, joints: Mapping[str, Joint], frame: str) -> list[str]:
-    """``requested`` (the ``joints=`` argument) as a list of distinct names of actuated
-    joints, else an error naming ``frame`` and the field ``joints``."""
-    if isinstance(requested, str) or not isinstance(requested, Sequence):
-        raise ArgumentTypeError(f"expected a list of joint names, got {requested!r}",
-                                frame=frame, field="joints")
-    if not requested:
-        raise JointError("no joints to solve for", frame=frame, field="joints")
-    for name in requested:
-        if not isinstance(name, str) or name not in joints:
-            raise joint_not_found(name, joints, frame=frame, field="joints")
-        mimic = joints[name].mimic
-        if mimic is not None:
-            raise JointError(f"joint {name!r} mimics {mimic.joint!r} and follows it; solve "
-                             "for that joint", frame=frame, field="joints")
-    if len(set(requested)) != len(requested):
-        raise JointError("joint names repeat", frame=frame, field="joints")
-    return list(requested)
