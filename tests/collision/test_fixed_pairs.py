@@ -9,9 +9,9 @@ from pathlib import Path
 
 import numpy as np
 import pinocchio as pin
-from ik_paths import example_robot
 
 import pinframes
+from ik_paths import example_robot
 from pinframes.cli.clearance import clearance_summary
 from pinframes.errors import JointWithoutSamplesWarning
 from pinframes.formats.clearance_files import clearance_text
