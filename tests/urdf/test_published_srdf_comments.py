@@ -46,3 +46,4 @@ def test_its_group_states_are_read():
                 if element.get("name") == "upper_arm_home"]
     expected = {joint.get("name"): float(joint.get("value")) for joint in state.iter("joint")}
     assert home == pytest.approx(expected)
+
