@@ -17,13 +17,12 @@ _LIMIT = 8192
 
 class Memo:
     """Values worked out once: ``memo.get(PreparedPath, key)`` is the ``PreparedPath``
-    kept under ``key``, or None. At most ``limit`` entries: past it the oldest goes first."""
+    kept under ``key``, or None. At most ``_LIMIT`` entries: past it the oldest goes first."""
 
-    __slots__ = ("_entries", "_limit")
+    __slots__ = ("_entries",)
 
-    def __init__(self, limit: int = _LIMIT) -> None:
+    def __init__(self) -> None:
         self._entries: dict[tuple[type, Hashable], object] = {}
-        self._limit = limit
 
     def get(self, kind: type[T], key: Hashable) -> T | None:
         """The ``kind`` kept under ``key``, or None."""
@@ -35,7 +34,7 @@ class Memo:
         # Queries may run in several threads at once: two of them may pick the same oldest
         # entry, or one may insert while another iterates, so eviction tolerates both races
         # (the memo may then exceed its limit by a few entries) instead of taking a lock.
-        if len(self._entries) >= self._limit:
+        if len(self._entries) >= _LIMIT:
             with contextlib.suppress(KeyError, RuntimeError, StopIteration):
                 self._entries.pop(next(iter(self._entries)))
         self._entries[(kind, key)] = value
