@@ -6,8 +6,10 @@ all joints arriving together, each in trapezoids or S-curves) and :mod:`.along_p
 (``time_along_path``: along a geometric path, time-optimal by reachability).
 """
 
+from .along_path import PathTiming, time_along_path
 from .motion_limits import MotionLimits
 from .point_to_point import PointToPoint, time_point_to_point
 from .timed_joints import TimedJoints
 
-__all__ = ["MotionLimits", "PointToPoint", "TimedJoints", "time_point_to_point"]
+__all__ = ["MotionLimits", "PathTiming", "PointToPoint", "TimedJoints", "time_along_path",
+           "time_point_to_point"]
