@@ -14,7 +14,7 @@ from ._path_spline import PathSpline
 
 __all__ = ["MIN_SEGMENTS", "TimingGrid"]
 
-MIN_SEGMENTS = 100
+MIN_SEGMENTS = 200
 """The fewest segments a path is timed on."""
 
 
