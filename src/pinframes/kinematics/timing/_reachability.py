@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...errors import JointError
+from ._clamped_chain import chain
 from ._timing_grid import TimingGrid
 
 __all__ = ["squared_path_speeds"]
@@ -232,24 +233,9 @@ def _pushing(upper: tuple[np.ndarray, ...], double: np.ndarray,
 def _backward(static: np.ndarray, offsets: np.ndarray, slopes: np.ndarray) -> np.ndarray:
     """Shape ``(N,)``: the largest ``x`` at each sample from which the path's end is reached at
     rest (0 at the end)."""
-    limits = [0.0] * (static.size + 1)
-    reachable = 0.0
-    rows = zip(static.tolist(), offsets.tolist(), slopes.tolist(), strict=True)
-    for index, (bound, offset_row, slope_row) in reversed(list(enumerate(rows))):
-        reachable = min(bound, *[offset + slope * reachable
-                                 for offset, slope in zip(offset_row, slope_row, strict=True)])
-        limits[index] = reachable
-    return np.array(limits)
+    return chain(static[::-1], offsets[::-1], slopes[::-1])[::-1]
 
 
 def _forward(limits: np.ndarray, offsets: np.ndarray, slopes: np.ndarray) -> np.ndarray:
     """Shape ``(N,)``: from rest, the largest ``x`` at each next sample within ``limits``."""
-    speeds = [0.0] * limits.size
-    current = 0.0
-    rows = zip(limits[1:].tolist(), offsets.tolist(), slopes.tolist(), strict=True)
-    for index, (limit, offset_row, slope_row) in enumerate(rows, start=1):
-        current = max(0.0, min(limit, *[offset + slope * current
-                                        for offset, slope in zip(offset_row, slope_row,
-                                                                 strict=True)]))
-        speeds[index] = current
-    return np.array(speeds)
+    return chain(limits[1:], offsets, slopes)
