@@ -12,11 +12,13 @@ joints, whose samples are what is being solved for, and the first sample's start
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 
 from ...errors import ArgumentTypeError, InvalidDataError, JointError
+from ...values.joint import Joint
 from ...values.pose import Pose
 from ...values.timeline import TimedSource
 from .._description import TreeDescription
@@ -43,7 +45,7 @@ def evaluate_solve_joints(
     tree: TreeDescription, frame: str, target: str | Pose, *, relative_to: str | None,
     times: Any, time_ref: Any, joints: Any, free_axis: str | None, seed: Any,
     position_tolerance: float, orientation_tolerance: float, strict: bool,
-    flat: str | None = None, up: Any = None, tilt: Any = None,
+    flat: str | None = None, up: Any = None, tilt: Any = None, add_joints: Any = None,
 ) -> JointSolution:
     """``tree.solve_joints(...)``; ``frame`` (and a target frame name) already checked."""
     reference, target_pose = _reference(tree, frame, target, relative_to)
@@ -53,9 +55,9 @@ def evaluate_solve_joints(
                                 "too", frame=frame, field="up")
     tolerances = (_tolerance(position_tolerance, "position_tolerance", frame),
                   _tolerance(orientation_tolerance, "orientation_tolerance", frame))
-    names = None if joints is None else named_joints(joints, tree.joints_by_name, frame)
-    if names is not None and not names:
-        raise JointError("no joints to solve for", frame=frame, field="joints")
+    names = None if joints is None else _to_solve(joints, tree.joints_by_name, frame, "joints")
+    added = () if add_joints is None else _to_solve(add_joints, tree.joints_by_name, frame,
+                                                    "add_joints")
     # a time-dependent target's times are the solve's, beside those of what moves
     target_times = None if target_pose is None else target_pose.times
     extra = () if target_pose is None or target_times is None else (
@@ -64,7 +66,7 @@ def evaluate_solve_joints(
     if path.model is None:
         raise JointError(f"no robot joint moves {frame!r} relative to {reference!r}",
                          frame=frame, field="joints")
-    solved = solved_joints(path, tree.joints_by_name, tree.drives, names)
+    solved = solved_joints(path, tree.joints_by_name, tree.drives, names, added)
     # the solved joints' samples are what is solved for: not among the solve's times
     plan = plan_query(tree, frame, reference, times, time_ref, "clamp", held=solved.names,
                       extra=extra)
@@ -141,3 +143,13 @@ def _tolerance(value: Any, field: str, frame: str) -> float:
                                f"robot (at least {SMALLEST_TOLERANCE:g})", frame=frame,
                                field=field)
     return number
+
+
+def _to_solve(requested: object, joints: Mapping[str, Joint], frame: str,
+              field: str) -> list[str]:
+    """``requested`` (the ``joints=`` or ``add_joints=`` argument) as :func:`named_joints`
+    checks it, and not empty."""
+    names = named_joints(requested, joints, frame, field)
+    if not names:
+        raise JointError("no joints to solve for", frame=frame, field=field)
+    return names
