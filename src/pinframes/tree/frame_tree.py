@@ -1,10 +1,10 @@
 """`FrameTree`: a tree of named coordinate frames whose poses may move in time.
 
-The class is built in three steps, one idea a module: :mod:`._structure` holds the frames,
-the data attached to them and every edit, :mod:`._queries` the pose, velocity and Jacobian
-queries handed to the kinematics; here come attached data in any frame, robots mounted
-from files and the whole-tree operations, whose work is done in :mod:`.grafting` and
-:mod:`.tree_times`.
+The class is built in four steps, one idea a module: :mod:`._structure` holds the frames,
+the data attached to them and every edit, :mod:`._queries` the pose, velocity, Jacobian and
+inverse kinematics queries handed to the kinematics, :mod:`._collision_queries` the
+clearance; here come attached data in any frame, robots mounted from files and the
+whole-tree operations, whose work is done in :mod:`.grafting` and :mod:`.tree_times`.
 """
 
 from __future__ import annotations

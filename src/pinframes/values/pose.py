@@ -40,7 +40,7 @@ from .timeconv import (
     shift_ns,
     timestamp_ns,
 )
-from .timed import Timed
+from .timed import SampledInTime
 from .timeline import QueryTimeline, TimedSource, plan_query_timeline
 from .weave import Weave
 
@@ -50,7 +50,7 @@ FloatArray = NDArray[np.float64]
 _QUATERNION_NORM_TOLERANCE = 1e-3
 
 
-class Pose(Timed):
+class Pose(SampledInTime):
     """A rigid transform, static or sampled at strictly increasing times.
 
     Parameters
@@ -72,7 +72,7 @@ class Pose(Timed):
     raises numpy's ``ValueError``; copy them (``np.array(pose.translation)``) to edit.
     """
 
-    __slots__ = ("_keyframes", "_reference", "_rotation", "_times", "_translation", "_weave")
+    __slots__ = ("_keyframes", "_rotation", "_translation", "_weave")
 
     def __init__(
         self,
@@ -327,21 +327,6 @@ class Pose(Timed):
         out[..., :3, 3] = self._translation
         out[..., 3, 3] = 1.0
         return out
-
-    @property
-    def times(self) -> NDArray[np.timedelta64] | None:
-        """Keyframe times after :attr:`reference_time`, ``timedelta64[ns]``; None if static."""
-        return None if self._times is None else self._times.astype("timedelta64[ns]")
-
-    @property
-    def reference_time(self) -> np.datetime64 | None:
-        """The timestamp :attr:`times` count from, ``datetime64[ns]``, or None."""
-        return self._reference
-
-    @property
-    def is_time_dependent(self) -> bool:
-        """True when the pose is sampled in time."""
-        return self._times is not None
 
     def __len__(self) -> int:
         """Number of samples (1 for a static pose)."""

@@ -42,7 +42,7 @@ def read_urdf(path: str | os.PathLike[str], *, strict: bool = False,
     that :meth:`~pinframes.FrameTree.clearance` leaves out.
 
     ``strict`` refuses a mimic of a joint the file does not have (by default such a joint
-    stays independent, with a :class:`~pinframes.urdf.BrokenMimicWarning`). ``limits``
+    stays independent, with a :class:`~pinframes.BrokenMimicWarning`). ``limits``
     (:class:`pinframes.Limits`; None: the defaults) bounds the XML elements
     (``max_xml_elements``) and their nesting (``max_depth``); a ``<!DOCTYPE>`` is refused.
 

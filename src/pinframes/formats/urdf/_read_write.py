@@ -39,7 +39,7 @@ def read_robot(path: str | os.PathLike[str], *, strict: bool = False,
     beside the file).
 
     ``strict`` refuses a mimic of a joint the file does not have (by default such a joint
-    stays independent, with a :class:`~pinframes.urdf.BrokenMimicWarning`). ``limits``
+    stays independent, with a :class:`~pinframes.BrokenMimicWarning`). ``limits``
     (:class:`pinframes.Limits`; None: the defaults) bounds the XML elements
     (``max_xml_elements``) and their nesting (``max_depth``); a ``<!DOCTYPE>`` is refused.
     ``package_dirs``, ``xacro_args`` and ``srdf`` as for :func:`parse_urdf`.

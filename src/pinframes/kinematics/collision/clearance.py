@@ -175,10 +175,9 @@ def _loader(tree: TreeDescription, kind: str,
     folders = tuple(os.fspath(folder) for folder in package_dirs)
     key = ("clearance shapes", kind, repr(bounds), os.environ.get("ROS_PACKAGE_PATH", ""),
            *folders)
-    loader = tree.cached(key)
+    loader = tree.memo.get(ShapeLoader, key)
     if loader is None:
-        loader = ShapeLoader(kind, folders, bounds)
-        tree.store(key, loader)
+        loader = tree.memo.keep(ShapeLoader, key, ShapeLoader(kind, folders, bounds))
     return loader
 
 
