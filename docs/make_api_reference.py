@@ -50,8 +50,11 @@ def _signature(obj: object, drop_self: bool = False) -> str:
 
 
 def _docstring(obj: object) -> list[str]:
+    """The whole docstring, verbatim in a fenced block (numpydoc's underlined section titles
+    would be Markdown headings, and its indented descriptions would run together)."""
     doc = inspect.cleandoc(inspect.getdoc(obj) or "") if _own_doc(obj) else ""
-    return [doc, ""] if doc else []
+    fence = "~~~" if "```" in doc else "```"
+    return [f"{fence}text", doc, fence, ""] if doc else []
 
 
 def _own_doc(obj: object) -> bool:
