@@ -44,10 +44,12 @@ def looks_like_srdf(root: ET.Element) -> bool:
     return "link" not in tags and bool(tags & SRDF_ELEMENTS)
 
 
-def read_srdf(path: str | os.PathLike[str], robot: RobotDescription) -> RobotSemantics:
-    """The SRDF at ``path``, its names checked against ``robot`` (the URDF it describes)."""
+def read_srdf(path: str | os.PathLike[str], robot: RobotDescription, *,
+              text: str | None = None) -> RobotSemantics:
+    """The SRDF at ``path`` (or its ``text``, a xacro SRDF's expansion), its names checked
+    against ``robot`` (the URDF it describes)."""
     source = os.fspath(path)
-    root = parse_bounded_xml(read_text(path), source)
+    root = parse_bounded_xml(read_text(path) if text is None else text, source)
     if root.tag != "robot":
         raise FileFormatError(f"the root element is <{root.tag}>, expected <robot> (an SRDF)",
                               file=source, field="robot")
