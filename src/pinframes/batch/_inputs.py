@@ -21,13 +21,15 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .. import FrameTree, Limits, read
-from ..formats import InputFile, files_read
+from ..formats import InputFile, detect_format, files_read
 
 __all__ = ["IRREGULAR", "MISSING", "RunInputs", "checksums", "read_run", "run_inputs"]
 
 MISSING = "missing"
 IRREGULAR = "not a regular file"
 _BLOCK_BYTES = 1 << 20
+_ROBOT_FORMATS = ("urdf", "scene")
+"""Formats whose reader would expand xacro files (given ``xacro=False``, it never does)."""
 
 
 @dataclass(frozen=True)
@@ -47,8 +49,10 @@ def run_inputs(path: Path) -> RunInputs:
 
 def read_run(inputs: RunInputs, limits: Limits) -> FrameTree:
     """The tree of the run whose inputs are ``inputs``, read under ``limits``: the one place
-    that knows how a run is read."""
-    tree: FrameTree = read(inputs.source, limits=limits)
+    that knows how a run is read. No xacro file is expanded (that runs the file's code): a
+    run's robot file or scene robot with xacro content is refused, naming it."""
+    never_expand = {"xacro": False} if detect_format(inputs.source) in _ROBOT_FORMATS else {}
+    tree: FrameTree = read(inputs.source, limits=limits, **never_expand)
     return tree
 
 

@@ -64,6 +64,11 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run the batch; exit status 1 when a run has no poses."""
+    if getattr(args, "xacro", None):
+        raise UnsupportedFeatureError("pinframes batch never expands xacro files (that runs "
+                                      "their code, on every worker): expand a trusted file "
+                                      "once with the xacro command and name the URDF",
+                                      field="xacro")
     if args.robot_description is not None:
         raise UnsupportedFeatureError("pinframes batch reads each bag's own "
                                       "/robot_description; --robot-description is for the "
