@@ -89,7 +89,7 @@ def test_the_expansion_sees_no_environment(tmp_path, monkeypatch):
                        "robot.xacro")
     assert "anone" in pinframes.read_urdf(robot).frames
     robot = robot_with(tmp_path, '<link name="a$(env PINFRAMES_SECRET)"/>', "robot.xacro")
-    with pytest.raises(FileFormatError, match="PINFRAMES_SECRET.*without the environment"):
+    with pytest.raises(FileFormatError, match=r"PINFRAMES_SECRET.*without the environment"):
         pinframes.read_urdf(robot)
 
 
@@ -149,10 +149,10 @@ def test_a_mesh_name_that_leaves_its_package_is_refused(tmp_path, name):
                      package_dirs=[tmp_path / "ws", tmp_path / "ws" / "parts"])
     tree.add("ball", "world")
     tree.add_geometry("ball", Sphere(0.1))
-    with pytest.raises(GeometryError, match="leaves its|names no model") as caught:
+    with pytest.raises(GeometryError, match=r"leaves its|names no model") as caught:
         tree.clearance("a", "ball")
     assert caught.value.frame == "a" and caught.value.field == "collision[0].mesh"
-    with pytest.warns(GeometryWarning, match="leaves its|names no model"):
+    with pytest.warns(GeometryWarning, match=r"leaves its|names no model"):
         assert [piece.frame for piece in load_geometry(tree, collision=True)] == ["ball"]
 
 

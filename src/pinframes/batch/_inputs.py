@@ -19,6 +19,7 @@ import os
 import stat
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from .. import FrameTree, Limits, read
 from ..formats import InputFile, detect_format, files_read
@@ -51,7 +52,8 @@ def read_run(inputs: RunInputs, limits: Limits) -> FrameTree:
     """The tree of the run whose inputs are ``inputs``, read under ``limits``: the one place
     that knows how a run is read. No xacro file is expanded (that runs the file's code): a
     run's robot file or scene robot with xacro content is refused, naming it."""
-    never_expand = {"xacro": False} if detect_format(inputs.source) in _ROBOT_FORMATS else {}
+    never_expand: dict[str, Any] = ({"xacro": False} if detect_format(inputs.source)
+                                    in _ROBOT_FORMATS else {})
     tree: FrameTree = read(inputs.source, limits=limits, **never_expand)
     return tree
 
