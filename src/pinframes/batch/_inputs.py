@@ -30,7 +30,7 @@ MISSING = "missing"
 IRREGULAR = "not a regular file"
 _BLOCK_BYTES = 1 << 20
 _ROBOT_FORMATS = ("urdf", "scene")
-"""Formats whose reader would expand xacro files (given ``xacro=False``, it never does)."""
+"""Formats whose reader expands xacro files when asked (``xacro=``)."""
 
 
 @dataclass(frozen=True)
@@ -48,13 +48,14 @@ def run_inputs(path: Path) -> RunInputs:
     return RunInputs(files_read(source), source)
 
 
-def read_run(inputs: RunInputs, limits: Limits) -> FrameTree:
+def read_run(inputs: RunInputs, limits: Limits, xacro: bool = False) -> FrameTree:
     """The tree of the run whose inputs are ``inputs``, read under ``limits``: the one place
-    that knows how a run is read. No xacro file is expanded (that runs the file's code): a
-    run's robot file or scene robot with xacro content is refused, naming it."""
-    never_expand: dict[str, Any] = ({"xacro": False} if detect_format(inputs.source)
-                                    in _ROBOT_FORMATS else {})
-    tree: FrameTree = read(inputs.source, limits=limits, **never_expand)
+    that knows how a run is read. Without ``xacro`` no xacro file is expanded (that runs the
+    file's code, on every worker): a run's robot file or scene robot with xacro content is
+    refused, naming it; with it, the xacro content of both is expanded."""
+    expansion: dict[str, Any] = ({"xacro": xacro} if detect_format(inputs.source)
+                                 in _ROBOT_FORMATS else {})
+    tree: FrameTree = read(inputs.source, limits=limits, **expansion)
     return tree
 
 

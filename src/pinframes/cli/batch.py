@@ -28,7 +28,8 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "input files and options did not change since an earlier batch into OUT are "
         "skipped. The workers read every run under the --max-... limits given before or "
         "after 'batch'; a run read under higher limits is skipped, one refused under other "
-        "limits is tried again. Needs pinframes[batch].")
+        "limits is tried again. No xacro file is expanded unless --xacro is given (it runs "
+        "the files' code on every worker). Needs pinframes[batch].")
     parser.add_argument("runs", nargs="+", metavar="RUNS",
                         help="run files (scene, ASDF, ...), glob patterns (quote them), or "
                         "runs lists (.csv with header 'run,file')")
@@ -64,11 +65,6 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run the batch; exit status 1 when a run has no poses."""
-    if getattr(args, "xacro", None):
-        raise UnsupportedFeatureError("pinframes batch never expands xacro files (that runs "
-                                      "their code, on every worker): expand a trusted file "
-                                      "once with the xacro command and name the URDF",
-                                      field="xacro")
     if args.robot_description is not None:
         raise UnsupportedFeatureError("pinframes batch reads each bag's own "
                                       "/robot_description; --robot-description is for the "
@@ -83,7 +79,8 @@ def run(args: argparse.Namespace) -> int:
                         times=args.times, step=args.step, time_ref=args.time_ref,
                         velocity=args.velocity, scheduler=args.scheduler, workers=args.workers,
                         limits=current_limits(),  # --max-... (main() sets them), to the workers
-                        progress_bar=terminal_stderr() is not None, log=sys.stderr, **extra)
+                        progress_bar=terminal_stderr() is not None, log=sys.stderr,
+                        xacro=bool(getattr(args, "xacro", None)), **extra)
     print(f"pinframes: {batch_summary(summary)}", file=sys.stderr)
     if summary.bad:
         for record in summary.bad:
