@@ -40,6 +40,21 @@ def ur5e_texts(tmp_path_factory):
             xacro_command(UR_SRDF, {"name": "ur"}, packages, scratch))
 
 
+def smallest_distances(model, geometry, names, values) -> list[float]:
+    """Per row of ``values`` (joints ``names``): the smallest distance over the collision
+    pairs of ``geometry``, by ``pinocchio.computeDistances``."""
+    data, geometry_data = model.createData(), pin.GeometryData(geometry)
+    found = []
+    for row in values:
+        q = pin.neutral(model)
+        for name, value in zip(names, row, strict=True):
+            q[model.joints[model.getJointId(name)].idx_q] = value
+        pin.updateGeometryPlacements(model, data, geometry, geometry_data, q)
+        pin.computeDistances(geometry, geometry_data)
+        found.append(min(result.min_distance for result in geometry_data.distanceResults))
+    return found
+
+
 def test_a_package_is_found_by_the_name_in_its_package_xml_in_a_crawled_folder(tmp_path):
     lone = tmp_path / "panda.urdf"  # no package above it: only the crawl of DATA finds it
     shutil.copy(PANDA_URDF, lone)
@@ -79,15 +94,7 @@ def test_the_panda_page_and_clearance_find_their_meshes_and_equal_pinocchio(tmp_
     ids = [index for index, item in enumerate(geometry.geometryObjects)
            if model.frames[item.parentFrame].name in ("panda_link0", "panda_hand")]
     geometry.addCollisionPair(pin.CollisionPair(*ids))
-    data, geometry_data = model.createData(), pin.GeometryData(geometry)
-    expected = []
-    for row in values:
-        q = pin.neutral(model)
-        for name, value in zip(names, row, strict=True):
-            q[model.joints[model.getJointId(name)].idx_q] = value
-        pin.updateGeometryPlacements(model, data, geometry, geometry_data, q)
-        pin.computeDistances(geometry, geometry_data)
-        expected.append(geometry_data.distanceResults[0].min_distance)
+    expected = smallest_distances(model, geometry, names, values)
     np.testing.assert_allclose(result.distance, expected, atol=1e-6)
 
 
@@ -132,15 +139,7 @@ def test_the_clearance_of_a_ros2_moveit_config_equals_pinocchio_with_its_srdf(
     all_pairs = len(geometry.collisionPairs)
     pin.removeCollisionPairsFromXML(model, geometry, srdf_text, False)
     assert 0 < len(geometry.collisionPairs) < all_pairs
-    data, geometry_data = model.createData(), pin.GeometryData(geometry)
-    expected = []
-    for row in values:
-        q = pin.neutral(model)
-        for name, value in zip(names, row, strict=True):
-            q[model.joints[model.getJointId(name)].idx_q] = value
-        pin.updateGeometryPlacements(model, data, geometry, geometry_data, q)
-        pin.computeDistances(geometry, geometry_data)
-        expected.append(min(r.min_distance for r in geometry_data.distanceResults))
+    expected = smallest_distances(model, geometry, names, values)
     np.testing.assert_allclose(result.distance, expected, atol=1e-6)
     # the SRDF matters: without it the adjacent links touch (0 m) at every sample
     assert max(expected) > 0.01
