@@ -195,3 +195,13 @@ def test_a_xacro_file_is_a_bags_robot_description_with_the_opt_in(tmp_path, caps
     assert "--xacro" in capsys.readouterr().err
     assert main(["info", str(bag), *given, "--xacro"]) == 0
     assert "wrist_3_link" in capsys.readouterr().out
+
+
+def test_an_srdf_whose_pairs_name_none_of_the_robots_links_is_an_error(tmp_path):
+    # the UR SRDF against a UR10e mounted with tf_prefix "left_": every pair names a link
+    # the robot does not have, and a clearance would silently check them all
+    arguments = {"name": "ur", "ur_type": "ur10e", "tf_prefix": "left_"}
+    with pytest.raises(FileFormatError, match=r"none of its 11 disabled collision pairs.*"
+                       r"tf_prefix") as caught:
+        pinframes.read_urdf(UR_XACRO, xacro_args=arguments, srdf=UR_SRDF)
+    assert caught.value.file == str(UR_SRDF) and caught.value.field == "disable_collisions"

@@ -139,7 +139,8 @@ def _run_child(request: dict[str, Any], source: str) -> dict[str, Any]:
             return answer
         except ValueError:
             pass
-    if finished is None or finished.returncode == -getattr(signal, "SIGXCPU", -1):
+    over_time = getattr(signal, "SIGXCPU", None)  # the processor-time limit's signal
+    if finished is None or (over_time is not None and finished.returncode == -over_time):
         raise FileFormatError(
             f"xacro: the expansion was stopped after {seconds:,} s, over the limit "
             f"max_xacro_seconds={seconds:,} (a macro that calls itself, or a huge number); "

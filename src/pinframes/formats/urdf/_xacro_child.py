@@ -46,7 +46,8 @@ def _regular_file(file: Any, mode: str = "r", *args: Any, **kwargs: Any) -> Any:
     if not stat.S_ISREG(os.fstat(descriptor).st_mode):
         os.close(descriptor)
         raise OSError(0, "is not a regular file (xacro reads files only)", os.fspath(file))
-    os.set_blocking(descriptor, True)
+    if hasattr(os, "O_NONBLOCK"):  # reads of a regular file do not wait anyway
+        os.set_blocking(descriptor, True)
     return open(descriptor, mode, *args, **kwargs)
 
 
