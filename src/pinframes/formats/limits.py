@@ -61,6 +61,12 @@ class Limits:
         Triangles of one mesh file after instancing (a COLLADA node instanced twice counts
         its triangles twice), counted before any is built: past it the clearance is an
         error naming the frame, the 3-D page leaves the mesh out with a warning.
+    max_xacro_seconds : int
+        Seconds of processor time one xacro expansion may take (it runs in a child
+        process, stopped after twice as many seconds of clock time); the largest xacro
+        robot of the tests expands in 0.3 s.
+    max_xacro_bytes : int
+        Bytes of memory (address space) of the child process that expands a xacro file.
     """
 
     max_samples: int = 2_000_000
@@ -69,6 +75,8 @@ class Limits:
     max_depth: int = 1_000
     max_xml_elements: int = 1_000_000
     max_triangles: int = MAX_TRIANGLES
+    max_xacro_seconds: int = 20
+    max_xacro_bytes: int = 1024**3
 
     def __post_init__(self) -> None:
         for item in fields(self):

@@ -27,6 +27,7 @@ from ..kinematics.collision.mesh_files import (
     MeshFiles,
     mesh_file_problem,
     mesh_files_of,
+    outside_its_package,
 )
 from ..kinematics.collision.mesh_reader import TriangleMesh, read_mesh
 from ..tree import FrameTree
@@ -136,6 +137,9 @@ def _triangles(shape: Shape, recorded: FrameGeometry, mesh_files: MeshFiles,
         return [(np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64),
                  None)]
     assert shape.mesh is not None  # a mesh always names its file
+    if (refused := outside_its_package(shape.mesh)) is not None:
+        _warn(recorded, f"mesh {shape.mesh!r} {refused}")
+        return []
     path = mesh_files.find(shape.mesh)
     if path is None:
         missing = f"not found: {shape.mesh} in {mesh_files.candidates(shape.mesh)}"

@@ -74,6 +74,14 @@ class SceneFields:
             folders.append(str(folder))
         return folders
 
+    def flag(self, item: dict, key: str, frame: str | None, field: str) -> bool:
+        """A ``true``/``false`` entry (False when absent)."""
+        value = item.get(key, False)
+        if not isinstance(value, bool):
+            raise FileFormatError(f"expected true or false, got {value!r}", file=self.path,
+                                  frame=frame, field=f"{field}.{key}")
+        return value
+
     def xacro_args(self, item: dict, frame: str | None, field: str) -> dict[str, str] | None:
         """A robot's ``xacro_args``: names to text, numbers or booleans."""
         value = item.get("xacro_args")

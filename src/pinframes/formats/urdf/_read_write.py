@@ -33,7 +33,8 @@ def read_robot(path: str | os.PathLike[str], *, strict: bool = False,
                limits: Limits | None = None,
                package_dirs: Iterable[str | os.PathLike[str]] = (),
                xacro_args: Mapping[str, Any] | None = None,
-               srdf: str | os.PathLike[str] | None = None) -> FrameTree:
+               srdf: str | os.PathLike[str] | None = None,
+               xacro: bool | None = None) -> FrameTree:
     """A robot file alone: the tree's root is the robot's root link, named after the robot,
     every joint at its rest value (:func:`pinframes.read_urdf` adds the joint values written
     beside the file).
@@ -42,10 +43,10 @@ def read_robot(path: str | os.PathLike[str], *, strict: bool = False,
     stays independent, with a :class:`~pinframes.BrokenMimicWarning`). ``limits``
     (:class:`pinframes.Limits`; None: the defaults) bounds the XML elements
     (``max_xml_elements``) and their nesting (``max_depth``); a ``<!DOCTYPE>`` is refused.
-    ``package_dirs``, ``xacro_args`` and ``srdf`` as for :func:`parse_urdf`.
+    ``package_dirs``, ``xacro_args``, ``srdf`` and ``xacro`` as for :func:`parse_urdf`.
     """
     robot = parse_urdf(path, strict=strict, limits=limits, package_dirs=package_dirs,
-                       xacro_args=xacro_args, srdf=srdf)
+                       xacro_args=xacro_args, srdf=srdf, xacro=xacro)
     tree = FrameTree(root=robot.root_link, name=robot.name)
     mount_robot(tree, robot, None, None, "")
     return tree

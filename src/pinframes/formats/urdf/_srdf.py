@@ -44,20 +44,41 @@ def looks_like_srdf(root: ET.Element) -> bool:
     return "link" not in tags and bool(tags & SRDF_ELEMENTS)
 
 
-def read_srdf(path: str | os.PathLike[str], robot: RobotDescription) -> RobotSemantics:
-    """The SRDF at ``path``, its names checked against ``robot`` (the URDF it describes)."""
+def read_srdf(path: str | os.PathLike[str], robot: RobotDescription, *,
+              text: str | None = None) -> RobotSemantics:
+    """The SRDF at ``path`` (or its ``text``, a xacro SRDF's expansion), its names checked
+    against ``robot`` (the URDF it describes)."""
     source = os.fspath(path)
-    root = parse_bounded_xml(read_text(path), source)
+    root = parse_bounded_xml(read_text(path) if text is None else text, source)
     if root.tag != "robot":
         raise FileFormatError(f"the root element is <{root.tag}>, expected <robot> (an SRDF)",
                               file=source, field="robot")
     reader = _Reader(root, source, robot)
     semantics = reader.semantics()
+    _check_some_pair_applies(root, source, robot)
     if reader.skipped:
         warn_at_caller(f"{source}: skipped what pinframes does not use or the robot "
                        f"{robot.name!r} does not have: {'; '.join(dict.fromkeys(reader.skipped))}",
                        SrdfWarning)
     return semantics
+
+
+def _check_some_pair_applies(root: ET.Element, source: str, robot: RobotDescription) -> None:
+    """Refuse an SRDF whose collision rules all name links the robot does not have: the
+    SRDF of another robot, or names with another prefix (a clearance would silently check
+    every pair it leaves out)."""
+    rules = [element for element in root
+             if element.tag in ("disable_collisions", "disable_default_collisions")]
+    names = {"disable_collisions": ("link1", "link2"), "disable_default_collisions": ("link",)}
+    if rules and not any(all(rule.get(key) in robot.links for key in names[str(rule.tag)])
+                         for rule in rules):
+        first = " ".join(str(rules[0].get(key)) for key in names[str(rules[0].tag)])
+        raise FileFormatError(
+            f"none of its {len(rules):,} disabled collision pairs names links of the robot "
+            f"{robot.name!r} (the first: {first}): the SRDF of another robot, or link names "
+            "with another prefix (tf_prefix); a clearance without them would check every "
+            "pair it leaves out", file=source,
+            field=str(rules[0].tag))
 
 
 class _Reader:

@@ -27,7 +27,7 @@ from numpy.typing import NDArray
 
 from ...errors import GeometryError
 from ...values.geometry import GEOMETRY_KINDS, FrameGeometry, Shape
-from .mesh_files import HOW_TO_SEARCH, mesh_file_problem, mesh_files_of
+from .mesh_files import HOW_TO_SEARCH, mesh_file_problem, mesh_files_of, outside_its_package
 from .mesh_reader import DEFAULT_BOUNDS, MeshBounds, read_mesh
 from .solid_meshes import SolidMesh, solid_mesh
 
@@ -148,6 +148,9 @@ class ShapeLoader:
                               centre, radius, mesh_path, solid, probes)
 
     def _find(self, frame: str, field: str, name: str, geometry: FrameGeometry) -> str:
+        if (refused := outside_its_package(name)) is not None:
+            raise GeometryError(f"link {geometry.link!r}: mesh {name!r} {refused}",
+                                file=geometry.urdf, frame=frame, field=f"{field}.mesh")
         mesh_files = mesh_files_of(geometry, self._package_dirs)
         found = mesh_files.find(name)
         if found is None:
