@@ -26,7 +26,7 @@ from typing import Any, Literal
 from ...errors import InvalidTimeError, UnsupportedFeatureError
 from .._paths import path_argument
 from ..atomic import atomic_path, temporary_name
-from ._storage import FOLDER, MCAP, ROS1, SQLITE3
+from ._storage import FOLDER, MCAP, ROS1, SQLITE3, not_a_bag_folder
 
 __all__ = ["BagWriter", "check_stamps", "output_kind", "typestore"]
 
@@ -74,7 +74,8 @@ class BagWriter:
         from rosbags.rosbag2 import StoragePlugin
         from rosbags.rosbag2 import Writer as Ros2Writer
 
-        self._atomic = atomic_path(self.path, folder=self.kind == FOLDER)
+        self._atomic = atomic_path(self.path, folder=self.kind == FOLDER,
+                                   replaceable=not_a_bag_folder)
         temporary: Path = self._atomic.__enter__()
         self._temporary = temporary
         try:
