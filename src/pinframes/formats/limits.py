@@ -55,8 +55,9 @@ class Limits:
         segments of a frames.yaml key (``a/b/c`` has 3), and nesting depth of the XML
         elements of a URDF (``<robot><link><visual>`` has 3).
     max_xml_elements : int
-        XML elements of a URDF file (every start tag counts one; the largest robot of
-        example-robot-data has 3,851).
+        XML elements of a URDF or SRDF file (every start tag counts one; the largest robot
+        of example-robot-data has 3,851), and the joints of an SRDF's groups once expanded
+        (each group counts its joints).
     max_triangles : int
         Triangles of one mesh file after instancing (a COLLADA node instanced twice counts
         its triangles twice), counted before any is built: past it the clearance is an
