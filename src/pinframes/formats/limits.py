@@ -60,8 +60,10 @@ class Limits:
         (each group counts its joints).
     max_triangles : int
         Triangles of one mesh file after instancing (a COLLADA node instanced twice counts
-        its triangles twice), counted before any is built: past it the clearance is an
-        error naming the frame, the 3-D page leaves the mesh out with a warning.
+        its triangles twice), counted before any is built, and of all the meshes of one
+        clearance or 3-D page (a mesh counts once per link that uses it): past it the
+        clearance is an error naming the frame, the 3-D page leaves the mesh out with a
+        warning.
     """
 
     max_samples: int = 2_000_000
