@@ -119,11 +119,16 @@ def _check_folder_target(target: Path, parent: Path, file: str, linked: bool,
                          replaceable: Callable[[Path], str | None] | None) -> None:
     """Refuse to replace a file, a folder that is not empty behind a symbolic link, or one
     that ``replaceable`` does not accept."""
-    if target.exists() and not target.is_dir():
-        raise WriteError("exists and is not a folder", file=file)
+    if os.path.basename(os.path.normpath(file)) in (".", "..", "", os.sep):
+        raise WriteError("names the current folder, its parent or the root, not a bag "
+                         "folder of its own: give it a name (such as run)", file=file)
     try:
+        if target.exists() and not target.is_dir():
+            raise WriteError("exists and is not a folder", file=file)
         empty = not target.is_dir() or not any(target.iterdir())
     except OSError as exc:
+        if isinstance(exc, PinframesError):
+            raise
         raise WriteError(f"cannot write: {exc.strerror or exc}", file=file) from None
     if not empty and linked:
         raise WriteError(f"is a symbolic link to a folder that is not empty "
