@@ -34,7 +34,8 @@ def mesh_robot(tree: FrameTree, path: Path, scales: list[float]) -> FrameTree:
         tree.attach_urdf(f'<robot name="r{index}"><link name="link{index}"><collision>'
                          f'<geometry>{mesh}</geometry></collision><visual><geometry>{mesh}'
                          '</geometry></visual></link></robot>', "world", prefix=f"r{index}/")
-    tree.add("ball_at", "world", Pose([0.5, 0.5, -1.0]))
+    # the ball moves (and stays put): pairs of frames fixed to each other are not checked
+    tree.add("ball_at", "world", Pose([[0.5, 0.5, -1.0]] * 2, times=[0.0, 1.0]))
     tree.attach_urdf('<robot name="ball"><link name="ball"><collision><geometry><sphere '
                      'radius="0.1"/></geometry></collision></link></robot>', "ball_at")
     return tree

@@ -98,8 +98,10 @@ def clearance_summary(result: Clearance, counts: bool = True) -> str:
                f"and {second}{when}; {touching}")
     if not counts:
         return summary
+    fixed = len(result.fixed_together)
+    left_out = f", {fixed} pairs fixed to each other left out" if fixed else ""
     return (f"{summary} ({len(result)} samples, {len(result.frames_a)} x "
-            f"{len(result.frames_b)} frames)")
+            f"{len(result.frames_b)} frames{left_out})")
 
 
 def frame_names(tree: FrameTree, text: str) -> list[str]:

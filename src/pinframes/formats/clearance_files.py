@@ -11,8 +11,8 @@ CSV
     a reference time the first column is ``time_s_after_<timestamp>``. ``pandas.read_csv``
     reads it, and ``numpy.genfromtxt(path, delimiter=",", names=True, dtype=None)``.
 JSON
-    ``{"frames_a", "frames_b", "excluded", "geometry", "reference_time", "units",
-    "samples": [{column: value}]}``.
+    ``{"frames_a", "frames_b", "excluded", "fixed_together", "geometry", "reference_time",
+    "units", "samples": [{column: value}]}``.
 """
 
 from __future__ import annotations
@@ -68,6 +68,7 @@ def clearance_text(clearance: Clearance, format: str = "csv") -> str:
                 record["time_s"] = None
         document = {"frames_a": list(clearance.frames_a), "frames_b": list(clearance.frames_b),
                     "excluded": [list(pair) for pair in clearance.excluded],
+                    "fixed_together": [list(pair) for pair in clearance.fixed_together],
                     "geometry": clearance.geometry, "reference_time": reference,
                     "units": {"time_s": "s", "distance_m point_*_m": "m",
                               "point axes": "the tree's root"},
