@@ -132,3 +132,18 @@ def test_a_plain_name_still_reads_back(tmp_path):
     _, positions, names = pinframes.read_joint_trajectory(path)
     assert names == ["joint_1"] and positions.tolist() == [[0.0], [1.0]]
     assert Path(path).read_text().startswith("time_s,joint_1\n")
+
+
+@pytest.mark.parametrize("name", [" j1", "=cmd|' /C calc'!A0"])
+def test_a_urdf_writes_no_joint_name_its_joints_csv_would_change_or_run(tmp_path, name):
+    tree = FrameTree("world")
+    tree.attach_urdf(f'<robot name="r"><link name="base"/><link name="arm"/>'
+                     f'<joint name="{name}" type="revolute"><parent link="base"/>'
+                     '<child link="arm"/><axis xyz="0 0 1"/><limit lower="-1" upper="1" '
+                     'effort="1" velocity="1"/></joint></robot>', "world")
+    tree.set_joint_trajectory([0.0, 1.0], [[0.0], [0.5]], [name])
+    path = tmp_path / "cell.urdf"
+    with pytest.raises(UnsupportedFeatureError, match=r"space|formula") as caught:
+        pinframes.write_urdf(tree, path, time=0.5)
+    assert caught.value.joint == name and caught.value.file == str(tmp_path / "cell.joints.csv")
+    assert os.listdir(tmp_path) == []  # neither file written
