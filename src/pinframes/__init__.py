@@ -34,11 +34,12 @@ from .errors import (
 )
 from .formats import read, read_joint_trajectory, write
 from .formats.frames_yaml import read_frames_yaml, write_frames_yaml
+from .formats.joint_limits import read_joint_limits
+from .formats.joint_trajectory.writer import write_joint_trajectory
 from .formats.limits import Limits
-from .formats.pose_files import write_poses
 from .formats.rosbag import read_rosbag
 from .formats.scene import read_scene, write_scene
-from .formats.trajectory_writer import write_joint_trajectory
+from .formats.tables import write_poses
 from .formats.urdf import read_urdf, write_urdf
 from .kinematics import (
     Clearance,
@@ -52,6 +53,7 @@ from .kinematics import (
 from .tree import FrameTree
 from .values.geometry import FrameGeometry, Shape
 from .values.joint import Joint, Mimic
+from .values.joint_rate_limits import JointRateLimits
 from .values.joint_trajectory import JointTrack, JointTrajectory
 from .values.pose import Pose
 from .values.pose_stack import PoseStack
@@ -89,6 +91,7 @@ __all__ = [
     "JointError",
     "JointLimitWarning",
     "JointNotFoundError",
+    "JointRateLimits",
     "JointSolution",
     "JointSpeedError",
     "JointTrack",
@@ -122,6 +125,7 @@ __all__ = [
     "__version__",
     "read",
     "read_frames_yaml",
+    "read_joint_limits",
     "read_joint_trajectory",
     "read_rosbag",
     "read_scene",

@@ -10,8 +10,8 @@ from typing import Any
 
 import numpy as np
 
-from ..formats.clearance_files import CLEARANCE_FILE_FORMATS, clearance_text
 from ..formats.limits import current_limits
+from ..formats.tables import CLEARANCE_FILE_FORMATS, clearance_text
 from ..kinematics import Clearance
 from ..tree import FrameTree
 from ..values.geometry import GEOMETRY_KINDS

@@ -25,10 +25,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import FileFormatError
-from ..kinematics import Clearance
-from ..values.timeconv import format_timestamp_iso
-from .atomic import atomic_write
+from ...errors import FileFormatError
+from ...kinematics import Clearance
+from ...values.timeconv import format_timestamp_iso
+from ..atomic import atomic_write
 
 __all__ = ["CLEARANCE_COLUMNS", "CLEARANCE_FILE_FORMATS", "clearance_text", "write_clearance"]
 
