@@ -10,14 +10,14 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import UnsupportedFeatureError
+from ...errors import PinframesError, UnsupportedFeatureError
 from ...kinematics import Snapshot
 from ...tree import FrameTree
 from ...values.geometry import GEOMETRY_METADATA_KEY, FrameGeometry
 from ...values.joint import Joint, mimic_drive
 from ...values.rotations import rpy_from_matrix
 from .._snapshot import moving_parts, one_instant
-from .._writable import check_writable_tree, refuse_attached_data
+from .._writable import check_joint_names, check_writable_tree, refuse_attached_data
 from ..atomic import atomic_write
 from ..joint_trajectory import joint_trajectory_csv
 from ..limits import Limits
@@ -166,6 +166,11 @@ def _write_joint_state(tree: FrameTree, instant: Snapshot, urdf_path: str | os.P
                        ) -> None:
     """The actuated joints' values at the URDF's instant (mimic joints follow the URDF)."""
     names = [name for name, joint in tree.joints.items() if joint.is_actuated]
+    try:  # a CSV header: names that read back unchanged and run nothing in a spreadsheet
+        if names:
+            check_joint_names(names, csv_header=True)
+    except PinframesError as exc:
+        raise exc.located(file=joint_state_path(urdf_path)) from None
     when = instant.time
     time = (np.array([when], "datetime64[ns]") if isinstance(when, np.datetime64)
             else np.array([0.0 if when is None else when / np.timedelta64(1, "s")]))
