@@ -4,6 +4,7 @@ from .errors import (
     ArgumentTypeError,
     BagWarning,
     BrokenMimicWarning,
+    CollisionError,
     DataNotFoundError,
     ExtrapolationError,
     ExtrapolationWarning,
@@ -49,10 +50,12 @@ from .kinematics import (
     Velocity,
     WeldProcess,
 )
+from .program import WeldProgram
 from .tree import FrameTree
 from .values.geometry import FrameGeometry, Shape
 from .values.joint import Joint, Mimic
 from .values.joint_trajectory import JointTrack, JointTrajectory
+from .values.motion import CollisionRecord, Motion, MoveRecord
 from .values.pose import Pose
 from .values.pose_stack import PoseStack
 from .values.shapes import Box, Cylinder, Mesh, Sphere
@@ -69,6 +72,8 @@ __all__ = [
     "Box",
     "BrokenMimicWarning",
     "Clearance",
+    "CollisionError",
+    "CollisionRecord",
     "Cylinder",
     "DataNotFoundError",
     "ExtrapolationError",
@@ -97,6 +102,8 @@ __all__ = [
     "Limits",
     "Mesh",
     "Mimic",
+    "Motion",
+    "MoveRecord",
     "NameNotFoundError",
     "PinframesError",
     "PinocchioTree",
@@ -118,6 +125,7 @@ __all__ = [
     "Velocity",
     "Weave",
     "WeldProcess",
+    "WeldProgram",
     "WriteError",
     "__version__",
     "read",
