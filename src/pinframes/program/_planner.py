@@ -106,7 +106,11 @@ class ProgramPlanner:
         seconds = axis.offsets / 1e9
         poses = self.tree.pose(target, self.tree.root, times=axis.offsets.astype(
             "timedelta64[ns]") if axis.reference is None else axis.as_numpy())
-        seam = seam_path(poses, seconds, move.speed, move.weave)
+        seam_in_torch = None
+        if move.weave is not None and move.torch is not None:
+            turn = self.tree.pose(move.seam, move.torch, times=poses.times[:1]).rotation[0]
+            seam_in_torch = np.asarray(turn, dtype=float)
+        seam = seam_path(poses, seconds, move.speed, move.weave, seam_in_torch)
         first, last = _static(seam.poses, 0), _static(seam.poses, -1)
         parts = [self._joint_move(f"{move.name}: to approach",
                                   offset_along_z(first, move.approach), move.free_axis)]

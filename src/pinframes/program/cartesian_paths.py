@@ -82,14 +82,17 @@ def line_path(start: Pose, end: Pose, speed: float | None) -> TargetPath:
 
 
 def seam_path(poses: Pose, seconds: FloatArray, speed: float | None,
-              weave: Weave | None) -> TargetPath:
+              weave: Weave | None, seam_in_torch: FloatArray | None = None) -> TargetPath:
     """The torch's target along a seam: ``poses`` (in the root) at the seam's own
     ``seconds``, filled in between to the node steps, woven across the seam's y when
-    ``weave`` is given, and parameterised by its own seconds or, with ``speed``, by metres
-    along it."""
+    ``weave`` is given (``seam_in_torch``: the rotation (3, 3) of the seam frame's axes in
+    the torch target's, default the identity), and parameterised by its own seconds or,
+    with ``speed``, by metres along it."""
     filled, filled_seconds = _filled(poses, seconds)
     if weave is not None:
         offsets = weave.offsets(filled_seconds - filled_seconds[0])
+        if seam_in_torch is not None:
+            offsets = offsets @ seam_in_torch.T
         woven = Pose(filled.translation + np.einsum("nij,nj->ni", filled.rotation, offsets),
                      filled.rotation, times=filled_seconds)
         filled, filled_seconds = _filled(woven, filled_seconds)
