@@ -64,11 +64,12 @@ def test_strict_names_the_move_whose_target_is_out_of_reach():
     tree = cell()
     program = pinframes.WeldProgram(tree, "tcp", limits=limits(tree), start=START)
     start = tool_placements(START)[0]
-    program.move_linear(pinframes.Pose([*start.translation, 0.1, 0.0, 0.0], start.rotation),
+    along_x = np.array([1.0, 0.0, 0.0])
+    program.move_linear(pinframes.Pose(start.translation + 0.1 * along_x, start.rotation),
                         speed=0.2, name="fine")
-    program.move_linear(pinframes.Pose([*start.translation, 0.3, 0.0, 0.0], start.rotation),
-                        speed=0.2,
-                        name="too far")
+    # the robot reaches about 0.24 m further along x
+    program.move_linear(pinframes.Pose(start.translation + 0.3 * along_x, start.rotation),
+                        speed=0.2, name="too far")
     with pytest.raises(pinframes.TargetNotReachedError, match="move 'too far'"):
         program.plan(strict=True)
     motion = program.plan()  # without strict: the samples out of reach are marked
