@@ -38,7 +38,7 @@ from .formats.frames_yaml import read_frames_yaml, write_frames_yaml
 from .formats.limits import Limits
 from .formats.pose_files import write_poses
 from .formats.rosbag import read_rosbag
-from .formats.scene import read_scene, write_scene
+from .formats.scene import read_program, read_scene, write_scene
 from .formats.trajectory_writer import write_joint_trajectory
 from .formats.urdf import read_urdf, write_urdf
 from .kinematics import (
@@ -131,6 +131,7 @@ __all__ = [
     "read",
     "read_frames_yaml",
     "read_joint_trajectory",
+    "read_program",
     "read_rosbag",
     "read_scene",
     "read_urdf",

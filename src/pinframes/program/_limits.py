@@ -20,7 +20,7 @@ import numpy as np
 from ..errors import ArgumentTypeError, JointError
 from ..kinematics.timing import MotionLimits
 
-__all__ = ["LIMIT_FIELDS", "motion_limits"]
+__all__ = ["LIMIT_FIELDS", "motion_limits", "program_joint"]
 
 LIMIT_FIELDS = ("velocity", "acceleration", "jerk")
 """The fields of one joint's limits: per second, per second squared and per second cubed."""
@@ -62,15 +62,16 @@ def _by_joint(joint_names: tuple[str, ...], limits: Mapping[str, Any]
                                 f"{type(limits).__name__}", field="limits")
     found: dict[str, dict[str, float | None]] = {}
     for key, record in limits.items():
-        name = _program_joint(str(key), joint_names)
+        name = program_joint(str(key), joint_names)
         if name is None:
             continue  # limits of other joints (a MoveIt file lists every joint of the robot)
         found[name] = {field: _limit(record, field, name) for field in LIMIT_FIELDS}
     return found
 
 
-def _program_joint(key: str, joint_names: tuple[str, ...]) -> str | None:
-    """The program joint ``key`` names: itself, or the one it ends after a prefix."""
+def program_joint(key: str, joint_names: tuple[str, ...]) -> str | None:
+    """The program joint ``key`` names: itself, or the one whose name it ends after a
+    prefix (``joint_1`` for ``robot/joint_1``); None when none or several."""
     if key in joint_names:
         return key
     matches = [name for name in joint_names

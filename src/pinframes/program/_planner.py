@@ -27,6 +27,7 @@ from ..kinematics.timing import MotionLimits, time_along_path, time_point_to_poi
 from ..tree import FrameTree
 from ..tree.robot_semantics import group_state_values
 from ..values.pose import Pose
+from ._limits import program_joint
 from ._planned_moves import PlannedMove, steps_of
 from .cartesian_paths import TargetPath, line_path, offset_along_z, seam_path
 from .moves import JointMove, LinearMove, Move, WaitMove, WeldMove
@@ -104,11 +105,10 @@ class ProgramPlanner:
                                    f"{self.tree.root!r}: a seam is a frame that travels along "
                                    "it", frame=target, field="seam")
         seconds = axis.offsets / 1e9
-        poses = self.tree.pose(target, self.tree.root, times=axis.offsets.astype(
-            "timedelta64[ns]") if axis.reference is None else axis.as_numpy())
+        poses = self.tree.pose(target, self.tree.root, times=axis.as_numpy())
         seam_in_torch = None
         if move.weave is not None and move.torch is not None:
-            turn = self.tree.pose(move.seam, move.torch, times=poses.times[:1]).rotation[0]
+            turn = self.tree.pose(move.seam, move.torch, times=axis.as_numpy()[:1]).rotation[0]
             seam_in_torch = np.asarray(turn, dtype=float)
         seam = seam_path(poses, seconds, move.speed, move.weave, seam_in_torch)
         first, last = _static(seam.poses, 0), _static(seam.poses, -1)
@@ -184,13 +184,14 @@ class ProgramPlanner:
         goal = self.current.copy()
         if isinstance(values, Mapping):
             for key, value in values.items():
-                if key not in self.joint_names:
+                name = program_joint(str(key), self.joint_names)
+                if name is None:
                     if key in self.tree.joints:
                         continue  # a group state names joints the program does not move
                     raise JointError(f"is not a joint of the program (its joints: "
                                      f"{', '.join(self.joint_names)})", joint=str(key),
                                      field="target")
-                goal[self.joint_names.index(key)] = _number(value, key)
+                goal[self.joint_names.index(name)] = _number(value, name)
         elif isinstance(values, Sequence) or isinstance(values, np.ndarray):
             given = np.asarray(values, dtype=float)
             if given.shape != goal.shape:

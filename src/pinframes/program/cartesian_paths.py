@@ -54,13 +54,12 @@ class TargetPath:
 
     @property
     def requested_speed(self) -> float | None:
-        """The tool's speed asked for, m/s: the parameter's rate times the path's mean
-        speed per parameter (None when there is no highest rate)."""
+        """The tool's highest speed asked for, m/s: the parameter's highest rate times the
+        path's highest speed per parameter (a seam on its own times: its own fastest
+        speed); None when the parameter has no highest rate."""
         if self.parameter_speed is None:
             return None
-        length = float(np.linalg.norm(np.diff(self.poses.translation, axis=0), axis=1).sum())
-        span = float(self.parameter[-1] - self.parameter[0])
-        return self.parameter_speed * length / span if span > 0 else None
+        return self.parameter_speed * float(self.tool_speed_per_parameter.max())
 
 
 def line_path(start: Pose, end: Pose, speed: float | None) -> TargetPath:

@@ -25,12 +25,15 @@ from ..values.motion import Motion
 from ..values.pose import Pose
 from ..values.weave import Weave
 from ._assembly import Assembled, assemble
-from ._limits import motion_limits
+from ._limits import motion_limits, program_joint
 from ._planner import ProgramPlanner, in_move
 from .clearance_check import collisions, parse_check
 from .moves import JointMove, LinearMove, Move, WaitMove, WeldMove
 
-__all__ = ["LIMIT_TOLERANCE", "WeldProgram"]
+__all__ = ["LIMIT_TOLERANCE", "MOVE_KINDS", "WeldProgram"]
+
+MOVE_KINDS = ("move_joints", "move_linear", "weld", "wait")
+"""The moves a program is written with (its methods)."""
 
 LIMIT_TOLERANCE = 0.01
 """How far (a fraction) a sampled velocity or acceleration may exceed its limit before
@@ -57,13 +60,16 @@ class WeldProgram:
     start : mapping, sequence or str, optional
         Where the program starts: joint values by name or one per joint, or an SRDF group
         state. Default: the joints' values in the tree at time 0.
+    step, check
+        What :meth:`plan` takes when it is given none (a scene's program section sets them).
 
     Moves are added in order (each returns the program, so calls chain) and planned by
     :meth:`plan`. Each has a ``name`` (default: its kind and number, ``"move 3"``).
     """
 
     def __init__(self, tree: FrameTree, tool: str, *, joints: Any = None,
-                 limits: Mapping[str, Any] | None = None, start: Any = None) -> None:
+                 limits: Mapping[str, Any] | None = None, start: Any = None,
+                 step: float = 0.004, check: Any = None) -> None:
         if not isinstance(tree, FrameTree):
             raise ArgumentTypeError(f"expected a FrameTree, got {type(tree).__name__}",
                                     field="tree")
@@ -77,6 +83,8 @@ class WeldProgram:
         self.joint_names: tuple[str, ...] = tuple(probe.joint_names)
         self.limits = motion_limits(self.joint_names, probe.velocity_limits, limits)
         self.start = self._start(start)
+        self.step = _positive(step, "step")
+        self.check = parse_check(check)
         self.moves: list[Move] = []
 
     # -- the moves ---------------------------------------------------------------------------
@@ -128,8 +136,10 @@ class WeldProgram:
                                                                           "seconds")))
 
     # -- planning ----------------------------------------------------------------------------
-    def plan(self, *, step: float = 0.004, check: Any = None, strict: bool = False) -> Motion:
-        """The whole program as one joint trajectory, sampled every ``step`` seconds.
+    def plan(self, *, step: float | None = None, check: Any = None,
+             strict: bool = False) -> Motion:
+        """The whole program as one joint trajectory, sampled every ``step`` seconds
+        (default: the program's, 0.004 s unless it was made with another).
 
         Continuous in position and velocity, at rest between moves, every sample within the
         position limits, every velocity and acceleration within its limits; the tool on the
@@ -137,11 +147,12 @@ class WeldProgram:
         exclude=..., margin=...)`` measures the clearance between the shapes of frames
         ``a`` and ``b`` (names or patterns, as :meth:`FrameTree.clearance` takes them) along
         the whole motion, between samples too; :attr:`Motion.collisions` lists each move that
-        comes closer than ``margin`` metres (default 0). ``strict=True`` raises, naming the
-        move, at the first target not reached, limit broken or collision.
+        comes closer than ``margin`` metres (default 0); default: the program's own check.
+        ``strict=True`` raises, naming the move, at the first target not reached, limit
+        broken or collision.
         """
-        step = _positive(step, "step")
-        checked = parse_check(check)
+        step = self.step if step is None else _positive(step, "step")
+        checked = self.check if check is None else parse_check(check)
         planner = ProgramPlanner(self.tree, self.tool, self.joint_names, self.limits,
                                  self.start, step, strict)
         planned = [part for move in self.moves for part in planner.plan(move)]
@@ -184,12 +195,16 @@ class WeldProgram:
         if isinstance(start, str):
             return self._start(group_state_values(self.tree, start, [self.tool]))
         if isinstance(start, Mapping):
-            unknown = [str(key) for key in start if key not in self.tree.joints]
-            if unknown:
-                raise JointError("is no joint of the tree", joint=unknown[0], field="start")
-            rest = self._start(None)
-            return np.array([float(start.get(name, rest[column]))
-                             for column, name in enumerate(self.joint_names)])
+            values = self._start(None)
+            for key, value in start.items():
+                name = program_joint(str(key), self.joint_names)
+                if name is None:
+                    if key in self.tree.joints:
+                        continue  # a group state names joints the program does not move
+                    raise JointError("is no joint of the program", joint=str(key),
+                                     field="start")
+                values[self.joint_names.index(name)] = float(value)
+            return values
         given = np.asarray(start, dtype=float)
         if given.shape != (len(self.joint_names),):
             raise InvalidDataError(f"expected {len(self.joint_names)} joint values, got shape "

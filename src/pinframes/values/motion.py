@@ -29,8 +29,8 @@ class MoveRecord:
     start_s, end_s : float
         When the move starts and ends, seconds on the motion's times.
     requested_speed : float or None
-        For linear and seam moves, the tool's speed asked for, m/s (a seam on its own times:
-        its mean speed then); None for the others.
+        For linear and seam moves, the tool's speed asked for in the tree's root, m/s (a
+        seam on its own times: its own highest speed); None for the others.
     reached_speed : float or None
         The tool's highest speed along the move as planned, m/s: below the requested one
         where the joints' limits do not allow it.

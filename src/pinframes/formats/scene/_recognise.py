@@ -20,7 +20,7 @@ SCENE_FORMAT_VERSION = 1
 LAYER_FORMATS = ("frames.yaml", "asdf")
 """Formats a scene layer may be in."""
 TOP_KEYS = {SCENE_FORMAT_KEY, "name", "root", "reference_time", "layers", "frames", "robots",
-            "tools"}
+            "tools", "program"}
 """The keys a scene file may have at its top level."""
 _FILE_KEYS = {"layers": ("file",), "robots": ("urdf", "trajectory", "srdf")}
 """The keys of entries that name files (relative to the scene's folder)."""
