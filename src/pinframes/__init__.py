@@ -35,6 +35,7 @@ from .errors import (
 )
 from .formats import read, read_joint_trajectory, write
 from .formats.frames_yaml import read_frames_yaml, write_frames_yaml
+from .formats.joint_limits import read_joint_limits
 from .formats.limits import Limits
 from .formats.pose_files import write_poses
 from .formats.rosbag import read_rosbag
@@ -54,6 +55,7 @@ from .program import WeldProgram
 from .tree import FrameTree
 from .values.geometry import FrameGeometry, Shape
 from .values.joint import Joint, Mimic
+from .values.joint_rate_limits import JointRateLimits
 from .values.joint_trajectory import JointTrack, JointTrajectory
 from .values.motion import CollisionRecord, Motion, MoveRecord
 from .values.pose import Pose
@@ -94,6 +96,7 @@ __all__ = [
     "JointError",
     "JointLimitWarning",
     "JointNotFoundError",
+    "JointRateLimits",
     "JointSolution",
     "JointSpeedError",
     "JointTrack",
@@ -130,6 +133,7 @@ __all__ = [
     "__version__",
     "read",
     "read_frames_yaml",
+    "read_joint_limits",
     "read_joint_trajectory",
     "read_program",
     "read_rosbag",
