@@ -24,7 +24,7 @@ from ..tree.robot_semantics import group_state_values
 from ..values.motion import Motion
 from ..values.pose import Pose
 from ..values.weave import Weave
-from ._assembly import Assembled, assemble
+from ._fixed_step import Assembled, assemble
 from ._limits import motion_limits, program_joint
 from ._planner import ProgramPlanner, in_move
 from .clearance_check import collisions, parse_check

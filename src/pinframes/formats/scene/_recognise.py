@@ -62,4 +62,7 @@ def scene_files_read(source: InputFile) -> list[Path]:
                     path = source.path.parent / value
                     named += files_read(path, among=LAYER_FORMATS) if section == "layers" \
                         else [path]
+    program = content.get("program") if isinstance(content, dict) else None
+    if isinstance(program, dict) and isinstance(program.get("limits"), str):
+        named.append(source.path.parent / program["limits"])  # a MoveIt joint_limits.yaml
     return named

@@ -17,6 +17,7 @@ from ...program import WeldProgram
 from ...program.weld_program import MOVE_KINDS
 from ...tree import FrameTree
 from ...values.weave import Weave
+from ..joint_limits import read_joint_limits
 from ._fields import SceneFields
 
 __all__ = ["PROGRAM_METADATA_KEY", "read_program_section", "scene_program"]
@@ -99,9 +100,7 @@ def _move(item: Any, fields: SceneFields, field: str) -> dict[str, Any]:
                               file=fields.path, field=field)
     kind = kinds[0]
     fields.check_keys(item, {kind, "name"} | _OPTIONS[kind], None, field)
-    checked: dict[str, Any] = {}
-    if "name" in item:
-        checked["name"] = fields.name(item["name"], None, f"{field}.name")
+    checked: dict[str, Any] = {}  # the kind first, as written
     value = item[kind]
     if kind == "wait":
         checked[kind] = fields.number(value, None, f"{field}.wait")
@@ -109,6 +108,8 @@ def _move(item: Any, fields: SceneFields, field: str) -> dict[str, Any]:
         checked[kind] = _joint_values(value, fields, f"{field}.move_joints")
     else:
         checked[kind] = fields.name(value, None, f"{field}.{kind}")
+    if "name" in item:
+        checked["name"] = fields.name(item["name"], None, f"{field}.name")
     if kind == "move_linear" and "speed" not in item:
         raise FileFormatError("missing (m/s)", file=fields.path, field=f"{field}.speed")
     for key in _OPTIONS[kind] & set(item):
@@ -145,6 +146,13 @@ def _joint_values(value: Any, fields: SceneFields, field: str) -> Any:
 
 
 def _limits(value: Any, fields: SceneFields) -> dict[str, dict[str, float]]:
+    """Inline limits, or those of a MoveIt ``joint_limits.yaml`` the section names (relative
+    to the scene), kept inline."""
+    if isinstance(value, str):
+        file = fields.file({"limits": value}, "limits", None, "program")
+        return {name: {kind: number for kind in ("velocity", "acceleration", "jerk")
+                       if (number := getattr(record, kind)) is not None}
+                for name, record in read_joint_limits(file).items()}
     if not isinstance(value, dict):
         raise FileFormatError("expected a mapping of joint names to velocity, acceleration "
                               "and jerk", file=fields.path, field="program.limits")
