@@ -12,15 +12,15 @@ invented.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 from typing import Any
 
 import numpy as np
 
-from ..errors import ArgumentTypeError, JointError
+from ..errors import ArgumentTypeError, InvalidDataError, JointError
 from ..kinematics.timing import MotionLimits
 
-__all__ = ["LIMIT_FIELDS", "motion_limits", "program_joint"]
+__all__ = ["LIMIT_FIELDS", "motion_limits", "named_joint_values", "program_joint"]
 
 LIMIT_FIELDS = ("velocity", "acceleration", "jerk")
 """The fields of one joint's limits: per second, per second squared and per second cubed."""
@@ -92,3 +92,25 @@ def _limit(record: Any, field: str, joint: str) -> float | None:
         raise JointError(f"expected a positive number, got {value!r}", joint=joint,
                          field=f"limits.{field}")
     return number
+
+
+def named_joint_values(values: Mapping[Any, Any], base: np.ndarray,
+                       joint_names: tuple[str, ...], tree_joints: Collection[str],
+                       field: str) -> np.ndarray:
+    """``base`` (one value per program joint) with the joints ``values`` names (tree or
+    URDF names) set; joints of the tree the program does not move are left out (a group
+    state names them), other names are a :class:`JointError` naming them."""
+    result = np.array(base, dtype=float)
+    for key, value in values.items():
+        name = program_joint(str(key), joint_names)
+        if name is None:
+            if key in tree_joints:
+                continue
+            raise JointError(f"is not a joint of the program (its joints: "
+                             f"{', '.join(joint_names)})", joint=str(key), field=field)
+        try:
+            result[joint_names.index(name)] = float(value)
+        except (TypeError, ValueError):
+            raise InvalidDataError(f"expected a number, got {value!r}", joint=name,
+                                   field=field) from None
+    return result

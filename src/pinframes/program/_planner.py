@@ -27,7 +27,7 @@ from ..kinematics.timing import MotionLimits, time_along_path, time_point_to_poi
 from ..tree import FrameTree
 from ..tree.robot_semantics import group_state_values
 from ..values.pose import Pose
-from ._limits import program_joint
+from ._limits import named_joint_values
 from ._planned_moves import PlannedMove, steps_of
 from .cartesian_paths import TargetPath, line_path, offset_along_z, seam_path
 from .moves import JointMove, LinearMove, Move, WaitMove, WeldMove
@@ -183,15 +183,8 @@ class ProgramPlanner:
     def _joint_values(self, values: Any) -> FloatArray:
         goal = self.current.copy()
         if isinstance(values, Mapping):
-            for key, value in values.items():
-                name = program_joint(str(key), self.joint_names)
-                if name is None:
-                    if key in self.tree.joints:
-                        continue  # a group state names joints the program does not move
-                    raise JointError(f"is not a joint of the program (its joints: "
-                                     f"{', '.join(self.joint_names)})", joint=str(key),
-                                     field="target")
-                goal[self.joint_names.index(name)] = _number(value, name)
+            goal = named_joint_values(values, goal, self.joint_names, self.tree.joints,
+                                      "target")
         elif isinstance(values, Sequence) or isinstance(values, np.ndarray):
             given = np.asarray(values, dtype=float)
             if given.shape != goal.shape:
@@ -262,11 +255,3 @@ def _at(pose: Pose, seconds: float) -> Pose:
     """A static ``pose`` as a one-sample pose at ``seconds``."""
     return Pose(pose.translation[None], pose.rotation[None], times=[seconds])
 
-
-def _number(value: Any, joint: str) -> float:
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        raise InvalidDataError(f"expected a number, got {value!r}", joint=joint,
-                               field="target") from None
-    return number

@@ -15,7 +15,6 @@ from ..errors import (
     ArgumentTypeError,
     CollisionError,
     InvalidDataError,
-    JointError,
     JointSpeedError,
     JointWithoutSamplesWarning,
 )
@@ -25,7 +24,7 @@ from ..values.motion import Motion
 from ..values.pose import Pose
 from ..values.weave import Weave
 from ._fixed_step import Assembled, assemble
-from ._limits import motion_limits, program_joint
+from ._limits import motion_limits, named_joint_values
 from ._planner import ProgramPlanner, in_move
 from .clearance_check import collisions, parse_check
 from .moves import JointMove, LinearMove, Move, WaitMove, WeldMove
@@ -195,16 +194,8 @@ class WeldProgram:
         if isinstance(start, str):
             return self._start(group_state_values(self.tree, start, [self.tool]))
         if isinstance(start, Mapping):
-            values = self._start(None)
-            for key, value in start.items():
-                name = program_joint(str(key), self.joint_names)
-                if name is None:
-                    if key in self.tree.joints:
-                        continue  # a group state names joints the program does not move
-                    raise JointError("is no joint of the program", joint=str(key),
-                                     field="start")
-                values[self.joint_names.index(name)] = float(value)
-            return values
+            return named_joint_values(start, self._start(None), self.joint_names,
+                                      self.tree.joints, "start")
         given = np.asarray(start, dtype=float)
         if given.shape != (len(self.joint_names),):
             raise InvalidDataError(f"expected {len(self.joint_names)} joint values, got shape "
