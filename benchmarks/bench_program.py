@@ -23,6 +23,9 @@ from pathlib import Path
 
 import numpy as np
 
+import pinframes
+from pinframes.program.cartesian_paths import line_path, offset_along_z, seam_path
+
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _machine import describe_machine, interleaved, print_table, quick_or_child, run_in_settings
 
@@ -33,9 +36,7 @@ SEAMS = [([0.55, -0.1, 0.3], [0.55, 0.1, 0.3]), ([0.7, -0.1, 0.25], [0.7, 0.1, 0
 SOLVES = "solve_joints, same samples"
 
 
-def cell():  # noqa: ANN201 - pinframes is imported in the child only
-    import pinframes
-
+def cell() -> pinframes.FrameTree:
     tree = pinframes.FrameTree("world")
     tree.attach_urdf(ROBOT, parent="world", prefix="robot/")
     tree.add("tcp", "robot/flange", pinframes.Pose([0.0, 0.0, 0.2]))
@@ -52,9 +53,7 @@ def cell():  # noqa: ANN201 - pinframes is imported in the child only
     return tree
 
 
-def program(tree):  # noqa: ANN001, ANN201
-    import pinframes
-
+def program(tree: pinframes.FrameTree) -> pinframes.WeldProgram:
     limits = {f"joint_{i}": {"acceleration": 6.0} for i in range(1, 7)}
     planned = pinframes.WeldProgram(tree, "tcp", limits=limits, start=HOME)
     for number in range(1, len(SEAMS) + 1):
@@ -63,12 +62,9 @@ def program(tree):  # noqa: ANN001, ANN201
     return planned
 
 
-def same_solves(tree, motion) -> int:  # noqa: ANN001
+def same_solves(tree: pinframes.FrameTree, motion: pinframes.Motion) -> int:
     """``solve_joints`` on every node the plan solved, seeded where each move starts; the
     number of samples solved."""
-    from pinframes import Pose
-    from pinframes.program.cartesian_paths import line_path, offset_along_z, seam_path
-
     names = [f"robot/joint_{i}" for i in range(1, 7)]
     solved = 0
     for number in range(1, len(SEAMS) + 1):
@@ -77,10 +73,10 @@ def same_solves(tree, motion) -> int:  # noqa: ANN001
         axis = tree.sample_times(f"torch_{number}", "world")
         poses = tree.pose(f"torch_{number}", "world", times=axis.as_numpy())
         seam = seam_path(poses, axis.offsets / 1e9, None, None)
-        first = Pose(seam.poses.translation[0], seam.poses.rotation[0])
-        last = Pose(seam.poses.translation[-1], seam.poses.rotation[-1])
+        first = pinframes.Pose(seam.poses.translation[0], seam.poses.rotation[0])
+        last = pinframes.Pose(seam.poses.translation[-1], seam.poses.rotation[-1])
         above = offset_along_z(first, 0.05)
-        paths = [Pose(above.translation[None], above.rotation[None], times=[0.0]),
+        paths = [pinframes.Pose(above.translation[None], above.rotation[None], times=[0.0]),
                  line_path(above, first, 0.1).poses, seam.poses,
                  line_path(last, offset_along_z(last, 0.05), 0.1).poses]
         for path in paths:
