@@ -4,10 +4,11 @@ The program: the bundled six-axis welding robot at the origin, a tool 0.2 m out 
 flange, three straight seams of 0.2 m (10 s each on their own times) welded with a 50 mm
 approach and retract, and four air moves (point to point: to each seam's approach point and
 home). ``WeldProgram.plan`` (4 ms step, no clearance check) beside ``FrameTree.solve_joints``
-called directly on the same samples: every node of every approach, seam and retract path and
-every approach point, each solve from where the program stands (the goal: planning at most
-2x those solves). A second case adds the clearance check of the robot's links against a
-box beside the seams (``check=``), for scale.
+called directly on the same samples: the calls one plan makes (every node of every approach,
+seam and retract path and every approach point, each from where the program stands),
+recorded once and replayed (the goal: planning at most 2x those solves). Beside them, for
+scale, the plan with the clearance check of the robot's links against a box beside the
+seams (``check=``).
 
 Run from the repository root after ``pip install ".[bench]"``::
 
@@ -24,7 +25,6 @@ from pathlib import Path
 import numpy as np
 
 import pinframes
-from pinframes.program.cartesian_paths import line_path, offset_along_z, seam_path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _machine import describe_machine, interleaved, print_table, quick_or_child, run_in_settings
@@ -62,29 +62,29 @@ def program(tree: pinframes.FrameTree) -> pinframes.WeldProgram:
     return planned
 
 
-def same_solves(tree: pinframes.FrameTree, motion: pinframes.Motion) -> int:
-    """``solve_joints`` on every node the plan solved, seeded where each move starts; the
-    number of samples solved."""
-    names = [f"robot/joint_{i}" for i in range(1, 7)]
-    solved = 0
-    for number in range(1, len(SEAMS) + 1):
-        record = motion.move(f"seam {number}: to approach")
-        seed = dict(zip(names, motion.positions[round(record.start_s / 0.004)], strict=True))
-        axis = tree.sample_times(f"torch_{number}", "world")
-        poses = tree.pose(f"torch_{number}", "world", times=axis.as_numpy())
-        seam = seam_path(poses, axis.offsets / 1e9, None, None)
-        first = pinframes.Pose(seam.poses.translation[0], seam.poses.rotation[0])
-        last = pinframes.Pose(seam.poses.translation[-1], seam.poses.rotation[-1])
-        above = offset_along_z(first, 0.05)
-        paths = [pinframes.Pose(above.translation[None], above.rotation[None], times=[0.0]),
-                 line_path(above, first, 0.1).poses, seam.poses,
-                 line_path(last, offset_along_z(last, 0.05), 0.1).poses]
-        for path in paths:
-            solution = tree.solve_joints("tcp", path, relative_to="world", times=path.seconds,
-                                         joints=names, free_axis="z", seed=seed)
-            seed = dict(zip(names, solution.positions[-1], strict=True))
-            solved += len(solution)
-    return solved
+def recorded_solves(tree: pinframes.FrameTree, planned: pinframes.WeldProgram
+                    ) -> list[tuple[tuple, dict]]:
+    """The arguments of every ``solve_joints`` call one plan makes (the same samples, seeds
+    and reference frames), recorded by standing in for the tree's method once."""
+    calls: list[tuple[tuple, dict]] = []
+    solve = tree.solve_joints
+
+    def recording(*args: object, **kwargs: object) -> object:
+        calls.append((args, kwargs))
+        return solve(*args, **kwargs)
+
+    tree.solve_joints = recording  # type: ignore[method-assign]
+    try:
+        planned.plan()
+    finally:
+        del tree.solve_joints
+    return calls
+
+
+def same_solves(tree: pinframes.FrameTree, calls: list[tuple[tuple, dict]]) -> None:
+    """``solve_joints`` called directly with the arguments the plan called it with."""
+    for args, kwargs in calls:
+        tree.solve_joints(*args, **kwargs)
 
 
 def child(quick: bool) -> None:
@@ -92,10 +92,11 @@ def child(quick: bool) -> None:
     planned = program(tree)
     motion = planned.plan()
     assert motion.all_reached
-    samples = same_solves(tree, motion)
+    calls = recorded_solves(tree, planned)
+    samples = sum(len(kwargs["times"]) for _, kwargs in calls)
     check = dict(a="robot/*", b="box")
     rows = interleaved(f"3 seams + 4 air moves, {samples:,} IK samples",
-                       {SOLVES: lambda: same_solves(tree, motion),
+                       {SOLVES: lambda: same_solves(tree, calls),
                         "plan()": planned.plan,
                         "plan(check=...)": lambda: planned.plan(check=check)},
                        3 if quick else 5, reference=SOLVES)

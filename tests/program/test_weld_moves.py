@@ -106,3 +106,29 @@ def test_a_weave_moves_the_tool_across_the_seam():
     # where the tool is along the seam, the weave's own offset (sine, 1 Hz, from the start)
     seam_seconds = (seam[:, 1] - SEAM_START[1]) / 0.02
     np.testing.assert_allclose(across, 0.002 * np.sin(2 * np.pi * seam_seconds), atol=1e-4)
+
+
+def test_a_whole_weld_within_the_limits_by_finite_differences():
+    """Point to point, linear and seam moves in one motion: the written positions' finite
+    differences within the velocity and acceleration limits, and at rest between moves."""
+    from program_cells import ACCELERATION, ROBOT_URDF
+    from robot_checks import urdf_velocity_limits
+
+    tree, _ = _welding_cell(arc=True)
+    program = pinframes.WeldProgram(tree, "tcp", limits=limits(tree), start=START)
+    program.weld("seam_point", torch="torch_target", speed=0.08, name="w")
+    program.move_joints(list(START), name="home")
+    motion = program.plan(step=STEP)
+    velocity = np.diff(motion.positions, axis=0) / STEP
+    acceleration = np.diff(motion.positions, n=2, axis=0) / STEP**2
+    urdf = urdf_velocity_limits(ROBOT_URDF)
+    limit = np.array([urdf[f"joint_{i}"] for i in range(1, 7)])
+    assert (np.abs(velocity) <= 1.01 * limit).all()
+    assert (np.abs(acceleration) <= 1.01 * ACCELERATION).all()
+    for record in motion.moves:
+        row = round(record.end_s / STEP)
+        np.testing.assert_allclose(motion.velocities[row], 0.0, atol=1e-9)
+    # the positions' differences agree with the velocities the motion reports: a central
+    # difference is the mean velocity over two steps, within max|acceleration| * step of it
+    middle = (motion.positions[2:] - motion.positions[:-2]) / (2 * STEP)
+    assert np.abs(middle - motion.velocities[1:-1]).max() <= 1.01 * ACCELERATION * STEP

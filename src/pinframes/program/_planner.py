@@ -29,7 +29,7 @@ from ..tree.robot_semantics import group_state_values
 from ..values.pose import Pose
 from ._limits import named_joint_values
 from ._planned_moves import PlannedMove, steps_of
-from .cartesian_paths import TargetPath, line_path, offset_along_z, seam_path
+from .cartesian_paths import TargetPath, filled_times, line_path, offset_along_z, seam_path
 from .moves import JointMove, LinearMove, Move, WaitMove, WeldMove
 
 __all__ = ["ProgramPlanner", "in_move"]
@@ -92,38 +92,44 @@ class ProgramPlanner:
         if isinstance(move, JointMove):
             return [self._joint_move(move.name, move.target, None)]
         if isinstance(move, LinearMove):
-            end = self._target_pose(move.target)
-            path = line_path(self.tool_pose(self.current), end, move.speed)
-            return [self._path_move(move.name, "linear", path, None, None)]
+            reference, end = self._target(move.target)
+            path = line_path(self.tool_pose(self.current, reference), end, move.speed,
+                             self.clock)
+            return [self._path_move(move.name, "linear", reference, path, None, None)]
         return self._weld(move)
 
     def _weld(self, move: WeldMove) -> list[PlannedMove]:
-        target = move.torch if move.torch is not None else move.seam
-        axis = self.tree.sample_times(target, self.tree.root)
+        torch = move.torch if move.torch is not None else move.seam
+        root = self.tree.root
+        axis = self.tree.sample_times(torch, root)
         if axis is None or axis.offsets.shape[0] < 2:
-            raise InvalidDataError(f"{target!r} does not move relative to "
-                                   f"{self.tree.root!r}: a seam is a frame that travels along "
-                                   "it", frame=target, field="seam")
-        seconds = axis.offsets / 1e9
-        poses = self.tree.pose(target, self.tree.root, times=axis.as_numpy())
-        seam_in_torch = None
-        if move.weave is not None and move.torch is not None:
-            turn = self.tree.pose(move.seam, move.torch, times=axis.as_numpy()[:1]).rotation[0]
-            seam_in_torch = np.asarray(turn, dtype=float)
-        seam = seam_path(poses, seconds, move.speed, move.weave, seam_in_torch)
+            raise InvalidDataError(f"{torch!r} does not move relative to {root!r}: a seam is "
+                                   "a frame that travels along it", frame=torch, field="seam")
+        seam_parent = self.tree.parent(move.seam)
+        if seam_parent is None:
+            raise InvalidDataError("the root is no seam", frame=move.seam, field="seam")
+        own = axis.offsets / 1e9
+        nodes = filled_times(self.tree.pose(torch, root, times=axis.as_numpy()), own,
+                             move.weave)
+        at_nodes = _times_like(axis.reference, nodes)
+        travel = self.tree.pose(move.seam, seam_parent, times=at_nodes).translation
+        seam_in_torch = np.asarray(self.tree.pose(move.seam, torch, times=at_nodes[:1]
+                                                  ).rotation[0], dtype=float)
+        seam = seam_path(nodes, travel, move.speed, move.weave, seam_in_torch)
         first, last = _static(seam.poses, 0), _static(seam.poses, -1)
-        parts = [self._joint_move(f"{move.name}: to approach",
-                                  offset_along_z(first, move.approach), move.free_axis)]
+        above = offset_along_z(first, move.approach)
+        parts = [self._joint_move(f"{move.name}: to approach", (torch, above, nodes[0]),
+                                  move.free_axis)]
         if move.approach > 0:
-            approach = line_path(offset_along_z(first, move.approach), first,
-                                 move.approach_speed)
-            parts.append(self._path_move(f"{move.name}: approach", "approach", approach,
-                                         move.free_axis, None))
-        parts.append(self._path_move(f"{move.name}: seam", "seam", seam, move.free_axis,
-                                     move.tilt))
+            approach = line_path(above, first, move.approach_speed, nodes[0], ending=True)
+            parts.append(self._path_move(f"{move.name}: approach", "approach", torch,
+                                         approach, move.free_axis, None))
+        parts.append(self._path_move(f"{move.name}: seam", "seam", torch, seam,
+                                     move.free_axis, move.tilt))
         if move.retract > 0:
-            retract = line_path(last, offset_along_z(last, move.retract), move.approach_speed)
-            parts.append(self._path_move(f"{move.name}: retract", "retract", retract,
+            retract = line_path(last, offset_along_z(last, move.retract),
+                                move.approach_speed, nodes[-1])
+            parts.append(self._path_move(f"{move.name}: retract", "retract", torch, retract,
                                          move.free_axis, None))
         return parts
 
@@ -135,9 +141,9 @@ class ProgramPlanner:
                                          float(timing.duration), None,
                                          None if reached is None else np.array([reached])))
 
-    def _path_move(self, name: str, kind: str, path: TargetPath, free_axis: str | None,
-                   tilt: tuple[float, float] | None) -> PlannedMove:
-        solution = self._solve(path.poses, free_axis, tilt)
+    def _path_move(self, name: str, kind: str, reference: str, path: TargetPath,
+                   free_axis: str | None, tilt: tuple[float, float] | None) -> PlannedMove:
+        solution = self._solve(reference, path.poses, free_axis, tilt)
         self._require_reached(solution, name, path)
         positions = np.array(solution.positions, dtype=float)
         gap = np.abs(positions[0] - self.current)
@@ -163,9 +169,14 @@ class ProgramPlanner:
     def _joint_goal(self, target: Any, free_axis: str | None, name: str
                     ) -> tuple[FloatArray, bool | None]:
         """The joint values a point-to-point ``target`` asks for, and whether a pose target
-        was reached (None for joint values)."""
-        if isinstance(target, Pose) or (isinstance(target, str) and target in self.tree):
-            solution = self._solve(_at(self._target_pose(target), self.clock), free_axis, None)
+        was reached (None for joint values). ``target`` may also be (a frame, a static pose
+        in it, the time it is taken at)."""
+        if isinstance(target, tuple):
+            reference, pose, time = target
+        elif isinstance(target, Pose) or (isinstance(target, str) and target in self.tree):
+            (reference, pose), time = self._target(target), self.clock
+        if isinstance(target, tuple | Pose) or (isinstance(target, str) and target in self.tree):
+            solution = self._solve(reference, _at(pose, time), free_axis, None)
             reached = bool(solution.reached[0])
             if self.strict and not reached:
                 raise TargetNotReachedError(
@@ -207,29 +218,32 @@ class ProgramPlanner:
                                  f"[{joint.lower}, {joint.upper}]", joint=name, field="target")
         return goal
 
-    def _target_pose(self, target: Any) -> Pose:
-        """A frame's pose in the root now, or a ``Pose`` (static, in the root)."""
+    def _target(self, target: Any) -> tuple[str, Pose]:
+        """Where a move's ``target`` puts the tool: (a frame, a static pose in it): a frame
+        itself (the identity in it), or a ``Pose`` in the root."""
         if isinstance(target, Pose):
             if target.is_time_dependent:
                 raise InvalidDataError("a move's target pose must be static (one pose)",
                                        field="target")
-            return target
+            return self.tree.root, target
         if not isinstance(target, str):
             raise ArgumentTypeError(f"expected a frame name or a Pose, got "
                                     f"{type(target).__name__}", field="target")
-        return _static(self.tree.pose(target, self.tree.root, times=[self.clock]), 0)
+        if target not in self.tree:
+            self.tree.pose(target, self.tree.root)  # the tree's own error, naming near misses
+        return target, Pose()
 
-    def tool_pose(self, positions: FloatArray) -> Pose:
-        """The tool's pose in the root with the program's joints at ``positions``."""
+    def tool_pose(self, positions: FloatArray, reference: str) -> Pose:
+        """The tool's pose in ``reference`` now with the program's joints at ``positions``."""
         self._work.set_joint_trajectory([self.clock], positions[None, :], self.joint_names)
-        return _static(self._work.pose(self.tool, self.tree.root, times=[self.clock]), 0)
+        return _static(self._work.pose(self.tool, reference, times=[self.clock]), 0)
 
-    def _solve(self, targets: Pose, free_axis: str | None,
+    def _solve(self, reference: str, targets: Pose, free_axis: str | None,
                tilt: tuple[float, float] | None) -> JointSolution:
         times = targets.seconds
         assert times is not None
         return self.tree.solve_joints(
-            self.tool, targets, relative_to=self.tree.root, times=times,
+            self.tool, targets, relative_to=reference, times=times,
             joints=list(self.joint_names), free_axis=free_axis, tilt=tilt,
             seed=dict(zip(self.joint_names, self.current.tolist(), strict=True)))
 
@@ -249,6 +263,12 @@ def _static(pose: Pose, index: int) -> Pose:
     if not pose.is_time_dependent:
         return pose
     return Pose(pose.translation[index], pose.rotation[index])
+
+
+def _times_like(reference: np.datetime64 | None, seconds: FloatArray) -> NDArray[Any]:
+    """``seconds`` after ``reference`` as numpy times (relative ones without it)."""
+    offsets = np.round(seconds * 1e9).astype(np.int64).astype("timedelta64[ns]")
+    return offsets if reference is None else reference + offsets
 
 
 def _at(pose: Pose, seconds: float) -> Pose:

@@ -1,10 +1,11 @@
 """The tool's target along a linear or seam move, sampled densely enough for the joints
 solved at the samples to keep the tool on the path between them.
 
-A target path is a :class:`~pinframes.Pose` in the tree's root with one pose per node and a
-path parameter per node: metres along a line, or the seam's own seconds (or metres along it
-when it is welded at a given speed). Nodes are at most :data:`NODE_STEP_M` apart in
-position and :data:`NODE_STEP_RAD` in rotation.
+A target path is a :class:`~pinframes.Pose` of the tool in a reference frame (the frame a
+move's target is, the torch target of a seam, or the root for a ``Pose`` target), one pose
+per node at the times ``solve_joints`` is asked for, and a path parameter per node: metres
+along a line or along the seam, or the seam's own seconds. Nodes are at most
+:data:`NODE_STEP_M` apart in position and :data:`NODE_STEP_RAD` in rotation.
 """
 
 from __future__ import annotations
@@ -19,8 +20,8 @@ from ..values.interpolation import rotation_steps
 from ..values.pose import Pose
 from ..values.weave import Weave
 
-__all__ = ["NODE_STEP_M", "NODE_STEP_RAD", "TargetPath", "line_path", "offset_along_z",
-           "seam_path"]
+__all__ = ["NODE_STEP_M", "NODE_STEP_RAD", "NOMINAL_STEP_S", "TargetPath", "filled_times",
+           "line_path", "offset_along_z", "seam_path"]
 
 FloatArray = NDArray[np.float64]
 
@@ -28,6 +29,11 @@ NODE_STEP_M = 0.002
 """Largest step of the tool's target between two nodes, metres."""
 NODE_STEP_RAD = 0.02
 """Largest turn of the tool's target between two nodes, radians."""
+NOMINAL_STEP_S = 1e-6
+"""The times a line's nodes are solved at lie this far apart (seconds): the tree as it is
+at the line's time."""
+WEAVE_NODES_PER_PERIOD = 40
+"""Nodes per weave period at least."""
 
 
 @dataclass(frozen=True)
@@ -37,14 +43,14 @@ class TargetPath:
     Attributes
     ----------
     poses : Pose
-        One pose per node (N), in the tree's root; its times are the nodes' parameter
-        values read as seconds (what ``solve_joints`` is given; nothing else moves then).
+        One pose per node (N) in the path's reference frame, at the times it is solved at.
     parameter : ndarray, shape (N,)
         The path parameter, strictly increasing: metres along it, or the seam's own seconds.
     parameter_speed : float or None
         The highest rate of the parameter (m/s, or 1 for a seam on its own times).
     tool_speed_per_parameter : ndarray, shape (N,)
-        The tool origin's speed per unit rate of the parameter (1 for metres along it).
+        The tool origin's speed along the path per unit rate of the parameter (1 for metres
+        along it).
     """
 
     poses: Pose
@@ -62,10 +68,12 @@ class TargetPath:
         return self.parameter_speed * float(self.tool_speed_per_parameter.max())
 
 
-def line_path(start: Pose, end: Pose, speed: float | None) -> TargetPath:
-    """From ``start`` to ``end`` (static poses in the root): the origin on the straight
-    line, the rotation slerped; the parameter is metres along the line (radians of the turn
-    when the origin does not move)."""
+def line_path(start: Pose, end: Pose, speed: float | None, at: float,
+              ending: bool = False) -> TargetPath:
+    """From ``start`` to ``end`` (static poses in one frame): the origin on the straight
+    line, the rotation slerped, solved from ``at`` seconds on (``ending``: up to ``at``),
+    nodes :data:`NOMINAL_STEP_S` apart; the parameter is metres along the line (radians of
+    the turn when the origin does not move)."""
     length = float(np.linalg.norm(end.translation - start.translation))
     turn = float(np.linalg.norm(rotation_steps(np.stack([start.rotation, end.rotation]))))
     count = max(2, math.ceil(length / NODE_STEP_M) + 1, math.ceil(turn / NODE_STEP_RAD) + 1)
@@ -73,61 +81,58 @@ def line_path(start: Pose, end: Pose, speed: float | None) -> TargetPath:
     ends = Pose(np.stack([start.translation, end.translation]),
                 np.stack([start.rotation, end.rotation]), times=[0.0, 1.0])
     sampled = ends.at(fraction)
+    times = at + NOMINAL_STEP_S * (np.arange(count) - (count - 1 if ending else 0))
+    poses = Pose(sampled.translation, sampled.rotation, times=times)
     if length > 1e-9:
-        parameter, per_parameter, speed_limit = fraction * length, np.ones(count), speed
-    else:  # a turn on the spot: no speed of the origin to keep
-        parameter, per_parameter, speed_limit = fraction * max(turn, 1e-9), np.zeros(count), None
-    return TargetPath(_timed(sampled, parameter), parameter, speed_limit, per_parameter)
+        return TargetPath(poses, fraction * length, speed, np.ones(count))
+    # a turn on the spot: no speed of the origin to keep
+    return TargetPath(poses, fraction * max(turn, 1e-9), None, np.zeros(count))
 
 
-def seam_path(poses: Pose, seconds: FloatArray, speed: float | None,
-              weave: Weave | None, seam_in_torch: FloatArray | None = None) -> TargetPath:
-    """The torch's target along a seam: ``poses`` (in the root) at the seam's own
-    ``seconds``, filled in between to the node steps, woven across the seam's y when
-    ``weave`` is given (``seam_in_torch``: the rotation (3, 3) of the seam frame's axes in
-    the torch target's, default the identity), and parameterised by its own seconds or,
-    with ``speed``, by metres along it."""
-    filled, filled_seconds = _filled(poses, seconds)
+def seam_path(seconds: FloatArray, travel: FloatArray, speed: float | None,
+              weave: Weave | None, seam_in_torch: FloatArray) -> TargetPath:
+    """The tool's target along a seam, in the torch target's frame, at the seam's own
+    ``seconds`` (the nodes, see :func:`filled_times`): the torch target itself, or with
+    ``weave`` moved across the seam frame's y (``seam_in_torch``: the seam frame's axes in
+    the torch target's (3, 3)). ``travel`` (N, 3) is the seam frame's origin in its parent
+    at the nodes, metres: the parameter is the seam's own seconds, or with ``speed`` metres
+    along ``travel``."""
+    count = seconds.shape[0]
+    offsets = np.zeros((count, 3))
     if weave is not None:
-        offsets = weave.offsets(filled_seconds - filled_seconds[0])
-        if seam_in_torch is not None:
-            offsets = offsets @ seam_in_torch.T
-        woven = Pose(filled.translation + np.einsum("nij,nj->ni", filled.rotation, offsets),
-                     filled.rotation, times=filled_seconds)
-        filled, filled_seconds = _filled(woven, filled_seconds)
-    steps = np.linalg.norm(np.diff(filled.translation, axis=0), axis=1)
+        offsets = weave.offsets(seconds - seconds[0]) @ seam_in_torch.T
+    steps = np.linalg.norm(np.diff(travel, axis=0), axis=1)
     if speed is None:
-        parameter = filled_seconds - filled_seconds[0]
+        parameter = seconds - seconds[0]
         rate = np.concatenate([steps / np.diff(parameter), [0.0]])
         per_parameter = np.maximum(rate, np.concatenate([[0.0], rate[:-1]]))
-        return TargetPath(_timed(filled, parameter), parameter, 1.0, per_parameter)
-    keep = np.concatenate([[True], steps > 1e-9])  # nodes where the seam stands still: once
-    kept = filled[np.flatnonzero(keep)]
-    parameter = np.concatenate([[0.0], np.cumsum(steps[keep[1:]])])
-    return TargetPath(_timed(kept, parameter), parameter, speed, np.ones(parameter.shape[0]))
+        poses = Pose(offsets, None, times=seconds)
+        return TargetPath(poses, parameter, 1.0, per_parameter)
+    keep = np.flatnonzero(np.concatenate([[True], steps > 1e-9]))  # standing still: once
+    parameter = np.concatenate([[0.0], np.cumsum(steps)])[keep]
+    poses = Pose(offsets[keep], None, times=seconds[keep])
+    return TargetPath(poses, parameter, speed, np.ones(keep.shape[0]))
+
+
+def filled_times(poses: Pose, seconds: FloatArray, weave: Weave | None) -> FloatArray:
+    """``seconds`` with times added where the poses (their samples at ``seconds``) are
+    further apart than the node steps, and where a ``weave`` needs
+    :data:`WEAVE_NODES_PER_PERIOD` nodes a period."""
+    moved = np.linalg.norm(np.diff(poses.translation, axis=0), axis=1)
+    turned = np.linalg.norm(rotation_steps(poses.rotation), axis=1)
+    pieces = np.maximum(np.ceil(moved / NODE_STEP_M), np.ceil(turned / NODE_STEP_RAD))
+    if weave is not None:
+        longest = 1.0 / (WEAVE_NODES_PER_PERIOD * weave.frequency)
+        pieces = np.maximum(pieces, np.ceil(np.diff(seconds) / longest))
+    pieces = np.maximum(pieces, 1).astype(int)
+    if (pieces == 1).all():
+        return seconds
+    return np.concatenate([
+        np.linspace(start, end, count, endpoint=False)
+        for start, end, count in zip(seconds[:-1], seconds[1:], pieces.tolist(), strict=True)
+    ] + [seconds[-1:]])
 
 
 def offset_along_z(pose: Pose, distance: float) -> Pose:
     """``pose`` moved ``distance`` metres along its own -z (back from the work)."""
     return Pose(pose.translation - distance * pose.rotation[..., :, 2], pose.rotation)
-
-
-def _filled(poses: Pose, seconds: FloatArray) -> tuple[Pose, FloatArray]:
-    """``poses`` at ``seconds`` with nodes added where two are further apart than the node
-    steps (the poses interpolated as the pose does)."""
-    moved = np.linalg.norm(np.diff(poses.translation, axis=0), axis=1)
-    turned = np.linalg.norm(rotation_steps(poses.rotation), axis=1)
-    pieces = np.maximum(np.ceil(moved / NODE_STEP_M), np.ceil(turned / NODE_STEP_RAD))
-    pieces = np.maximum(pieces, 1).astype(int)
-    if (pieces == 1).all():
-        return poses, seconds
-    filled = np.concatenate([
-        np.linspace(start, end, count, endpoint=False)
-        for start, end, count in zip(seconds[:-1], seconds[1:], pieces.tolist(), strict=True)
-    ] + [seconds[-1:]])
-    timed = Pose(poses.translation, poses.rotation, times=seconds)
-    return timed.at(filled), filled
-
-
-def _timed(poses: Pose, parameter: FloatArray) -> Pose:
-    return Pose(poses.translation, poses.rotation, times=parameter)

@@ -15,11 +15,13 @@ from ..errors import (
     ArgumentTypeError,
     CollisionError,
     InvalidDataError,
+    JointError,
     JointSpeedError,
     JointWithoutSamplesWarning,
+    joint_not_found,
 )
 from ..tree import FrameTree
-from ..tree.robot_semantics import group_state_values
+from ..tree.robot_semantics import group_joints, group_state_values
 from ..values.motion import Motion
 from ..values.pose import Pose
 from ..values.weave import Weave
@@ -50,7 +52,9 @@ class WeldProgram:
         The frame that moves (``"torch_tcp"``).
     joints : str or sequence of str, optional
         The joints the program moves, as ``solve_joints`` takes them (an SRDF group's name
-        too); default: every robot joint between the tool and the root.
+        too): a positioner's joints with the robot's, and then targets are taken in the
+        frames they name, which the positioner moves. Default: every robot joint between the
+        tool and the root.
     limits : mapping, optional
         Per joint name (the tree's or the URDF's), ``velocity``, ``acceleration`` and
         ``jerk`` (radians or metres per s, s^2, s^3), as records or mappings (what
@@ -75,12 +79,8 @@ class WeldProgram:
         if tool not in tree:
             tree.pose(tool, tree.root)  # the tree's own error, naming near misses
         self.tree, self.tool = tree, tool
-        with warnings.catch_warnings():  # joints without samples: the program gives them some
-            warnings.simplefilter("ignore", JointWithoutSamplesWarning)
-            probe = tree.solve_joints(tool, tree.pose(tool, tree.root, times=[0.0]),
-                                      relative_to=tree.root, times=[0.0], joints=joints)
-        self.joint_names: tuple[str, ...] = tuple(probe.joint_names)
-        self.limits = motion_limits(self.joint_names, probe.velocity_limits, limits)
+        self.joint_names, velocities = self._joints(joints)
+        self.limits = motion_limits(self.joint_names, velocities, limits)
         self.start = self._start(start)
         self.step = _positive(step, "step")
         self.check = parse_check(check)
@@ -185,6 +185,30 @@ class WeldProgram:
             raise ArgumentTypeError(f"expected a non-empty move name, got {name!r}",
                                     field="name")
         return name
+
+    def _joints(self, joints: Any) -> tuple[tuple[str, ...], np.ndarray]:
+        """The program's joints and their URDF velocity limits (inf where none): those
+        given (names, or an SRDF group), else what ``solve_joints`` solves for the tool in
+        the root (a mimic joint's tighter limit counted)."""
+        if joints is None:
+            with warnings.catch_warnings():  # joints without samples: the program gives some
+                warnings.simplefilter("ignore", JointWithoutSamplesWarning)
+                probe = self.tree.solve_joints(
+                    self.tool, self.tree.pose(self.tool, self.tree.root, times=[0.0]),
+                    relative_to=self.tree.root, times=[0.0])
+            return tuple(probe.joint_names), np.array(probe.velocity_limits, dtype=float)
+        if isinstance(joints, str):
+            joints = (group_joints(self.tree, joints, [self.tool]) if joints not in
+                      self.tree.joints else [joints])
+        names = tuple(str(name) for name in joints)
+        for name in names:
+            if name not in self.tree.joints:
+                raise joint_not_found(name, self.tree.joints, field="joints")
+            if not self.tree.joints[name].is_actuated:
+                raise JointError("follows another joint (a mimic joint): name its primary",
+                                 joint=name, field="joints")
+        velocities = [self.tree.joints[name].velocity or math.inf for name in names]
+        return names, np.array(velocities, dtype=float)
 
     def _start(self, start: Any) -> np.ndarray:
         if start is None:
