@@ -154,6 +154,7 @@ def test_a_name_the_scene_lacks_is_an_error_naming_the_move(tmp_path, capsys, ch
     assert not (tmp_path / "run.csv").exists()
 
 
+@pytest.mark.slow
 def test_the_bundled_cells_program():
     program = pinframes.read_program(
         Path(pinframes.__file__).parent / "models" / "welding_cell" / "scene.yaml")

@@ -7,6 +7,7 @@ from __future__ import annotations
 import itertools
 
 import numpy as np
+import pinocchio as pin
 import pytest
 
 import pinframes
@@ -125,6 +126,9 @@ def test_a_whole_weld_within_the_limits_by_finite_differences():
     limit = np.array([urdf[f"joint_{i}"] for i in range(1, 7)])
     assert (np.abs(velocity) <= 1.01 * limit).all()
     assert (np.abs(acceleration) <= 1.01 * ACCELERATION).all()
+    model = pin.buildModelFromUrdf(str(ROBOT_URDF))  # every sample within the URDF limits
+    assert (motion.positions >= model.lowerPositionLimit).all()
+    assert (motion.positions <= model.upperPositionLimit).all()
     for record in motion.moves:
         row = round(record.end_s / STEP)
         np.testing.assert_allclose(motion.velocities[row], 0.0, atol=1e-9)

@@ -227,8 +227,25 @@ class WeldProgram:
         return given
 
     def _require_within_limits(self, assembled: Assembled) -> None:
-        """A :class:`JointSpeedError` naming the move and joint whose sampled velocity or
+        """A :class:`JointError` naming the move and joint of a sample outside the position
+        limits; a :class:`JointSpeedError` naming those whose sampled velocity or
         acceleration exceeds its limit by more than :data:`LIMIT_TOLERANCE`."""
+        for column, name in enumerate(self.joint_names):
+            joint = self.tree.joints[name]
+            if joint.kind == "continuous":
+                continue
+            values = assembled.positions[:, column]
+            outside = np.zeros(values.shape[0], bool)
+            if joint.lower is not None:
+                outside |= values < joint.lower - 1e-9
+            if joint.upper is not None:
+                outside |= values > joint.upper + 1e-9
+            if outside.any():
+                sample = int(np.flatnonzero(outside)[0])
+                raise in_move(JointError(
+                    f"{values[sample]:.6g} is outside the limits [{joint.lower}, "
+                    f"{joint.upper}] at {assembled.seconds[sample]:.3f} s", joint=name,
+                    field="positions"), _move_at(assembled, sample))
         bound = 1.0 + LIMIT_TOLERANCE
         for kind, values, limit in (("velocity", assembled.velocities, self.limits.velocity),
                                     ("acceleration", assembled.accelerations,
@@ -237,14 +254,19 @@ class WeldProgram:
             if not over.any():
                 continue
             sample, column = (int(index[0]) for index in np.nonzero(over))
-            move = next(record.name for record, (first, last)
-                        in zip(assembled.records, assembled.rows, strict=True)
-                        if first <= sample <= last)
+            move = _move_at(assembled, sample)
             error = JointSpeedError(
                 f"its {kind} {values[sample, column]:.4g} exceeds its limit "
                 f"{limit[column]:.4g} at {assembled.seconds[sample]:.3f} s",
                 joint=self.joint_names[column], field=kind)
             raise in_move(error, move)
+
+
+def _move_at(assembled: Assembled, sample: int) -> str:
+    """The name of the move that sample ``sample`` belongs to."""
+    return next(record.name for record, (first, last)
+                in zip(assembled.records, assembled.rows, strict=True)
+                if first <= sample <= last)
 
 
 def _positive(value: Any, field: str) -> float:

@@ -29,8 +29,9 @@ class MoveRecord:
     start_s, end_s : float
         When the move starts and ends, seconds on the motion's times.
     requested_speed : float or None
-        For linear and seam moves, the tool's speed asked for in the tree's root, m/s (a
-        seam on its own times: its own highest speed); None for the others.
+        For linear and seam moves, the tool's highest speed asked for along the path, m/s:
+        along a line in its target's frame, or along the seam frame's path in its parent (a
+        seam on its own times: its own highest speed there); None for the others.
     reached_speed : float or None
         The tool's highest speed along the move as planned, m/s: below the requested one
         where the joints' limits do not allow it.
