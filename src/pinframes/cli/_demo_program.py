@@ -6,8 +6,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ..formats.joint_trajectory.writer import write_joint_trajectory
 from ..formats.scene.program_section import PROGRAM_METADATA_KEY, scene_program
-from ..formats.trajectory_writer import write_joint_trajectory
 from ..tree import FrameTree
 
 __all__ = ["PROGRAM_FILE", "program_lines"]

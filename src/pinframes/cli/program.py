@@ -6,8 +6,8 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ..formats.joint_trajectory.writer import write_joint_trajectory
 from ..formats.scene.program_section import scene_program
-from ..formats.trajectory_writer import write_joint_trajectory
 from ._files import read_tree
 from ._program_summary import motion_summary
 
