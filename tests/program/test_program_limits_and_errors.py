@@ -87,5 +87,7 @@ def test_waits_hold_and_moves_chain():
     motion = program.plan(step=0.01)
     assert len(motion) == 51 and motion.cycle_time == pytest.approx(0.5)
     np.testing.assert_array_equal(motion.positions, np.broadcast_to(START, (51, 6)))
+    with pytest.raises(pinframes.NameNotFoundError, match="the moves are 'hold'"):
+        motion.move("no such move")
     with pytest.raises(pinframes.InvalidDataError, match="already named 'hold'"):
         program.wait(1.0, name="hold")

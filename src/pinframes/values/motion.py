@@ -8,6 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ..errors import NameNotFoundError
 from .timed import Timed
 
 __all__ = ["CollisionRecord", "Motion", "MoveRecord"]
@@ -125,12 +126,14 @@ class Motion(Timed):
         return bool(self.reached.all())
 
     def move(self, name: str) -> MoveRecord:
-        """The record of the move named ``name`` (a ``KeyError`` naming the moves if none)."""
+        """The record of the move named ``name`` (a :class:`NameNotFoundError` naming the
+        moves if none)."""
         for record in self.moves:
             if record.name == name:
                 return record
-        raise KeyError(f"no move {name!r}; the moves are "
-                       f"{', '.join(repr(record.name) for record in self.moves)}")
+        raise NameNotFoundError(f"no move {name!r}; the moves are "
+                                f"{', '.join(repr(record.name) for record in self.moves)}",
+                                field="name")
 
     def __len__(self) -> int:
         return int(self.positions.shape[0])
