@@ -30,9 +30,10 @@ def test_set_motion_drives_the_tree(planned):
 
 
 def test_csv_and_npz_read_back(planned, tmp_path):
-    tree, motion = planned
+    _, motion = planned
+    assert motion.urdf_joint_names == tuple(f"joint_{i}" for i in range(1, 7))
     for name in ("run.csv", "run.npz"):
-        pinframes.write_joint_trajectory(motion, tmp_path / name, tree=tree)
+        pinframes.write_joint_trajectory(motion, tmp_path / name)  # the motion's URDF names
         times, positions, names = pinframes.read_joint_trajectory(tmp_path / name)
         assert names == [f"joint_{i}" for i in range(1, 7)]
         seconds = (times.astype(np.int64) / 1e9 if times.dtype.kind == "m"  # NPZ

@@ -22,6 +22,7 @@ from ..errors import (
 )
 from ..tree import FrameTree
 from ..tree.robot_semantics import group_joints, group_state_values
+from ..tree.urdf_names import urdf_joint_names
 from ..values.motion import Motion
 from ..values.pose import Pose
 from ..values.weave import Weave
@@ -167,9 +168,11 @@ class WeldProgram:
                                  f"{first.distance:.4g} m of {first.frame_b!r} at "
                                  f"{first.time_s:.3f} s (margin {checked.margin:g} m)")
         nanoseconds = np.round(assembled.seconds * 1e9).astype(np.int64)
+        named = urdf_joint_names(self.tree, self.joint_names)
         return Motion(self.joint_names, nanoseconds.astype("timedelta64[ns]"),
                       self.tree.reference_time, assembled.positions, assembled.velocities,
-                      assembled.accelerations, assembled.records, found, assembled.reached)
+                      assembled.accelerations, assembled.records, found, assembled.reached,
+                      None if named is None else tuple(named))
 
     # -- helpers -----------------------------------------------------------------------------
     def _add(self, move: Move) -> WeldProgram:

@@ -103,6 +103,10 @@ class Motion(Timed):
     reached : ndarray of bool, shape (T,)
         Whether the tool is on its target at each sample: False where a target of a linear
         or seam move was out of reach (the closest configuration is held).
+    urdf_joint_names : tuple of str or None
+        :attr:`joint_names` as the robot's URDF names them (what a controller takes and
+        :func:`pinframes.write_joint_trajectory` writes), when every joint belongs to one
+        robot read from a URDF; else None.
     """
 
     joint_names: tuple[str, ...]
@@ -114,6 +118,7 @@ class Motion(Timed):
     moves: tuple[MoveRecord, ...]
     collisions: tuple[CollisionRecord, ...]
     reached: NDArray[np.bool_]
+    urdf_joint_names: tuple[str, ...] | None = None
 
     @property
     def cycle_time(self) -> float:

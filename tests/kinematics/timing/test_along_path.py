@@ -152,8 +152,8 @@ def test_joints_that_stay_need_a_parameter_speed():
     timing = time_along_path(positions, parameters, MotionLimits([1.0, 1.0], [1.0, 1.0]),
                              max_parameter_speed=0.5)
     # nothing limits the path's acceleration: at 0.5 per s but on the first and last of the
-    # 100 steps it is timed on (a path of fewer segments gets points between its samples)
-    assert timing.duration == pytest.approx(1.0 / 0.5 + 2 * 0.01 / 0.5, rel=1e-9)
+    # 200 steps it is timed on (a path of fewer segments gets points between its samples)
+    assert timing.duration == pytest.approx(1.0 / 0.5 + 2 * 0.005 / 0.5, rel=1e-9)
 
 
 def test_bad_paths_name_the_field():

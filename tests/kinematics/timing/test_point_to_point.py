@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from ruckig import InputParameter, Result, Ruckig, Trajectory
 
-from pinframes.errors import JointError
+from pinframes.errors import InvalidTimeError, JointError
 from pinframes.kinematics.timing import MotionLimits, time_point_to_point
 
 pytestmark = pytest.mark.filterwarnings("error")
@@ -142,3 +142,13 @@ def test_bad_limits_and_positions_name_the_field_and_joint():
         time_point_to_point([0.0, 0.0], [1.0, float("inf")], MotionLimits([1.0, 1.0], [1.0, 1.0]))
     with pytest.raises(JointError, match="start"):
         time_point_to_point([0.0], [1.0, 1.0], MotionLimits([1.0, 1.0], [1.0, 1.0]))
+
+
+def test_times_are_clipped_to_the_move_and_nan_is_an_error():
+    move = time_point_to_point([0.0], [1.0], MotionLimits([1.0], [1.0]))
+    positions, velocities, _ = move.sample(np.array([-1.0, 0.5, 3.0]))
+    np.testing.assert_allclose(positions[:, 0], [0.0, 0.125, 1.0])
+    assert velocities[0, 0] == 0 and velocities[2, 0] == 0
+    assert move.sample(1.0)[0].shape == (1, 1)
+    with pytest.raises(InvalidTimeError, match="NaN"):
+        move.sample(np.array([0.0, np.nan]))

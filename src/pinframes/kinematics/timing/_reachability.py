@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...errors import JointError
+from ._clamped_chain import chain
 from ._timing_grid import TimingGrid
 
 __all__ = ["squared_path_speeds"]
@@ -30,12 +31,16 @@ _BETWEEN = (0.25, 0.75)
 """Where on each segment the joints are measured after timing: a joint's acceleration is a
 parabola on a segment, whose largest excess over its values at ``_FRACTIONS`` is near these."""
 
-_EXCESS = 1e-3
+_EXCESS = 5e-3
 """How far (a part of the limit) a joint may go over its limit between the bounded points
 before its limits on that segment are tightened and the path timed again."""
 
 _RETIMINGS = 4
 """How often at most the path is timed again with tightened limits."""
+
+_NEWTON_STEPS = 8
+"""How many Newton steps find the largest feasible ``x`` of a segment before every pair of
+its bounds is tried instead."""
 
 _NEGLIGIBLE_RATE = 1e-6
 """A bound whose ``u`` coefficient is below this part of its ``x`` coefficient (times the
@@ -76,7 +81,7 @@ def _timed(grid: TimingGrid, velocity: np.ndarray, acceleration: np.ndarray,
     """One timing: the backward and forward passes with limits ``(K, n)`` per segment."""
     double = 2 * grid.lengths
     lower, upper = _segment_bounds(grid, velocity, acceleration)
-    static = np.minimum(sample_bound[:-1], _static_bounds(lower, upper, double))
+    static = _static_bounds(lower, upper, double, sample_bound[:-1])
     limits = _backward(static, *_braking(lower, double))
     if not np.all(np.isfinite(limits)):
         first = int(np.flatnonzero(~np.isfinite(limits))[0])
@@ -136,24 +141,70 @@ def _sample_bounds(slopes: np.ndarray, velocity: np.ndarray,
 
 
 def _static_bounds(lower: tuple[np.ndarray, ...], upper: tuple[np.ndarray, ...],
-                   double: np.ndarray) -> np.ndarray:
-    """Shape ``(K,)``: the largest ``x_k`` for which some ``u_k`` keeps every bound of the
-    segment and ``x_{k+1} >= 0``, whatever follows."""
+                   double: np.ndarray, start: np.ndarray) -> np.ndarray:
+    """Shape ``(K,)``: the largest ``x_k``, at most ``start``, for which some ``u_k`` keeps
+    every bound of the segment and ``x_{k+1} >= 0``, whatever follows.
+
+    Below that ``x`` the bounds on ``u`` from below (a convex function of ``x``, their
+    maximum) stay under those from above (a concave one), so the gap between them is concave
+    and positive at 0. Newton's method from the right on that gap, one pair of bounds at a
+    time, comes down onto where it closes in a few steps; a segment it has not settled in
+    :data:`_NEWTON_STEPS` gets every pair of its bounds crossed instead.
+    """
     # bounds divided by their e > 0: c x + d u <= 1
     c_low, d_low = (part / lower[2] for part in lower[:2])
     c_up, d_up = (part / upper[2] for part in upper[:2])
-    # a lower bound on u below an upper bound: (c_l d_u - c_u d_l) x <= d_u - d_l, whose right
-    # side is > 0; the largest ratio of the two sides over every pair is 1 / (the bound on x)
+    # an upper bound on u above -x / (2 length), the u that stops at the segment's end, and
+    # bounds on x alone
+    stops = np.max(c_up - d_up / double[:, None], axis=1, initial=0.0)
+    alone = np.max(np.where(d_low == 0, c_low, 0.0), axis=1, initial=0.0)
+    bound = np.minimum(start, _inverse(np.maximum(stops, alone)))
+    rows = np.flatnonzero(np.isfinite(bound))
+    unsettled = np.flatnonzero(~np.isfinite(bound))
+    for _ in range(_NEWTON_STEPS):
+        if rows.size == 0:
+            break
+        here = bound[rows, None]
+        c_l, d_l, c_u, d_u = c_low[rows], d_low[rows], c_up[rows], d_up[rows]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            lows = np.where(d_l < 0, (1 - c_l * here) / d_l, -np.inf)
+            highs = np.where(d_u > 0, (1 - c_u * here) / d_u, np.inf)
+        index = np.arange(rows.size)
+        low, high = lows.argmax(axis=1), highs.argmin(axis=1)
+        open_gap = lows[index, low] <= highs[index, high]
+        c_l, d_l = c_l[index, low], d_l[index, low]
+        c_u, d_u = c_u[index, high], d_u[index, high]
+        # where the two lines cross: (c_l d_u - c_u d_l) x = d_u - d_l
+        with np.errstate(divide="ignore", invalid="ignore"):
+            crossing = (d_u - d_l) / (c_l * d_u - c_u * d_l)
+        moves = ~open_gap & (crossing < here[:, 0] * (1 - 1e-12))
+        bound[rows[~open_gap]] = np.minimum(bound[rows[~open_gap]], crossing[~open_gap])
+        rows = rows[moves]
+    unsettled = np.concatenate([unsettled, rows])
+    if unsettled.size:
+        bound[unsettled] = np.minimum(bound[unsettled], _crossed_pairs(
+            c_low[unsettled], d_low[unsettled], c_up[unsettled], d_up[unsettled]))
+    return bound
+
+
+def _crossed_pairs(c_low: np.ndarray, d_low: np.ndarray, c_up: np.ndarray,
+                   d_up: np.ndarray) -> np.ndarray:
+    """The largest ``x`` at which no lower bound on ``u`` passes an upper one, from every
+    pair of bounds (``c x + d u <= 1``, lower ``(K, m)``, upper ``(K, p)``)."""
+    # a pair: (c_l d_u - c_u d_l) x <= d_u - d_l, whose right side is > 0; the largest ratio
+    # of the two sides over every pair is 1 / (the bound on x)
     ratio = np.multiply(c_low[:, :, None], d_up[:, None, :])
     ratio -= c_up[:, None, :] * d_low[:, :, None]
     right = np.subtract(d_up[:, None, :], d_low[:, :, None])
     np.maximum(right, np.finfo(float).tiny, out=right)
     ratio /= right
-    pairs = ratio.max(axis=(1, 2), initial=0.0)
-    # an upper bound on u above -x / (2 length), the u that stops at the segment's end
-    stops = np.max(c_up - d_up / double[:, None], axis=1, initial=0.0)
-    with np.errstate(divide="ignore"):
-        return 1 / np.maximum(pairs, stops)
+    return _inverse(ratio.max(axis=(1, 2), initial=0.0))
+
+
+def _inverse(ratio: np.ndarray) -> np.ndarray:
+    """``1 / ratio`` where it is positive, else no bound (inf)."""
+    positive = ratio > 0
+    return np.where(positive, 1 / np.where(positive, ratio, 1.0), np.inf)
 
 
 def _braking(lower: tuple[np.ndarray, ...], double: np.ndarray,
@@ -182,24 +233,9 @@ def _pushing(upper: tuple[np.ndarray, ...], double: np.ndarray,
 def _backward(static: np.ndarray, offsets: np.ndarray, slopes: np.ndarray) -> np.ndarray:
     """Shape ``(N,)``: the largest ``x`` at each sample from which the path's end is reached at
     rest (0 at the end)."""
-    limits = [0.0] * (static.size + 1)
-    reachable = 0.0
-    rows = zip(static.tolist(), offsets.tolist(), slopes.tolist(), strict=True)
-    for index, (bound, offset_row, slope_row) in reversed(list(enumerate(rows))):
-        reachable = min(bound, *[offset + slope * reachable
-                                 for offset, slope in zip(offset_row, slope_row, strict=True)])
-        limits[index] = reachable
-    return np.array(limits)
+    return chain(static[::-1], offsets[::-1], slopes[::-1])[::-1]
 
 
 def _forward(limits: np.ndarray, offsets: np.ndarray, slopes: np.ndarray) -> np.ndarray:
     """Shape ``(N,)``: from rest, the largest ``x`` at each next sample within ``limits``."""
-    speeds = [0.0] * limits.size
-    current = 0.0
-    rows = zip(limits[1:].tolist(), offsets.tolist(), slopes.tolist(), strict=True)
-    for index, (limit, offset_row, slope_row) in enumerate(rows, start=1):
-        current = max(0.0, min(limit, *[offset + slope * current
-                                        for offset, slope in zip(offset_row, slope_row,
-                                                                 strict=True)]))
-        speeds[index] = current
-    return np.array(speeds)
+    return chain(limits[1:], offsets, slopes)

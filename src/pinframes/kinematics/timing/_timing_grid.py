@@ -3,7 +3,7 @@
 The reachability passes bound the joints at a finite set of path parameters; their result
 is the closer to the time-optimum the finer that set. A path of fewer than
 :data:`MIN_SEGMENTS` segments (a straight line given by its two ends) has each of them split
-evenly so that none is longer than the path's length over that number.
+evenly into about its share of that number (by length).
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from ._path_spline import PathSpline
 
 __all__ = ["MIN_SEGMENTS", "TimingGrid"]
 
-MIN_SEGMENTS = 100
+MIN_SEGMENTS = 200
 """The fewest segments a path is timed on."""
 
 
@@ -36,9 +36,9 @@ class TimingGrid:
     def __init__(self, spline: PathSpline) -> None:
         self.spline = spline
         lengths = spline.lengths
-        longest = (spline.parameters[-1] - spline.parameters[0]) / MIN_SEGMENTS
+        share = lengths / (spline.parameters[-1] - spline.parameters[0])
         splits = (np.ones(lengths.size, dtype=int) if lengths.size >= MIN_SEGMENTS
-                  else np.maximum(1, np.ceil(lengths / longest * (1 - 1e-9)).astype(int)))
+                  else np.maximum(1, np.rint(share * MIN_SEGMENTS)).astype(int))
         # grid segment j lies in spline segment segments[j], offsets[j] into it
         self._segments = np.repeat(np.arange(lengths.size), splits)
         firsts = np.concatenate([[0], np.cumsum(splits)])

@@ -98,7 +98,7 @@ def time_along_path(positions: np.ndarray, path_parameter: np.ndarray, limits: M
     PathTiming
         Between samples the joints follow a C1 cubic curve in ``s``: positions and velocities
         are continuous, accelerations jump at the samples. The path is timed on its samples,
-        with points added between them when it has fewer than 100 segments; the joints'
+        with points added between them when it has fewer than 200 segments; the joints'
         velocities and accelerations are bounded at those points and the middle of each
         segment, and measured at its quarters (a segment where a joint goes over by more than
         0.1 % is timed again with that joint's limits tightened there).

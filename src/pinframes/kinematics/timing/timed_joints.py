@@ -6,6 +6,8 @@ from abc import ABC, abstractmethod
 
 import numpy as np
 
+from ...errors import InvalidTimeError
+
 __all__ = ["TimedJoints"]
 
 
@@ -25,10 +27,20 @@ class TimedJoints(ABC):
         """Positions, velocities and accelerations, each shape ``(T, n)``, at ``seconds``.
 
         ``seconds`` (shape ``(T,)``, or a number) count from the motion's start and are
-        clipped to ``[0, duration]``; the velocities and accelerations are the exact time
-        derivatives of the positions (rad or m, per s and s^2).
+        clipped to ``[0, duration]`` (a NaN is an ``InvalidTimeError``); the velocities and
+        accelerations are the exact time derivatives of the positions (rad or m, per s and
+        s^2).
         """
 
     def _clipped(self, seconds: np.ndarray) -> np.ndarray:
-        """``seconds`` as a 1-D float array within ``[0, duration]``."""
-        return np.clip(np.asarray(seconds, dtype=float).reshape(-1), 0.0, self.duration)
+        """``seconds`` as a 1-D float array within ``[0, duration]``.
+
+        Raises
+        ------
+        InvalidTimeError
+            A time that is not a number (NaN).
+        """
+        times = np.asarray(seconds, dtype=float).reshape(-1)
+        if np.isnan(times).any():
+            raise InvalidTimeError("seconds must be numbers, got NaN", field="seconds")
+        return np.clip(times, 0.0, self.duration)
