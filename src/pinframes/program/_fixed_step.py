@@ -43,6 +43,7 @@ def assemble(moves: list[PlannedMove], start: FloatArray, step: float) -> Assemb
     first = 0
     for move, count in zip(moves, counts, strict=True):
         last = first + count
+        speed = None
         if count:
             local = np.arange(count + 1, dtype=np.float64) * step
             sampled = move.sampled(local, count * step)
@@ -50,7 +51,8 @@ def assemble(moves: list[PlannedMove], start: FloatArray, step: float) -> Assemb
             velocities[first:last + 1] = sampled[1]
             accelerations[first:last + 1] = sampled[2]
             reached[first:last + 1] &= sampled[3]
-        records.append(move.record(first * step, last * step))
+            speed = sampled[4]
+        records.append(move.record(first * step, last * step, speed))
         rows.append((first, last))
         first = last
     return Assembled(np.arange(total + 1, dtype=np.float64) * step, positions, velocities,

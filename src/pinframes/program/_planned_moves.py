@@ -65,46 +65,48 @@ class PlannedMove:
             return self.start
         return np.asarray(self.timing.sample(np.array([self.duration]))[0][0], dtype=float)
 
-    def sampled(self, local: FloatArray, stretched: float
-                ) -> tuple[FloatArray, FloatArray, FloatArray, NDArray[np.bool_]]:
+    def sampled(self, local: FloatArray, stretched: float) -> tuple[
+            FloatArray, FloatArray, FloatArray, NDArray[np.bool_], float | None]:
         """Positions, velocities, accelerations (T, n) and reached (T,) at ``local`` seconds
-        of the move stretched to last ``stretched`` seconds."""
+        of the move stretched to last ``stretched`` seconds; and for a linear or seam move
+        the tool's highest speed along its path then (m/s), else None."""
         count = local.shape[0]
         if self.timing is None or self.duration <= 0.0:
             zeros = np.zeros((count, self.start.shape[0]))
             return (np.broadcast_to(self.start, zeros.shape).copy(), zeros, zeros.copy(),
-                    np.ones(count, bool))
+                    np.ones(count, bool), None)
         scale = self.duration / stretched
         own = np.minimum(local * scale, self.duration)
         positions, velocities, accelerations = self.timing.sample(own)
-        reached = self._reached(own)
+        reached, speed = self._on_path(own, scale)
         return (np.asarray(positions, float), np.asarray(velocities, float) * scale,
-                np.asarray(accelerations, float) * scale**2, reached)
+                np.asarray(accelerations, float) * scale**2, reached, speed)
 
-    def record(self, start_s: float, end_s: float) -> MoveRecord:
+    def record(self, start_s: float, end_s: float, reached_speed: float | None
+               ) -> MoveRecord:
         """This move's record, started at ``start_s`` and ended at ``end_s`` seconds."""
-        if self.path is None or not isinstance(self.timing, PathTiming):
+        if self.path is None:
             return MoveRecord(self.name, self.kind, start_s, end_s)
-        stretch = self.duration / (end_s - start_s) if end_s > start_s else 1.0
-        seconds = np.linspace(0.0, self.duration, max(2, math.ceil(self.duration / 1e-3)))
-        parameter, rate = self.timing.parameter(seconds)
+        return MoveRecord(self.name, self.kind, start_s, end_s, self.path.requested_speed,
+                          reached_speed)
+
+    def _on_path(self, own: FloatArray, scale: float
+                 ) -> tuple[NDArray[np.bool_], float | None]:
+        """Whether the tool is on its target at ``own`` seconds of the move, and its highest
+        speed along the path then (m/s; None for a point-to-point move)."""
+        count = own.shape[0]
+        reached = np.ones(count, bool)
+        if self.path is None or not isinstance(self.timing, PathTiming):
+            if self.node_reached is not None:
+                reached[own >= self.duration] = bool(self.node_reached.all())
+            return reached, None
+        parameter, rate = self.timing.parameter(own)
         per_parameter = np.interp(parameter, self.path.parameter,
                                   self.path.tool_speed_per_parameter)
-        reached = float(np.max(np.abs(rate) * per_parameter)) * stretch
-        return MoveRecord(self.name, self.kind, start_s, end_s, self.path.requested_speed,
-                          reached)
-
-    def _reached(self, own: FloatArray) -> NDArray[np.bool_]:
-        """Whether the tool is on its target at ``own`` seconds of the move."""
-        count = own.shape[0]
-        if self.node_reached is None:
-            return np.ones(count, bool)
-        if self.path is None or not isinstance(self.timing, PathTiming):
-            reached = np.ones(count, bool)
-            reached[own >= self.duration] = bool(self.node_reached.all())
-            return reached
-        parameter, _ = self.timing.parameter(own)
-        nodes = self.path.parameter
-        after = np.clip(np.searchsorted(nodes, parameter), 0, nodes.shape[0] - 1)
-        before = np.clip(after - 1, 0, nodes.shape[0] - 1)
-        return self.node_reached[before] & self.node_reached[after]
+        speed = float(np.max(np.abs(rate) * per_parameter)) * scale
+        if self.node_reached is not None:
+            nodes = self.path.parameter
+            after = np.clip(np.searchsorted(nodes, parameter), 0, nodes.shape[0] - 1)
+            before = np.clip(after - 1, 0, nodes.shape[0] - 1)
+            reached = self.node_reached[before] & self.node_reached[after]
+        return reached, speed

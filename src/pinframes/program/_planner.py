@@ -74,7 +74,7 @@ class ProgramPlanner:
         self.limits, self.step, self.strict = limits, step, strict
         self.current = np.array(start, dtype=float)
         self.clock = 0.0
-        self._work = tree.copy()
+        self._work: FrameTree | None = None  # a copy for the tool's poses, made when needed
 
     def plan(self, move: Move) -> list[PlannedMove]:
         """The planned parts of ``move`` (a weld has up to four), the program moved on to
@@ -235,6 +235,8 @@ class ProgramPlanner:
 
     def tool_pose(self, positions: FloatArray, reference: str) -> Pose:
         """The tool's pose in ``reference`` now with the program's joints at ``positions``."""
+        if self._work is None:
+            self._work = self.tree.copy()
         self._work.set_joint_trajectory([self.clock], positions[None, :], self.joint_names)
         return _static(self._work.pose(self.tool, reference, times=[self.clock]), 0)
 

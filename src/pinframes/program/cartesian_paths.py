@@ -17,7 +17,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..values.interpolation import rotation_steps
-from ..values.pose import Pose
+from ..values.pose import Pose, trusted_pose
+from ..values.rotations import matrix_from_axis_angle
 from ..values.weave import Weave
 
 __all__ = ["NODE_STEP_M", "NODE_STEP_RAD", "NOMINAL_STEP_S", "TargetPath", "filled_times",
@@ -75,14 +76,17 @@ def line_path(start: Pose, end: Pose, speed: float | None, at: float,
     nodes :data:`NOMINAL_STEP_S` apart; the parameter is metres along the line (radians of
     the turn when the origin does not move)."""
     length = float(np.linalg.norm(end.translation - start.translation))
-    turn = float(np.linalg.norm(rotation_steps(np.stack([start.rotation, end.rotation]))))
+    step = rotation_steps(np.stack([start.rotation, end.rotation]))[0]  # the turn, rad
+    turn = float(np.linalg.norm(step))
     count = max(2, math.ceil(length / NODE_STEP_M) + 1, math.ceil(turn / NODE_STEP_RAD) + 1)
     fraction = np.linspace(0.0, 1.0, count)
-    ends = Pose(np.stack([start.translation, end.translation]),
-                np.stack([start.rotation, end.rotation]), times=[0.0, 1.0])
-    sampled = ends.at(fraction)
+    translation = start.translation + fraction[:, None] * (end.translation - start.translation)
+    # slerp: the turn taken in equal parts about its one axis
+    axis = step / turn if turn > 0.0 else np.array([0.0, 0.0, 1.0])
+    rotation = matrix_from_axis_angle(axis, fraction * turn) @ start.rotation
     times = at + NOMINAL_STEP_S * (np.arange(count) - (count - 1 if ending else 0))
-    poses = Pose(sampled.translation, sampled.rotation, times=times)
+    nanoseconds = np.round(times * 1e9).astype(np.int64)
+    poses = trusted_pose(rotation, translation, nanoseconds)
     if length > 1e-9:
         return TargetPath(poses, fraction * length, speed, np.ones(count))
     # a turn on the spot: no speed of the origin to keep
