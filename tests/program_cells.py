@@ -11,6 +11,7 @@ import pinocchio as pin
 
 import pinframes
 from ik_paths import frame_poses
+from robot_checks import urdf_velocity_limits
 
 ROBOT_URDF = Path(__file__).parents[1] / "models" / "welding_robot" / "welding_robot.urdf"
 TOOL_OFFSET = pin.SE3(np.eye(3), np.array([0.0, 0.0, 0.2]))
@@ -44,6 +45,18 @@ def tool_placements(positions: np.ndarray) -> list[pin.SE3]:
 def tool_origins(positions: np.ndarray) -> np.ndarray:
     """The tool's origin (T, 3) in the world at each row of ``positions``."""
     return np.array([placement.translation for placement in tool_placements(positions)])
+
+
+def limit_shares(positions: np.ndarray, step: float) -> tuple[float, float]:
+    """The largest share of its limit that a joint's velocity and acceleration take, from
+    finite differences of ``positions`` (T, 6) sampled every ``step`` seconds: the URDF's
+    velocity limits (read by yourdfpy) and :data:`ACCELERATION`."""
+    velocity = np.diff(positions, axis=0) / step
+    acceleration = np.diff(positions, n=2, axis=0) / step**2
+    urdf = urdf_velocity_limits(ROBOT_URDF)
+    limit = np.array([urdf[f"joint_{i}"] for i in range(1, 7)])
+    return float((np.abs(velocity) / limit).max()), float(np.abs(acceleration).max()
+                                                          / ACCELERATION)
 
 
 def with_midpoints(positions: np.ndarray) -> np.ndarray:
