@@ -4,6 +4,7 @@ from .errors import (
     ArgumentTypeError,
     BagWarning,
     BrokenMimicWarning,
+    CollisionError,
     DataNotFoundError,
     ExtrapolationError,
     ExtrapolationWarning,
@@ -38,7 +39,7 @@ from .formats.joint_limits import read_joint_limits
 from .formats.joint_trajectory.writer import write_joint_trajectory
 from .formats.limits import Limits
 from .formats.rosbag import read_rosbag
-from .formats.scene import read_scene, write_scene
+from .formats.scene import read_program, read_scene, write_scene
 from .formats.tables import write_poses
 from .formats.urdf import read_urdf, write_urdf
 from .kinematics import (
@@ -50,11 +51,13 @@ from .kinematics import (
     Velocity,
     WeldProcess,
 )
+from .program import WeldProgram
 from .tree import FrameTree
 from .values.geometry import FrameGeometry, Shape
 from .values.joint import Joint, Mimic
 from .values.joint_rate_limits import JointRateLimits
 from .values.joint_trajectory import JointTrack, JointTrajectory
+from .values.motion import CollisionRecord, Motion, MoveRecord
 from .values.pose import Pose
 from .values.pose_stack import PoseStack
 from .values.shapes import Box, Cylinder, Mesh, Sphere
@@ -71,6 +74,8 @@ __all__ = [
     "Box",
     "BrokenMimicWarning",
     "Clearance",
+    "CollisionError",
+    "CollisionRecord",
     "Cylinder",
     "DataNotFoundError",
     "ExtrapolationError",
@@ -100,6 +105,8 @@ __all__ = [
     "Limits",
     "Mesh",
     "Mimic",
+    "Motion",
+    "MoveRecord",
     "NameNotFoundError",
     "PinframesError",
     "PinocchioTree",
@@ -121,12 +128,14 @@ __all__ = [
     "Velocity",
     "Weave",
     "WeldProcess",
+    "WeldProgram",
     "WriteError",
     "__version__",
     "read",
     "read_frames_yaml",
     "read_joint_limits",
     "read_joint_trajectory",
+    "read_program",
     "read_rosbag",
     "read_scene",
     "read_urdf",

@@ -23,6 +23,7 @@ __all__ = [
     "ArgumentTypeError",
     "BagWarning",
     "BrokenMimicWarning",
+    "CollisionError",
     "DataNotFoundError",
     "ExtrapolationError",
     "ExtrapolationWarning",
@@ -181,6 +182,11 @@ class DataNotFoundError(NameNotFoundError):
 class TargetNotReachedError(PinframesError, ValueError):
     """A target that ``solve_joints(..., strict=True)`` could not reach within the joint
     limits and tolerances (the message names the time and the residual errors)."""
+
+
+class CollisionError(PinframesError, ValueError):
+    """A planned motion that comes closer to something than its margin allows
+    (``WeldProgram.plan(strict=True)``); the message names the move and the frames."""
 
 
 class FileFormatError(PinframesError, ValueError):

@@ -184,7 +184,8 @@ def test_demo_on_the_base_install_writes_the_csv_and_says_what_the_extras_add(
     assert (tmp_path / "out" / "torch_poses.csv").exists()
     assert not (tmp_path / "out" / "torch_path.png").exists()
     lines = result.stderr.splitlines()
-    assert lines[0] == f"pinframes: wrote {tmp_path / 'out' / 'torch_poses.csv'}"
+    assert lines[0] == (f"pinframes: wrote {tmp_path / 'out' / 'torch_poses.csv'}, "
+                        f"{tmp_path / 'out' / 'program_run.csv'}")  # the cell's program
     plot_lines = [line for line in lines if "pinframes[plot]" in line]
     assert len(plot_lines) == 1 and 'pip install "pinframes[plot]"' in plot_lines[0]
     assert lines[2:] == ['pinframes: no 3-D page: the 3-D page needs u-msgpack-python: pip '

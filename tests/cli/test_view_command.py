@@ -75,9 +75,10 @@ def test_demo_without_meshcat_writes_the_rest_and_says_what_the_extra_adds(
     assert main(["demo", "--out", str(tmp_path)]) == 0
     messages = capsys.readouterr().err
     assert 'no 3-D page: the 3-D page needs meshcat: pip install "pinframes[view]"' in messages
-    # everything but the page: the plot, the poses and the ROS recording (ros extra installed)
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["cell_run.mcap", "torch_path.png",
-                                                          "torch_poses.csv"]
+    # everything but the page: the plot, the poses, the ROS recording (ros extra installed)
+    # and the cell's planned program
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cell_run.mcap", "program_run.csv",
+                                                          "torch_path.png", "torch_poses.csv"]
 
 
 def _box_stl() -> bytes:

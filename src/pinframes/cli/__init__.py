@@ -20,13 +20,26 @@ from .. import __version__
 from ..errors import PinframesError
 from ..formats.limits import Limits, using_limits
 from ..kinematics.collision.mesh_files import MODEL_PATH_VARIABLE, PACKAGE_PATH_VARIABLE
-from . import batch, clearance, convert, demo, info, plot, pose, process, solve, transform, view
+from . import (
+    batch,
+    clearance,
+    convert,
+    demo,
+    info,
+    plot,
+    pose,
+    process,
+    program,
+    solve,
+    transform,
+    view,
+)
 from ._files import xacro_argument
 
 __all__ = ["main"]
 
-_SUBCOMMANDS = (demo, info, pose, transform, process, solve, clearance, convert, plot, view,
-                batch)
+_SUBCOMMANDS = (demo, info, pose, transform, process, solve, program, clearance, convert, plot,
+                view, batch)
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -19,6 +19,7 @@ from ..view import write_view
 from ._cell_clearance import clearance_lines
 from ._demo_bag import BAG_FILE, write_demo_bag
 from ._demo_process import DEFAULT_SEAM, demo_process, plot_process, process_table
+from ._demo_program import PROGRAM_FILE, program_lines
 from ._evaluate import pose_in_chunks, pose_velocity, terminal_stderr
 from ._files import read_tree, require_frames
 from ._output import output_poses
@@ -48,8 +49,9 @@ def add_parser(subparsers: Subparsers, parents: list[argparse.ArgumentParser]) -
         "and the welding process along the seam (travel speed, torch angles, offset), "
         f"print a summary and write the poses ({POSES_FILE}), a plot ({PLOT_FILE}; needs "
         f"pinframes[plot]), an animated 3-D page of the whole run ({VIEW_FILE}; needs "
-        f"pinframes[view]) and the run as a ROS recording ({BAG_FILE}, MCAP; needs "
-        "pinframes[ros]).", tree_file=None)
+        f"pinframes[view]), the run as a ROS recording ({BAG_FILE}, MCAP; needs "
+        f"pinframes[ros]) and, for a scene with a program section, its planned motion "
+        f"({PROGRAM_FILE}).", tree_file=None)
     parser.add_argument("--out", metavar="DIR", default=".",
                         help="folder for the CSV, PNG and HTML files (default: the current folder; "
                         "created if missing, but not its parent folders)")
@@ -154,6 +156,9 @@ def run(args: argparse.Namespace) -> int:
         written.append(bag)
     else:
         missing.append(bag_line)
+    program, program_file = program_lines(tree, scene, out, len("seam length travelled"))
+    if program_file is not None:
+        written.append(program_file)
     print(f"{args.tool} relative to {args.workpiece} ({scene.name})")
     table = summary.table()
     sys.stdout.write(table)
@@ -161,6 +166,7 @@ def run(args: argparse.Namespace) -> int:
         sys.stdout.write(process_table(process, len("seam length travelled")))
     sys.stdout.write(clearance_lines(tree))
     sys.stdout.write(_reached_row(tree, args.tool, table))
+    sys.stdout.write(program)
     if bag is not None:
         print(bag_line)
     print(f"pinframes: wrote {', '.join(map(str, written))}", file=sys.stderr)

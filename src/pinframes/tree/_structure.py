@@ -32,6 +32,7 @@ from ..errors import (
 from ..kinematics import TreeDescription
 from ..values.joint import Joint
 from ..values.joint_trajectory import JointTrajectory, joint_trajectories_from_samples
+from ..values.motion import Motion
 from ..values.pose import Pose
 from ..values.spatial_data import SpatialData
 from ..values.subsystem import Subsystem
@@ -204,6 +205,16 @@ class EditableTree:
         trajectories = joint_trajectories_from_samples(self.joints, times, positions, joint_names)
         for name, trajectory in trajectories.items():
             self.replace_joint_trajectory(name, trajectory)
+
+    def set_motion(self, motion: Motion) -> None:
+        """Drive the joints of a planned program (``WeldProgram.plan``) with its samples, at
+        its times (after its reference time when it has one): ``pose``, ``clearance``,
+        ``weld_process`` and the 3-D page then show the whole run."""
+        if not isinstance(motion, Motion):
+            raise ArgumentTypeError(f"expected a Motion, got {type(motion).__name__}",
+                                    field="motion")
+        times = motion.absolute_times if motion.reference_time is not None else motion.times
+        self.set_joint_trajectory(times, motion.positions, list(motion.joint_names))
 
     def replace_joint_trajectory(self, joint_name: str, trajectory: JointTrajectory | None
                                  ) -> None:

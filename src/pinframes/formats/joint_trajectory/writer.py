@@ -28,6 +28,7 @@ from ...errors import (
 from ...kinematics import JointSolution
 from ...tree import FrameTree
 from ...tree.urdf_names import urdf_joint_names
+from ...values.motion import Motion
 from ...values.numbers import float_array
 from ...values.timeconv import parse_time_axis
 from .._paths import path_argument
@@ -43,16 +44,18 @@ Times = NDArray[np.datetime64] | NDArray[np.timedelta64]
 
 
 def write_joint_trajectory(
-    trajectory: JointSolution | tuple[Any, Any, Sequence[str]],
+    trajectory: JointSolution | Motion | tuple[Any, Any, Sequence[str]],
     path: str | os.PathLike[str], *, tree: FrameTree | None = None,
 ) -> None:
     """Write joint values over time, atomically, in the format the name says.
 
     Parameters
     ----------
-    trajectory : JointSolution or (times, positions, joint_names)
-        A solution of :meth:`FrameTree.solve_joints` (its absolute times when it has a
-        reference time), or T times (seconds, durations or timestamps, strictly
+    trajectory : JointSolution, Motion or (times, positions, joint_names)
+        A solution of :meth:`FrameTree.solve_joints` or a planned program's
+        :class:`~pinframes.values.motion.Motion` (their absolute times when they have a
+        reference time; a motion's velocities and accelerations go into an NPZ and a bag's
+        ``JointTrajectory`` too), or T times (seconds, durations or timestamps, strictly
         increasing), positions (T, n) in radians or metres and n joint names.
     path : path
         ``.csv`` (``time_s`` seconds, or ``time`` ISO timestamps, then one column per
@@ -79,17 +82,23 @@ def write_joint_trajectory(
         check_joint_names(names, csv_header=suffix == ".csv")
     except PinframesError as exc:
         raise exc.located(file=file) from None
+    rates = ((trajectory.velocities, trajectory.accelerations)
+             if isinstance(trajectory, Motion) else None)
     if suffix == ".csv":
         seconds = times if times.dtype.kind == "M" else times.astype(np.int64) / 1e9
         with atomic_write(file, "w") as handle:
             handle.write(joint_trajectory_csv(seconds, positions, names))
     elif suffix == ".npz":
         buffer = io.BytesIO()
-        np.savez(buffer, times=times, positions=positions, joint_names=np.array(names, str))
+        arrays: dict[str, Any] = {"times": times, "positions": positions,
+                                  "joint_names": np.array(names, str)}
+        if rates is not None:
+            arrays.update(velocities=rates[0], accelerations=rates[1])
+        np.savez(buffer, **arrays)
         with atomic_write(file, "wb") as handle:
             handle.write(buffer.getvalue())
     elif suffix in BAG_SUFFIXES or not suffix or file.is_dir():
-        write_trajectory_bag(times, positions, names, file)
+        write_trajectory_bag(times, positions, names, file, rates=rates)
     else:
         raise FileFormatError(f"unknown joint trajectory file type {suffix!r}; expected .csv, "
                               ".npz, a ROS bag (.mcap, .bag, .db3) or a bag folder (a name "
@@ -99,7 +108,7 @@ def write_joint_trajectory(
 def _samples(trajectory: Any, tree: FrameTree | None
              ) -> tuple[Times, NDArray[np.float64], list[str]]:
     """Times (``datetime64[ns]`` or ``timedelta64[ns]``), positions (T, n) and names."""
-    if isinstance(trajectory, JointSolution):
+    if isinstance(trajectory, JointSolution | Motion):
         absolute = trajectory.absolute_times
         times = absolute if absolute is not None else trajectory.times.astype(
             "timedelta64[ns]")

@@ -54,17 +54,24 @@ def joint_state(types: dict[str, Any], stamp_ns: int, names: Sequence[str],
 
 
 def joint_trajectory(types: dict[str, Any], names: Sequence[str],
-                     offsets_ns: NDArray[np.int64], positions: NDArray[np.float64]) -> Any:
+                     offsets_ns: NDArray[np.int64], positions: NDArray[np.float64],
+                     rates: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None
+                     ) -> Any:
     """A ``trajectory_msgs/JointTrajectory``: one point per sample, ``time_from_start`` the
-    sample's ``offsets_ns`` after the first; ``header.stamp`` zero, which a
+    sample's ``offsets_ns`` after the first, with the ``rates`` (velocities and
+    accelerations, (T, n)) when given; ``header.stamp`` zero, which a
     ``joint_trajectory_controller`` reads as "start on receipt"."""
     duration = types["builtin_interfaces/msg/Duration"]
     point = types["trajectory_msgs/msg/JointTrajectoryPoint"]
     empty = np.empty(0, np.float64)
-    points = [point(positions=np.asarray(row, np.float64), velocities=empty,
-                    accelerations=empty, effort=empty,
+    count = positions.shape[0]
+    velocities = [empty] * count if rates is None else np.asarray(rates[0], np.float64)
+    accelerations = [empty] * count if rates is None else np.asarray(rates[1], np.float64)
+    points = [point(positions=np.asarray(row, np.float64), velocities=np.asarray(rate),
+                    accelerations=np.asarray(change), effort=empty,
                     time_from_start=duration(sec=offset // _NS, nanosec=offset % _NS))
-              for offset, row in zip(offsets_ns.tolist(), positions, strict=True)]
+              for offset, row, rate, change in zip(offsets_ns.tolist(), positions, velocities,
+                                                   accelerations, strict=True)]
     return types["trajectory_msgs/msg/JointTrajectory"](
         header=_header(types, 0, ""), joint_names=list(names), points=points)
 

@@ -30,10 +30,14 @@ JOINT_STATES_TOPIC = "/joint_states"
 
 def write_trajectory_bag(times: NDArray[np.datetime64] | NDArray[np.timedelta64],
                          positions: NDArray[np.float64], joint_names: list[str],
-                         path: str | os.PathLike[str]) -> None:
+                         path: str | os.PathLike[str], *,
+                         rates: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None
+                         ) -> None:
     """Write T samples of ``joint_names`` (``positions`` (T, n), radians or metres, at
     strictly increasing ``times``: ``datetime64[ns]`` or ``timedelta64[ns]``) to the bag
-    ``path`` (its kind told by the name, as :func:`write_rosbag` does), atomically."""
+    ``path`` (its kind told by the name, as :func:`write_rosbag` does), atomically; with
+    ``rates`` (velocities and accelerations, (T, n) each, per s and s^2), the
+    ``JointTrajectory``'s points carry them."""
     stamps = np.asarray(times).astype(np.int64)
     try:
         check_stamps(int(stamps[0]), int(stamps[-1]), output_kind(path) == ROS1,
@@ -44,7 +48,7 @@ def write_trajectory_bag(times: NDArray[np.datetime64] | NDArray[np.timedelta64]
         bag.topic(JOINT_TRAJECTORY_TOPIC, "trajectory_msgs/msg/JointTrajectory")
         bag.topic(JOINT_STATES_TOPIC, "sensor_msgs/msg/JointState")
         bag.write(JOINT_TRAJECTORY_TOPIC, int(stamps[0]), outgoing.joint_trajectory(
-            bag.types, joint_names, stamps - stamps[0], positions))
+            bag.types, joint_names, stamps - stamps[0], positions, rates))
         for stamp, row in zip(stamps.tolist(), positions.tolist(), strict=True):
             bag.write(JOINT_STATES_TOPIC, stamp,
                       outgoing.joint_state(bag.types, stamp, joint_names, row))

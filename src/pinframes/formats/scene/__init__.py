@@ -1,6 +1,7 @@
 """pinframes scene files: a welding cell (frames, layers, robots, tools) in one YAML file."""
 
 from .._registry import FileFormat
+from ._read_program import read_program
 from ._reader import read_scene
 from ._recognise import (
     SCENE_FORMAT_KEY,
@@ -11,8 +12,8 @@ from ._recognise import (
 )
 from ._writer import write_scene
 
-__all__ = ["SCENE_FORMAT", "SCENE_FORMAT_KEY", "SCENE_FORMAT_VERSION", "read_scene",
-           "write_scene"]
+__all__ = ["SCENE_FORMAT", "SCENE_FORMAT_KEY", "SCENE_FORMAT_VERSION", "read_program",
+           "read_scene", "write_scene"]
 
 SCENE_FORMAT = FileFormat(
     "scene", "scene", (".yaml", ".yml"), read_scene, write_scene, ("time",),

@@ -13,6 +13,8 @@ The format is described in ``docs/scene-format.md``; in short::
                srdf: robot.srdf, package_dirs: [meshes], xacro: true,
                xacro_args: {ur_type: ur5e}}]
     tools:   [{name: tcp, parent: robot/flange, xyz: [0, 0, 0.2]}]
+    program: {tool: tcp, limits: {joint_1: {acceleration: 5}, ...},
+              moves: [{move_joints: home}, {weld: seam_point, torch: torch_target}]}
 
 Paths inside a scene are relative to the scene file. Lengths in metres, angles in radians.
 """
@@ -40,6 +42,7 @@ from ._geometry import add_geometry, read_geometry
 from ._motion import POSE_KEYS, SceneMotion
 from ._recognise import LAYER_FORMATS, SCENE_FORMAT_KEY, SCENE_FORMAT_VERSION, TOP_KEYS
 from ._unit_check import UnitCheck
+from .program_section import PROGRAM_METADATA_KEY, read_program_section
 
 __all__ = ["read_scene"]
 
@@ -131,6 +134,8 @@ class _Scene:
     # -- building --------------------------------------------------------------------------
     def build(self) -> FrameTree:
         """A fresh tree with every entry added; nothing is returned half-built."""
+        program = (read_program_section(self.content["program"], self.fields)
+                   if "program" in self.content else None)
         layers = [self._layer(index, item)
                   for index, item in enumerate(self._list("layers"))]
         tree = FrameTree(self.root, name=self._optional_str("name"),
@@ -151,6 +156,8 @@ class _Scene:
                 self._apply(entry, tree)
             pending = [entry for entry in pending if entry not in ready]
         self._units.warn()
+        if program is not None:
+            tree.metadata[PROGRAM_METADATA_KEY] = program
         return tree
 
     def _apply(self, entry: _Entry, tree: FrameTree) -> None:

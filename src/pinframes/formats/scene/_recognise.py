@@ -20,7 +20,7 @@ SCENE_FORMAT_VERSION = 1
 LAYER_FORMATS = ("frames.yaml", "asdf")
 """Formats a scene layer may be in."""
 TOP_KEYS = {SCENE_FORMAT_KEY, "name", "root", "reference_time", "layers", "frames", "robots",
-            "tools"}
+            "tools", "program"}
 """The keys a scene file may have at its top level."""
 _FILE_KEYS = {"layers": ("file",), "robots": ("urdf", "trajectory", "srdf")}
 """The keys of entries that name files (relative to the scene's folder)."""
@@ -62,4 +62,7 @@ def scene_files_read(source: InputFile) -> list[Path]:
                     path = source.path.parent / value
                     named += files_read(path, among=LAYER_FORMATS) if section == "layers" \
                         else [path]
+    program = content.get("program") if isinstance(content, dict) else None
+    if isinstance(program, dict) and isinstance(program.get("limits"), str):
+        named.append(source.path.parent / program["limits"])  # a MoveIt joint_limits.yaml
     return named

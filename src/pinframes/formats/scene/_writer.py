@@ -7,7 +7,8 @@ A link driven by a robot joint becomes a moving frame keyed at its joint's traje
 samples, which is exact: between two samples a revolute joint turns about a fixed axis, as
 SLERP does, and a prismatic joint slides, as linear interpolation does. Joint kinds, limits
 and the URDF itself are not kept; use ``write_urdf`` for those. Every frame's shapes (its
-URDF link's and those of ``add_geometry``) are kept as its ``geometry`` entry.
+URDF link's and those of ``add_geometry``) are kept as its ``geometry`` entry. A program
+section the scene was read with is written back as it was read.
 """
 
 from __future__ import annotations
@@ -28,6 +29,7 @@ from .._writable import check_writable_tree, refuse_attached_data
 from ..atomic import atomic_write
 from ._geometry import geometry_entries
 from ._recognise import SCENE_FORMAT_KEY, SCENE_FORMAT_VERSION
+from .program_section import PROGRAM_METADATA_KEY
 
 __all__ = ["write_scene"]
 
@@ -85,6 +87,9 @@ def write_scene(tree: FrameTree, path: str | os.PathLike[str], time: Any = None)
         frames.append(entry)
     if frames:
         document["frames"] = frames
+    program = tree.metadata.get(PROGRAM_METADATA_KEY)
+    if isinstance(program, dict):  # the program a scene was read with, as it was read
+        document["program"] = program
     text = yaml.dump(document, Dumper=_FlowListDumper, sort_keys=False, width=100,
                      allow_unicode=True)
     with atomic_write(path, "w") as handle:
