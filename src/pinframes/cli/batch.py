@@ -30,7 +30,8 @@ def add_parser(subparsers: Subparsers, parents: list[argparse.ArgumentParser]) -
         "input files and options did not change since an earlier batch into OUT are "
         "skipped. The workers read every run under the --max-... limits given before or "
         "after 'batch'; a run read under higher limits is skipped, one refused under other "
-        "limits is tried again. Needs pinframes[batch].", tree_file=None)
+        "limits is tried again. No xacro file is expanded unless --xacro is given (it runs "
+        "the files' code on every worker). Needs pinframes[batch].", tree_file=None)
     parser.add_argument("runs", nargs="+", metavar="RUNS",
                         help="run files (scene, ASDF, ...), glob patterns (quote them), or "
                         "runs lists (.csv with header 'run,file')")
@@ -79,7 +80,8 @@ def run(args: argparse.Namespace) -> int:
                         times=args.times, step=args.step, time_ref=args.time_ref,
                         velocity=args.velocity, scheduler=args.scheduler, workers=args.workers,
                         limits=current_limits(),  # --max-... (main() sets them), to the workers
-                        progress_bar=terminal_stderr() is not None, log=sys.stderr, **extra)
+                        progress_bar=terminal_stderr() is not None, log=sys.stderr,
+                        xacro=bool(getattr(args, "xacro", None)), **extra)
     print(f"pinframes: {batch_summary(summary)}", file=sys.stderr)
     if summary.bad:
         for record in summary.bad:

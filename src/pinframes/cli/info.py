@@ -106,7 +106,7 @@ def _srdf_robots(tree: FrameTree) -> list[dict[str, Any]]:
                         for group, joints in robot.semantics.groups.items()},
              "group_states": {state: value.group
                               for state, value in robot.semantics.states.items()},
-             "disabled_pairs": len(robot.semantics.disabled_pairs)}
+             "disabled_pairs": robot.semantics.disabled_pair_count()}
             for robot in semantic_robots(tree)]
 
 

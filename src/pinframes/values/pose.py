@@ -277,7 +277,9 @@ class Pose(SampledInTime):
         writes it as a ``weave`` entry).
 
         Raises :class:`~pinframes.errors.InvalidPoseError` naming the field (``amplitude``,
-        ``frequency``, ``pattern``, ``dwell``, ``times``).
+        ``frequency``, ``pattern``, ``dwell``, ``times``); ``times`` that all fall on whole
+        half periods (a step of the period or half of it) sample a straight line, and are
+        refused too.
         """
         pattern_spec = Weave(metres(amplitude, "amplitude"),
                              magnitude_in(frequency, "hertz", "frequency"), pattern, dwell)
@@ -285,6 +287,7 @@ class Pose(SampledInTime):
         if axis is None or axis.offsets.shape[0] < 2:
             raise InvalidPoseError("a weave needs at least two times", field="times")
         seconds = (axis.offsets - axis.offsets[0]) / 1e9
+        pattern_spec.check_sample_times(seconds)
         count = axis.offsets.shape[0]
         pose = cls._trusted(np.broadcast_to(np.eye(3), (count, 3, 3)).copy(),
                             pattern_spec.offsets(seconds), axis.offsets, axis.reference)
