@@ -2,9 +2,9 @@
 (``_files``: the two registry formats and the one joint CSV writer) and written to CSV, NPZ
 or a ROS bag (:mod:`.writer`).
 
-The writer is a public module of its own, not named here: it reads the URDF robots' joint
-names (``formats.urdf``), whose writer in turn writes joint values with
-:func:`joint_trajectory_csv`.
+The writer is a public module of its own, not named here: it writes bags through
+``formats.rosbag``, which reads ``formats.urdf``, whose writer in turn writes joint values
+with :func:`joint_trajectory_csv`.
 """
 
 from ._files import (
