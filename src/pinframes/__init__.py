@@ -43,6 +43,7 @@ from .formats.urdf import read_urdf, write_urdf
 from .kinematics import (
     Clearance,
     FrameJacobian,
+    IkSolutions,
     JointSolution,
     PinocchioTree,
     Snapshot,
@@ -82,6 +83,7 @@ __all__ = [
     "FramesYamlWarning",
     "GeometryError",
     "GeometryWarning",
+    "IkSolutions",
     "InvalidDataError",
     "InvalidPoseError",
     "InvalidTimeError",

@@ -56,6 +56,9 @@ class JointSolution(Timed):
         ``(a, b)`` with the tool's z ``Rx(a) Ry(b)`` the target's (about the target's x, then
         the y so turned): ``z = (sin b, -sin a cos b, cos a cos b)`` in the target's axes.
         None without windows.
+    configurations : ndarray of str, shape (T,), or None
+        For a 6-axis arm of a closed-form family (docs/closed-form-ik.md), each sample's
+        configuration flags, e.g. ``"front,up,noflip"``; None for other chains.
     """
 
     joint_names: tuple[str, ...]
@@ -68,6 +71,7 @@ class JointSolution(Timed):
     velocity_limits: FloatArray
     velocity_limit_joints: tuple[str, ...]
     tilt: FloatArray | None = None
+    configurations: NDArray[np.str_] | None = None
 
     @property
     def velocities(self) -> FloatArray:

@@ -1,0 +1,118 @@
+"""`IkSolutions`: every solution of a recognised arm at every sample, what
+``FrameTree.ik_solutions`` returns, and :func:`every_solution`, which makes them from the
+eight branches of the closed form, the joint limits and the whole turns a joint may make.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ...values.timed import Timed
+from .arm_shapes import ArmShape
+from .configurations import BRANCH_NAMES, kuka_status
+from .opw import opw_solutions
+from .ur_type import ur_solutions
+
+__all__ = ["LIMIT_SLACK", "IkSolutions", "branch_angles", "every_solution", "turn_periods"]
+
+FloatArray = NDArray[np.float64]
+
+LIMIT_SLACK = 1e-12
+"""Radians by which a solution may pass a joint limit (rounding) and still be within it."""
+
+
+@dataclass(frozen=True)
+class IkSolutions(Timed):
+    """Every solution of a 6-axis arm of a closed-form family at every sample.
+
+    Attributes
+    ----------
+    joint_names : tuple of str
+        The solved joints, the last axis of :attr:`positions`.
+    positions : ndarray, shape (T, k, n)
+        Joint values, radians, per sample and branch; NaN where the branch has no solution
+        within the joint limits.
+    configurations : ndarray of str, shape (k,)
+        Each branch's name: its flags (``"front,up,noflip"``, see docs/closed-form-ik.md),
+        followed, when a joint's range spans more than a turn, by ``/`` and one digit per
+        such joint (in chain order): which of its values within the range (0 the lowest).
+    valid : ndarray of bool, shape (T, k)
+        Where :attr:`positions` hold a solution.
+    times : ndarray of timedelta64[ns], shape (T,)
+        Sample times after :attr:`reference_time` (or plain offsets when it is None).
+    reference_time : numpy.datetime64 or None
+        What :attr:`times` count from.
+    arm : ArmShape
+        The recognised arm: its family, its joints from the base out and their axes.
+    """
+
+    joint_names: tuple[str, ...]
+    positions: FloatArray
+    configurations: NDArray[np.str_]
+    valid: NDArray[np.bool_]
+    times: NDArray[np.timedelta64]
+    reference_time: np.datetime64 | None
+    arm: ArmShape
+
+    @property
+    def kuka_status(self) -> NDArray[np.int64]:
+        """KUKA's Status (T, k) of each solution (-1 where none; see docs/closed-form-ik.md)."""
+        order = [self.joint_names.index(name) for name in self.arm.joint_names]
+        status = kuka_status(self.arm, self.positions[..., order])
+        return np.where(self.valid, status, -1)
+
+    def __len__(self) -> int:
+        return int(self.positions.shape[0])
+
+
+def branch_angles(shape: ArmShape, rotations: FloatArray, translations: FloatArray,
+                  arm: int | None = None) -> FloatArray:
+    """The joint values (T, 8, 6) of the eight branches (in the shape's joint order, each
+    within half a turn of 0) that move the tool from its zero configuration by
+    ``rotations`` (3, 3, T) and ``translations`` (3, T); NaN out of reach. With ``arm`` (a
+    branch index), the two wrists of its shoulder and elbow only (T, 2, 6)."""
+    solve = opw_solutions if shape.family == "opw" else ur_solutions
+    angles = solve(shape, rotations, translations, arm)
+    return angles / shape.scales
+
+
+def turn_periods(shape: ArmShape) -> FloatArray:
+    """The value (6,) by which each joint turns its axis a whole turn, radians."""
+    return 2.0 * math.pi / shape.scales
+
+
+def every_solution(shape: ArmShape, rotations: FloatArray, translations: FloatArray,
+                   lower: FloatArray, upper: FloatArray, whole_turns: bool
+                   ) -> tuple[FloatArray, NDArray[np.str_], NDArray[np.bool_]]:
+    """``(positions (T, k, 6), names (k,), valid (T, k))`` in the shape's joint order, for
+    joint limits ``lower`` and ``upper`` (6,) (infinite: a continuous joint); with
+    ``whole_turns``, a joint whose range spans more than a turn gives each of its values
+    within the range as a further branch, else the one nearest the middle of its range."""
+    base = branch_angles(shape, rotations, translations)  # (T, 8, 6)
+    period = turn_periods(shape)
+    span = upper - lower
+    bounded = np.isfinite(span)
+    counts = np.where(bounded & whole_turns,
+                      np.maximum(1, np.ceil(np.where(bounded, span, 0.0) / period - 1e-9)),
+                      1).astype(int)
+    middle = np.where(bounded, 0.5 * (np.where(bounded, lower, 0.0)
+                                      + np.where(bounded, upper, 0.0)), 0.0)
+    nearest_middle = base - period * np.round((base - middle) / period)
+    lowest = base + period * np.ceil((np.where(bounded, lower, 0.0) - base) / period)
+    first = np.where(counts > 1, lowest, nearest_middle)
+    turns = np.indices(tuple(counts)).reshape(6, -1).T  # (M, 6): which value within the range
+    positions = first[:, :, None, :] + turns * period  # (T, 8, M, 6)
+    count = positions.shape[0]
+    positions = positions.reshape(count, -1, 6)
+    valid = np.all((positions >= lower - LIMIT_SLACK) & (positions <= upper + LIMIT_SLACK),
+                   axis=-1)
+    positions[~valid] = np.nan
+    several = counts > 1
+    suffixes = [""] if not several.any() else [
+        "/" + "".join(str(turn) for turn in row[several]) for row in turns]
+    names = np.array([name + suffix for name in BRANCH_NAMES for suffix in suffixes])
+    return positions, names, valid

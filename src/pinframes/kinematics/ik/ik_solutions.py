@@ -1,0 +1,63 @@
+"""``FrameTree.ik_solutions``: every solution of a 6-axis arm of a closed-form family
+(:mod:`..closed_form`) at every sample, at once.
+
+The arguments are those of ``solve_joints`` and checked the same way; the path is planned as
+for ``solve_joints`` (the solved joints held out of the times), the arm recognised from its
+screws at zero (:mod:`._closed_form_arm`), and each chunk of samples solved at once.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ...errors import JointError
+from ...values.pose import Pose
+from ...values.timeline import TimedSource
+from .._description import TreeDescription
+from .._plan import plan_query, prepare_path
+from .._sampling import KERNEL_CHUNK
+from ..closed_form.solutions import IkSolutions, every_solution
+from ._closed_form_arm import arm_order, closed_form_arm, flange_motions
+from ._path_chunks import TARGET_SOURCE, _targets
+from ._solved_joints import solved_joints
+from .solve_joints import _joint_names, _reference
+
+__all__ = ["evaluate_ik_solutions"]
+
+
+def evaluate_ik_solutions(tree: TreeDescription, frame: str, target: str | Pose, *,
+                          relative_to: str | None, times: Any, time_ref: Any, joints: Any,
+                          whole_turns: bool) -> IkSolutions:
+    """``tree.ik_solutions(...)``; ``frame`` (and a target frame name) already checked."""
+    reference, target_pose = _reference(tree, frame, target, relative_to)
+    names = None if joints is None else _joint_names(joints, tree.joints_by_name, frame)
+    target_times = None if target_pose is None else target_pose.times
+    extra = () if target_pose is None or target_times is None else (
+        TimedSource(TARGET_SOURCE, target_times.astype(np.int64), target_pose.reference_time),)
+    path = prepare_path(tree, frame, reference)
+    if path.model is None:
+        raise JointError(f"no robot joint moves {frame!r} relative to {reference!r}",
+                         frame=frame, field="joints")
+    solved = solved_joints(path, tree.joints_by_name, tree.drives, names)
+    shape = closed_form_arm(path, solved, frame)
+    plan = plan_query(tree, frame, reference, times, time_ref, "clamp", held=solved.names,
+                      extra=extra)
+    order = arm_order(shape, solved.names)
+    lower, upper = solved.limits.lower[order], solved.limits.upper[order]
+    moments = plan.sample_times
+    shift = plan.shifts.get(TARGET_SOURCE, 0)
+    parts = []
+    for begin in range(0, moments.shape[0], KERNEL_CHUNK):
+        chunk = moments[begin:begin + KERNEL_CHUNK]
+        motions = flange_motions(path, chunk, plan.shifts, solved.names,
+                                 _targets(target_pose, chunk, shift))
+        parts.append(every_solution(shape, *motions, lower, upper, whole_turns))
+    positions = np.concatenate([part[0] for part in parts])
+    valid = np.concatenate([part[2] for part in parts])
+    columns = np.empty_like(positions)
+    columns[..., order] = positions
+    offsets = np.zeros(1, dtype=np.int64) if plan.offsets is None else plan.offsets
+    return IkSolutions(solved.names, columns, parts[0][1], valid,
+                       offsets.astype("timedelta64[ns]"), plan.reference_time, shape)
