@@ -17,9 +17,11 @@ __all__ = ["SINGULAR", "into_arm_plane", "shoulder_angles", "two_link_angles", "
 
 FloatArray = NDArray[np.float64]
 
-SINGULAR = 1e-9
+SINGULAR = 1e-7
 """Below this sine of the wrist's bend the wrist counts as straight: joint 4 (OPW) or
-joint 6 (UR-type) is then taken as 0 and the other wrist joint turns for both."""
+joint 6 (UR-type) is then taken as given (or 0) and the other wrist joint turns for both.
+(Rounding alone bends a straight wrist by about 1e-8 rad, which leaves the two joints'
+split to noise; taking the split as given turns the tool by at most pi times this.)"""
 
 
 def wrapped(angle: FloatArray) -> FloatArray:

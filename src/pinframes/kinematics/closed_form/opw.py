@@ -23,11 +23,13 @@ FloatArray = NDArray[np.float64]
 
 
 def opw_solutions(shape: ArmShape, rotations: FloatArray, translations: FloatArray,
-                  arm: int | None = None) -> FloatArray:
+                  arm: int | None = None, free: FloatArray | None = None) -> FloatArray:
     """Angles (T, 8, 6), radians about the shape's axes, that move the tool from its zero
     configuration by each of ``rotations`` (3, 3, T) and ``translations`` (3, T) (in the
     tool's axes at zero); branch ``4 back + 2 down + flip``; NaN where out of reach. With
-    ``arm`` (a branch index), only its shoulder and elbow: (T, 2, 6), no flip then flip."""
+    ``arm`` (a branch index), only its shoulder and elbow: (T, 2, 6), no flip then flip.
+    Where the wrist is straight, joint 4 takes ``free`` (T,) (radians about its axis; else
+    0) and joint 6 the rest."""
     axes = shape.axes
     centre = applied(rotations, shape.wrist_point) + translations  # (3, T)
     first = shoulder_angles(shape, centre)  # (T, 2)
@@ -53,7 +55,8 @@ def opw_solutions(shape: ArmShape, rotations: FloatArray, translations: FloatArr
                                 dot(axis4, tool_axis))
     fifth = wrapped(np.stack([centre5 + half5, centre5 - half5], axis=-1))  # (T, 2, 2, 2)
     fourth = turn_angle(axis4, rotated(axis5, fifth, axis6), tool_axis[..., None])
-    fourth = np.where(np.abs(np.sin(half5))[..., None] < SINGULAR, 0.0, fourth)
+    fourth = np.where(np.abs(np.sin(half5))[..., None] < SINGULAR,
+                      0.0 if free is None else free[:, None, None, None], fourth)
     across = rotated(axis4, -fourth, wrist_turned(axis5)[..., None])
     sixth = turn_angle(axis6, axis5, rotated(axis5, -fifth, across))
     count = first.shape[0]

@@ -12,12 +12,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ...values.timed import Timed
-from .arm_shapes import ArmShape
+from ._arm_steps import SINGULAR
+from .arm_shapes import ArmShape, OpwParameters
 from .configurations import BRANCH_NAMES, kuka_status
 from .opw import opw_solutions
 from .ur_type import ur_solutions
 
-__all__ = ["LIMIT_SLACK", "IkSolutions", "branch_angles", "every_solution", "turn_periods"]
+__all__ = ["LIMIT_SLACK", "STRAIGHT_WRIST", "IkSolutions", "branch_angles", "every_solution",
+           "free_wrist_joint", "turn_periods"]
 
 FloatArray = NDArray[np.float64]
 
@@ -48,6 +50,9 @@ class IkSolutions(Timed):
         What :attr:`times` count from.
     arm : ArmShape
         The recognised arm: its family, its joints from the base out and their axes.
+    reference_in_tool : (ndarray (3, 3), ndarray (3,))
+        The frame the targets are given in, in the tool's axes at the zero configuration
+        (at the first sample), metres: what :attr:`opw_parameters` are measured from.
     """
 
     joint_names: tuple[str, ...]
@@ -57,6 +62,13 @@ class IkSolutions(Timed):
     times: NDArray[np.timedelta64]
     reference_time: np.datetime64 | None
     arm: ArmShape
+    reference_in_tool: tuple[FloatArray, FloatArray]
+
+    @property
+    def opw_parameters(self) -> OpwParameters:
+        """The OPW parameters of an OPW arm in the frame the targets are given in (its z
+        along axis 1), as opw_kinematics names them (see :class:`OpwParameters`)."""
+        return self.arm.opw_parameters(*self.reference_in_tool)
 
     @property
     def kuka_status(self) -> NDArray[np.int64]:
@@ -70,14 +82,27 @@ class IkSolutions(Timed):
 
 
 def branch_angles(shape: ArmShape, rotations: FloatArray, translations: FloatArray,
-                  arm: int | None = None) -> FloatArray:
+                  arm: int | None = None, free: FloatArray | None = None) -> FloatArray:
     """The joint values (T, 8, 6) of the eight branches (in the shape's joint order, each
     within half a turn of 0) that move the tool from its zero configuration by
     ``rotations`` (3, 3, T) and ``translations`` (3, T); NaN out of reach. With ``arm`` (a
-    branch index), the two wrists of its shoulder and elbow only (T, 2, 6)."""
+    branch index), the two wrists of its shoulder and elbow only (T, 2, 6). Where the wrist
+    is singular its free joint (:func:`free_wrist_joint`) takes ``free`` (T,), else 0."""
     solve = opw_solutions if shape.family == "opw" else ur_solutions
-    angles = solve(shape, rotations, translations, arm)
+    angles = solve(shape, rotations, translations, arm,
+                   None if free is None else free * shape.scales[free_wrist_joint(shape)])
     return angles / shape.scales
+
+
+STRAIGHT_WRIST = SINGULAR
+"""The sine of joint 5's angle from the straight wrist below which the wrist is straight and
+the closed form takes its free joint (:func:`free_wrist_joint`) as given."""
+
+
+def free_wrist_joint(shape: ArmShape) -> int:
+    """The joint (index from the base) that a singular wrist leaves free: joint 4 of an
+    OPW arm (joint 6 turns for both), joint 6 of a UR-type arm."""
+    return 3 if shape.family == "opw" else 5
 
 
 def turn_periods(shape: ArmShape) -> FloatArray:

@@ -24,9 +24,10 @@ FloatArray = NDArray[np.float64]
 
 
 def ur_solutions(shape: ArmShape, rotations: FloatArray, translations: FloatArray,
-                 arm: int | None = None) -> FloatArray:
+                 arm: int | None = None, free: FloatArray | None = None) -> FloatArray:
     """As :func:`.opw.opw_solutions`, for a UR-type shape: angles (T, 8, 6), branch
-    ``4 back + 2 down + flip``, NaN where out of reach; with ``arm``, (T, 2, 6)."""
+    ``4 back + 2 down + flip``, NaN where out of reach; with ``arm``, (T, 2, 6). At the
+    wrist singularity (axis 6 along axes 2 to 4) joint 6 takes ``free`` (else 0)."""
     axes, points = shape.axes, shape.points
     normal, forward = shape.parallel, shape.forward
     axis5, axis6 = axes[4], axes[5]
@@ -41,7 +42,8 @@ def ur_solutions(shape: ArmShape, rotations: FloatArray, translations: FloatArra
     fifth = wrapped(np.stack([centre5 + half5, centre5 - half5], axis=-1))  # (T, 2, 2)
     normal_in_tool = applied(rotations.swapaxes(0, 1), rotated(axes[0], first, normal))
     sixth = -turn_angle(axis6, rotated(axis5, -fifth, normal), normal_in_tool[..., None])
-    sixth = wrapped(np.where(np.abs(np.sin(half5))[..., None] < SINGULAR, 0.0, sixth))
+    sixth = wrapped(np.where(np.abs(np.sin(half5))[..., None] < SINGULAR,
+                             0.0 if free is None else free[:, None, None], sixth))
     # (the rotation of joints 2 to 4 about the parallel axes)
     forward_back = rotated(axis6, -sixth, rotated(axis5, -fifth, forward))
     in_arm = rotated(axes[0], -first[:, :, None], applied(rotations, forward_back))

@@ -25,18 +25,30 @@ from .._plan import PreparedPath
 from .._sampling import KERNEL_CHUNK, sample_joints
 from ..closed_form.arm_shapes import ArmShape, recognise_arm
 from ..closed_form.configurations import kuka_status
-from ..closed_form.solutions import LIMIT_SLACK, branch_angles, turn_periods
+from ..closed_form.solutions import (
+    LIMIT_SLACK,
+    STRAIGHT_WRIST,
+    branch_angles,
+    free_wrist_joint,
+    turn_periods,
+)
 from ._batch_check import _tools_in_targets
 from ._newton_tracking import Tracked
 from ._path_chunks import TARGET_SOURCE, PathToSolve, _raise_unreached, _targets
 from ._solved_joints import SolvedJoints
 
-__all__ = ["arm_order", "closed_form_arm", "flange_motions", "solve_in_closed_form",
-           "track_in_closed_form"]
+__all__ = ["AT_START", "JUMP", "arm_order", "closed_form_arm", "flange_motions",
+           "solve_in_closed_form", "track_in_closed_form"]
 
 FloatArray = NDArray[np.float64]
 
 _LOCAL = pin.ReferenceFrame.LOCAL
+
+AT_START = 1e-12
+"""Radians within which a closed-form solution is the start itself (rounding)."""
+
+JUMP = 0.02
+"""Radians: a step this much longer than four times the path's median step is a jump."""
 
 
 def closed_form_arm(path: PreparedPath, solved: SolvedJoints, frame: str) -> ArmShape:
@@ -62,6 +74,9 @@ def _arm(path: PreparedPath, solved: SolvedJoints, frame: str) -> ArmShape:
         raise JointError("closed-form inverse kinematics is for an arm that moves the tool "
                          "only; a solved joint moves the target's frame", frame=frame,
                          field="joints")
+    if len(solved.names) != 6:
+        raise JointError(f"closed-form inverse kinematics is for six joints in a chain; got "
+                         f"{len(solved.names)}", frame=frame, field="joints")
     drives = solved.tangent != 0.0
     if not np.all(drives.sum(axis=0) == 1):
         raise JointError("closed-form inverse kinematics is for an arm whose joints each "
@@ -82,7 +97,8 @@ def _arm(path: PreparedPath, solved: SolvedJoints, frame: str) -> ArmShape:
     q = pin.neutral(pinocchio_model)
     solved.set_configuration(q, np.zeros(len(solved.names)))
     data = pinocchio_model.createData()
-    jacobian = solved.jacobian(pin.computeFrameJacobian(pinocchio_model, data, q, tool, _LOCAL))
+    jacobian = solved.jacobian(pin.computeFrameJacobian(pinocchio_model, data, q, tool, _LOCAL)
+                               .reshape(6, -1))
     order = np.argsort(slots, kind="stable")
     turning = jacobian[3:, order].T
     scales = np.linalg.norm(turning, axis=1)
@@ -133,32 +149,45 @@ def track_in_closed_form(
     lower, upper = solved.limits.lower[order], solved.limits.upper[order]
     start = start[order]
     period = turn_periods(shape)
-    kept: list[FloatArray] = []  # per chunk, (N, 2, 6): the branch's two wrists, or one
-    chosen: int | None = None if branch is None or branch[0] != "flags" else branch[1] & 6
-    for begin in range(0, times.shape[0], KERNEL_CHUNK):
-        part = slice(begin, begin + KERNEL_CHUNK)
-        motions = flange_motions(path, times[part], shifts, solved.names, targets(part))
-        if branch is not None and branch[0] == "kuka_status":
-            angles = branch_angles(shape, *motions)
-            matching = kuka_status(shape, angles) == branch[1]
-            picked = angles[np.arange(angles.shape[0]), np.argmax(matching, axis=1)]
-            picked[~matching.any(axis=1)] = np.nan
-            kept.append(picked[:, None, :])
-            continue
-        if chosen is None:  # the branch nearest the start at the first sample
-            steps = branch_angles(shape, motions[0][..., :1], motions[1][..., :1])[0] - start
-            steps -= period * np.round(steps / period)
-            chosen = int(np.argmin(np.where(np.isnan(steps).any(axis=1), np.inf,
-                                            np.abs(steps).max(axis=1)))) & 6
-        kept.append(branch_angles(shape, *motions, arm=chosen))
-    candidates = np.concatenate(kept)
-    if candidates.shape[1] == 1:
-        positions = candidates[:, 0]
-    elif branch is not None:
-        positions = candidates[:, branch[1] & 1]
+    count = times.shape[0]
+    chunks = [flange_motions(path, times[begin:begin + KERNEL_CHUNK], shifts, solved.names,
+                             targets(slice(begin, begin + KERNEL_CHUNK)))
+              for begin in range(0, count, KERNEL_CHUNK)]
+    rotations = np.concatenate([chunk[0] for chunk in chunks], axis=-1)
+    translations = np.concatenate([chunk[1] for chunk in chunks], axis=-1)
+
+    def solved_at(rows: Any, arm: int | None, free: FloatArray | None = None) -> FloatArray:
+        parts = [branch_angles(shape, rotations[..., rows][..., begin:begin + KERNEL_CHUNK],
+                               translations[..., rows][..., begin:begin + KERNEL_CHUNK], arm,
+                               None if free is None else free[begin:begin + KERNEL_CHUNK])
+                 for begin in range(0, rotations[..., rows].shape[-1], KERNEL_CHUNK)]
+        return np.concatenate(parts)
+
+    if branch is not None and branch[0] == "kuka_status":
+        angles = solved_at(slice(None), None)
+        matching = kuka_status(shape, angles) == branch[1]
+        positions = angles[np.arange(count), np.argmax(matching, axis=1)]
+        positions[~matching.any(axis=1)] = np.nan
     else:
-        positions = _wrist_passing_through(candidates, start, period)
+        if branch is None:  # the branch nearest the start at the first sample
+            steps = solved_at(slice(0, 1), None)[0] - start
+            steps -= period * np.round(steps / period)
+            arm = int(np.argmin(np.where(np.isnan(steps).any(axis=1), np.inf,
+                                         np.abs(steps).max(axis=1)))) & 6
+        else:
+            arm = branch[1] & 6
+        candidates = solved_at(slice(None), arm)
+        wrist = (np.full(count, branch[1] & 1) if branch is not None
+                 else _wrist_passing_through(candidates, start, period))
+        positions = candidates[np.arange(count), wrist]
+        positions = _free_wrist_held(shape, positions, start, lambda rows, free: solved_at(
+            rows, arm, free)[np.arange(free.shape[0]), wrist[rows]])
+        if branch is None and _jumps(positions, period):
+            free = positions[:, free_wrist_joint(shape)]
+            positions = _nearest_all_along(solved_at(slice(None), None, free), start, period)
     positions = _unwrapped_within(positions, start, period, lower, upper)
+    # a sample the start already reaches keeps it as it is (not its rounded closed form)
+    positions[np.abs(positions - start).max(axis=1) <= AT_START] = start
     valid = ~np.isnan(positions).any(axis=1) & np.all(
         (positions >= lower - LIMIT_SLACK) & (positions <= upper + LIMIT_SLACK), axis=1)
     result = np.empty_like(positions)
@@ -166,9 +195,57 @@ def track_in_closed_form(
     return result, valid
 
 
+def _free_wrist_held(shape: ArmShape, positions: FloatArray, start: FloatArray,
+                     again: Any) -> FloatArray:
+    """``positions`` (T, 6) with the samples at a straight wrist solved ``again(rows, free)``
+    with the wrist's free joint held where the sample before left it (the first: the
+    start)."""
+    straight = np.abs(np.sin(positions[:, 4] * shape.scales[4] - shape.wrist_straight)
+                      ) < STRAIGHT_WRIST
+    if not straight.any():
+        return positions
+    joint = free_wrist_joint(shape)
+    index = np.arange(positions.shape[0])
+    before = np.maximum.accumulate(np.where(straight, -1, index))
+    held = np.where(before >= 0, positions[np.maximum(before, 0), joint], start[joint])
+    rows = np.flatnonzero(straight)
+    positions = positions.copy()
+    positions[rows] = again(rows, held[rows])
+    return positions
+
+
+def _jumps(positions: FloatArray, period: FloatArray) -> bool:
+    """Whether a step of ``positions`` (T, 6) is far longer than the path's usual step (a
+    singular configuration crossed: the closed form's branch changes name there)."""
+    if positions.shape[0] < 2:
+        return False
+    steps = np.diff(positions, axis=0)
+    steps = np.abs(steps - period * np.round(steps / period)).max(axis=1)
+    steps = np.nan_to_num(steps)
+    return bool((steps > JUMP + 4.0 * np.median(steps)).any())
+
+
+def _nearest_all_along(angles: FloatArray, start: FloatArray, period: FloatArray
+                       ) -> FloatArray:
+    """Per sample of ``angles`` (T, 8, 6), the solution nearest the one before (the first:
+    nearest ``start``), unwrapped onto it; a sample out of reach is NaN and the next is
+    compared with the last solution. A loop over the samples: taken only where a
+    singular configuration is crossed."""
+    positions = np.full(angles.shape[::2], np.nan)
+    previous = start
+    for sample in range(angles.shape[0]):
+        steps = angles[sample] - previous
+        steps -= period * np.round(steps / period)
+        distances = np.abs(steps).max(axis=1)
+        if np.isnan(distances).all():
+            continue
+        previous = positions[sample] = previous + steps[int(np.nanargmin(distances))]
+    return positions
+
+
 def _wrist_passing_through(candidates: FloatArray, start: FloatArray, period: FloatArray
-                           ) -> FloatArray:
-    """One of the two wrists (T, 2, 6) per sample: the start's nearest at the first, then
+                           ) -> NDArray[np.intp]:
+    """Which of the two wrists (T, 2, 6) per sample (0 or 1): the start's nearest at the first, then
     the other where it moves the joints less than staying (the two wrists are one turn of
     joints 4 and 6 by half a turn and joint 5 mirrored, so the comparison does not depend
     on which is held)."""
@@ -182,8 +259,7 @@ def _wrist_passing_through(candidates: FloatArray, start: FloatArray, period: Fl
     toggles = np.concatenate([[int(distance(start, candidates[0, 1])
                                    < distance(start, candidates[0, 0]))],
                               (switch < stay).astype(int)])
-    which = np.cumsum(toggles) % 2
-    return candidates[np.arange(candidates.shape[0]), which]
+    return np.cumsum(toggles) % 2
 
 
 def _unwrapped_within(positions: FloatArray, start: FloatArray, period: FloatArray,

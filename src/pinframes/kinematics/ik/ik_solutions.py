@@ -59,5 +59,7 @@ def evaluate_ik_solutions(tree: TreeDescription, frame: str, target: str | Pose,
     columns = np.empty_like(positions)
     columns[..., order] = positions
     offsets = np.zeros(1, dtype=np.int64) if plan.offsets is None else plan.offsets
+    rotation, translation = flange_motions(path, moments[:1], plan.shifts, solved.names, None)
     return IkSolutions(solved.names, columns, parts[0][1], valid,
-                       offsets.astype("timedelta64[ns]"), plan.reference_time, shape)
+                       offsets.astype("timedelta64[ns]"), plan.reference_time, shape,
+                       (rotation[..., 0].copy(), translation[..., 0].copy()))
