@@ -128,3 +128,17 @@ def test_kuka_status_is_kukas_definition():
             assert status[index, branch] == expected
             checked += 1
     assert checked > 8 and (status[~solutions.valid] == -1).all()
+
+
+def test_kuka_turn_and_abb_quadrants_are_the_signs_and_quadrants_of_the_joints():
+    model = arm_model(KR6R900)
+    target = tool_pose(model, np.array([0.3, -1.2, 1.5, 0.4, 0.8, 0.2]))
+    solutions = arm_tree(KR6R900).ik_solutions("tool0", targets_pose([target]),
+                                               relative_to="floor")
+    valid = solutions.valid[0]
+    positions = solutions.positions[0][valid]
+    turn = sum((positions[:, joint] < 0).astype(int) << joint for joint in range(6))
+    np.testing.assert_array_equal(solutions.kuka_turn[0][valid], turn)
+    assert (solutions.kuka_turn[0][~valid] == -1).all()
+    degrees = np.degrees(positions[:, [0, 3, 5]])
+    np.testing.assert_array_equal(solutions.abb_quadrants[0][valid], degrees // 90)

@@ -98,9 +98,9 @@ def test_a_configuration_the_path_leaves_holds_and_is_not_reached():
 def test_configuration_errors():
     _, _, _, pose = path_targets(KR6R900, HOME)
     tree = arm_tree(KR6R900)
-    with pytest.raises(ArgumentTypeError, match="one of up / down"):
+    with pytest.raises(ArgumentTypeError, match=r"one of up / down"):
         tree.solve_joints("tool0", pose, relative_to="floor", configuration="front,noflip")
-    with pytest.raises(ArgumentTypeError, match="0..7"):
+    with pytest.raises(ArgumentTypeError, match=r"0\.\.7"):
         tree.solve_joints("tool0", pose, relative_to="floor", configuration=9)
     with pytest.raises(ArgumentTypeError, match="free_axis="):
         tree.solve_joints("tool0", pose, relative_to="floor", configuration="front,up,flip",

@@ -14,7 +14,7 @@ from numpy.typing import NDArray
 from ...values.timed import Timed
 from ._arm_steps import SINGULAR
 from .arm_shapes import ArmShape, OpwParameters
-from .configurations import BRANCH_NAMES, kuka_status
+from .configurations import BRANCH_NAMES, abb_quadrants, kuka_status, kuka_turn
 from .opw import opw_solutions
 from .ur_type import ur_solutions
 
@@ -76,6 +76,22 @@ class IkSolutions(Timed):
         order = [self.joint_names.index(name) for name in self.arm.joint_names]
         status = kuka_status(self.arm, self.positions[..., order])
         return np.where(self.valid, status, -1)
+
+    @property
+    def kuka_turn(self) -> NDArray[np.int64]:
+        """KUKA's Turn (T, k) of each solution: bit ``i`` where joint ``i + 1`` (from the
+        base) is below 0 (-1 where there is no solution)."""
+        order = [self.joint_names.index(name) for name in self.arm.joint_names]
+        return np.where(self.valid, kuka_turn(self.positions[..., order]), -1)
+
+    @property
+    def abb_quadrants(self) -> NDArray[np.int64]:
+        """ABB's ``cf1``, ``cf4``, ``cf6`` (T, k, 3) of each solution: the quadrants
+        ``floor(q / (pi / 2))`` of joints 1, 4 and 6 from the base (0 where there is no
+        solution; see :attr:`valid`)."""
+        order = [self.joint_names.index(name) for name in self.arm.joint_names]
+        return np.where(self.valid[..., None],
+                        abb_quadrants(np.nan_to_num(self.positions[..., order])), 0)
 
     def __len__(self) -> int:
         return int(self.positions.shape[0])
