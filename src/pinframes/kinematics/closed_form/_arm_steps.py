@@ -13,7 +13,7 @@ from numpy.typing import NDArray
 from ._subproblems import column, dot, rotated, turn_angle, two_angles
 from .arm_shapes import ArmShape
 
-__all__ = ["SINGULAR", "into_arm_plane", "shoulder_angles", "two_link_angles", "wrapped"]
+__all__ = ["SINGULAR", "TURN", "into_arm_plane", "shoulder_angles", "two_link_angles", "wrapped"]
 
 FloatArray = NDArray[np.float64]
 
@@ -24,9 +24,13 @@ joint 6 (UR-type) is then taken as given (or 0) and the other wrist joint turns 
 split to noise; taking the split as given turns the tool by at most pi times this.)"""
 
 
+TURN = 2.0 * math.pi
+"""One turn, radians."""
+
+
 def wrapped(angle: FloatArray) -> FloatArray:
-    """``angle`` into ``(-pi, pi]``."""
-    return math.pi - np.mod(math.pi - angle, 2.0 * math.pi)
+    """``angle`` into ``[-pi, pi]`` (whole turns taken off: faster than a modulo)."""
+    return angle - TURN * np.rint(angle * (1.0 / TURN))
 
 
 def shoulder_angles(shape: ArmShape, point: FloatArray) -> FloatArray:

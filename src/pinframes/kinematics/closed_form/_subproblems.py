@@ -12,8 +12,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["AT_LIMIT", "applied", "column", "cross", "dot", "rotated", "turn_angle",
-           "two_angles"]
+__all__ = ["AT_LIMIT", "Turn", "applied", "backwards", "column", "cross", "dot", "rotated",
+           "turn_angle", "turn_of", "two_angles"]
 
 FloatArray = NDArray[np.float64]
 
@@ -56,10 +56,24 @@ def applied(rotations: FloatArray, vector: FloatArray) -> FloatArray:
                       + rows[row, 2] * vector[2] for row in range(3)))
 
 
-def rotated(axis: FloatArray, angle: FloatArray, vector: FloatArray) -> FloatArray:
-    """``vector`` (3, ...) turned by ``angle`` (...) radians about the unit ``axis`` (3,)
-    (Rodrigues' formula)."""
-    cosine, sine = np.cos(angle), np.sin(angle)
+Turn = tuple[FloatArray, FloatArray]
+"""An angle as its cosine and sine (computed once for the several vectors it turns)."""
+
+
+def turn_of(angle: FloatArray) -> Turn:
+    """``angle`` (...) radians as a :data:`Turn`."""
+    return np.cos(angle), np.sin(angle)
+
+
+def backwards(turn: Turn) -> Turn:
+    """The opposite :data:`Turn`."""
+    return turn[0], -turn[1]
+
+
+def rotated(axis: FloatArray, angle: FloatArray | Turn, vector: FloatArray) -> FloatArray:
+    """``vector`` (3, ...) turned by ``angle`` (...) radians (or a :data:`Turn`) about the
+    unit ``axis`` (3,) (Rodrigues' formula)."""
+    cosine, sine = angle if isinstance(angle, tuple) else (np.cos(angle), np.sin(angle))
     along = dot(axis, vector) * (1.0 - cosine)
     x, y, z = vector[0], vector[1], vector[2]
     a, b, c = axis

@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import NDArray
@@ -76,14 +77,14 @@ class ArmShape:
         """The direction of axis 2 (axis 3, and a UR-type arm's axis 4, are parallel to it)."""
         return self.axes[1]
 
-    @property
+    @cached_property
     def front_sign(self) -> float:
         """+1 where the shoulder angle ``g + h`` of :func:`._subproblems.two_angles` puts the
         wrist point in front of axis 1 (:attr:`forward`), else -1."""
         across = np.cross(self.axes[0], self.parallel)
         return 1.0 if float(np.dot(across, self.forward)) < 0.0 else -1.0
 
-    @property
+    @cached_property
     def elbow(self) -> tuple[float, float]:
         """``(stretched, up_sign)``: the angle (radians, about axis 3) at which the carried
         point lies furthest from axis 2 (the arm stretched), and the sign of
@@ -98,7 +99,7 @@ class ArmShape:
         sign = float(np.dot(np.cross(quarter + shoulder_to_elbow, shoulder_to_elbow), above))
         return stretched, (1.0 if sign > 0.0 else -1.0)
 
-    @property
+    @cached_property
     def wrist_straight(self) -> float:
         """The angle (radians, about axis 5) at which the wrist is straight: axis 6 along
         axis 4 (OPW), or along axes 2 to 4 (UR-type)."""

@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ._arm_steps import SINGULAR, into_arm_plane, shoulder_angles, two_link_angles, wrapped
-from ._subproblems import applied, dot, rotated, turn_angle, two_angles
+from ._subproblems import applied, backwards, dot, rotated, turn_angle, turn_of, two_angles
 from .arm_shapes import ArmShape
 
 __all__ = ["opw_solutions"]
@@ -42,23 +42,25 @@ def opw_solutions(shape: ArmShape, rotations: FloatArray, translations: FloatArr
         second, third = second[..., elbow:elbow + 1], third[..., elbow:elbow + 1]
     # the wrist's rotation: the flange's, turned back by joints 1 to 3 (2 and 3 parallel)
     first = np.broadcast_to(first[:, :, None], second.shape)
-    upper = second + float(axes[1] @ axes[2]) * third
+    back1 = backwards(turn_of(first))
+    back23 = backwards(turn_of(second + float(axes[1] @ axes[2]) * third))
     axis4, axis5, axis6 = axes[3], axes[4], axes[5]
 
     def wrist_turned(vector: FloatArray) -> FloatArray:
-        turned = rotated(axes[0], -first, applied(rotations, vector)[:, :, None, None])
-        return rotated(axes[1], -upper, turned)
+        turned = rotated(axes[0], back1, applied(rotations, vector)[:, :, None, None])
+        return rotated(axes[1], back23, turned)
 
     tool_axis = wrist_turned(axis6)  # (3, T, 2, 2)
     centre5, half5 = two_angles(np.array(axis4 @ axis6),
                                 np.array(axis4 @ np.cross(axis5, axis6)),
                                 dot(axis4, tool_axis))
     fifth = wrapped(np.stack([centre5 + half5, centre5 - half5], axis=-1))  # (T, 2, 2, 2)
-    fourth = turn_angle(axis4, rotated(axis5, fifth, axis6), tool_axis[..., None])
+    turn5 = turn_of(fifth)
+    fourth = turn_angle(axis4, rotated(axis5, turn5, axis6), tool_axis[..., None])
     fourth = np.where(np.abs(np.sin(half5))[..., None] < SINGULAR,
                       0.0 if free is None else free[:, None, None, None], fourth)
     across = rotated(axis4, -fourth, wrist_turned(axis5)[..., None])
-    sixth = turn_angle(axis6, axis5, rotated(axis5, -fifth, across))
+    sixth = turn_angle(axis6, axis5, rotated(axis5, backwards(turn5), across))
     count = first.shape[0]
     angles = [np.broadcast_to(angle[..., None], fifth.shape) for angle in
               (first, second, third)] + [fourth, fifth, sixth]

@@ -142,7 +142,7 @@ def every_solution(shape: ArmShape, rotations: FloatArray, translations: FloatAr
                       1).astype(int)
     middle = np.where(bounded, 0.5 * (np.where(bounded, lower, 0.0)
                                       + np.where(bounded, upper, 0.0)), 0.0)
-    nearest_middle = base - period * np.round((base - middle) / period)
+    nearest_middle = base - period * np.rint((base - middle) / period)
     lowest = base + period * np.ceil((np.where(bounded, lower, 0.0) - base) / period)
     first = np.where(counts > 1, lowest, nearest_middle)
     turns = np.indices(tuple(counts)).reshape(6, -1).T  # (M, 6): which value within the range

@@ -15,7 +15,16 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ._arm_steps import SINGULAR, into_arm_plane, shoulder_angles, two_link_angles, wrapped
-from ._subproblems import applied, column, dot, rotated, turn_angle, two_angles
+from ._subproblems import (
+    applied,
+    backwards,
+    column,
+    dot,
+    rotated,
+    turn_angle,
+    turn_of,
+    two_angles,
+)
 from .arm_shapes import ArmShape
 
 __all__ = ["ur_solutions"]
@@ -35,23 +44,27 @@ def ur_solutions(shape: ArmShape, rotations: FloatArray, translations: FloatArra
     first = shoulder_angles(shape, meeting)  # (T, 2)
     if arm is not None:
         first = first[:, arm // 4:arm // 4 + 1]
-    tool_axis = rotated(axes[0], -first, applied(rotations, axis6)[:, :, None])  # (3, T, 2)
+    turn1 = turn_of(first)
+    tool_axis = rotated(axes[0], backwards(turn1), applied(rotations, axis6)[:, :, None])
     centre5, half5 = two_angles(np.array(normal @ axis6),
                                 np.array(normal @ np.cross(axis5, axis6)),
                                 dot(normal, tool_axis))
     fifth = wrapped(np.stack([centre5 + half5, centre5 - half5], axis=-1))  # (T, 2, 2)
-    normal_in_tool = applied(rotations.swapaxes(0, 1), rotated(axes[0], first, normal))
-    sixth = -turn_angle(axis6, rotated(axis5, -fifth, normal), normal_in_tool[..., None])
+    normal_in_tool = applied(rotations.swapaxes(0, 1), rotated(axes[0], turn1, normal))
+    back5 = backwards(turn_of(fifth))
+    sixth = -turn_angle(axis6, rotated(axis5, back5, normal), normal_in_tool[..., None])
     sixth = wrapped(np.where(np.abs(np.sin(half5))[..., None] < SINGULAR,
                              0.0 if free is None else free[:, None, None], sixth))
     # (the rotation of joints 2 to 4 about the parallel axes)
-    forward_back = rotated(axis6, -sixth, rotated(axis5, -fifth, forward))
-    in_arm = rotated(axes[0], -first[:, :, None], applied(rotations, forward_back))
+    back6 = backwards(turn_of(sixth))
+    forward_back = rotated(axis6, back6, rotated(axis5, back5, forward))
+    back1 = backwards((turn1[0][:, :, None], turn1[1][:, :, None]))
+    in_arm = rotated(axes[0], back1, applied(rotations, forward_back))
     middle = turn_angle(normal, forward, in_arm)  # (T, 2, 2)
     # where joints 2 and 3 carry axis 4: its point with joints 5 and 6 undone, the flange's
     # motion, joint 1 undone
-    moved = rotated(axis5, -fifth, shape.carried_point - points[4]) + column(points[4], 3)
-    moved = rotated(axis6, -sixth, moved - column(points[5], 3)) + column(points[5], 3)
+    moved = rotated(axis5, back5, shape.carried_point - points[4]) + column(points[4], 3)
+    moved = rotated(axis6, back6, moved - column(points[5], 3)) + column(points[5], 3)
     moved = applied(rotations, moved) + translations[:, :, None, None]
     in_plane = into_arm_plane(shape, first[:, :, None], moved)  # (3, T, 2, 2)
     second, third = two_link_angles(shape, in_plane)  # (T, 2, 2, 2): shoulder, wrist, elbow

@@ -140,9 +140,10 @@ def flange_motions(path: PreparedPath, times: NDArray[np.int64], shifts: dict[st
 def track_in_closed_form(
     shape: ArmShape, path: PreparedPath, times: NDArray[np.int64], shifts: dict[str, int],
     solved: SolvedJoints, targets: Any, start: FloatArray, branch: tuple[str, int] | None,
-) -> tuple[FloatArray, NDArray[np.bool_]]:
-    """Joint values (T, n) in ``solved``'s order along the path and where the branch has a
-    solution within the limits (T,); ``branch`` as
+) -> tuple[FloatArray, NDArray[np.bool_], NDArray[np.int64] | None]:
+    """Joint values (T, n) in ``solved``'s order along the path, where the branch has a
+    solution within the limits (T,), and each sample's branch index when the shoulder and
+    elbow were kept (None when a KUKA Status or a singular crossing chose them); ``branch`` as
     :func:`..closed_form.configurations.requested_branch` gives it, or None (the start's).
     ``targets(part)`` gives the targets of the samples ``part`` (None: the frame itself)."""
     order = arm_order(shape, solved.names)
@@ -163,6 +164,7 @@ def track_in_closed_form(
                  for begin in range(0, rotations[..., rows].shape[-1], KERNEL_CHUNK)]
         return np.concatenate(parts)
 
+    kept: int | None = None
     if branch is not None and branch[0] == "kuka_status":
         angles = solved_at(slice(None), None)
         matching = kuka_status(shape, angles) == branch[1]
@@ -171,7 +173,7 @@ def track_in_closed_form(
     else:
         if branch is None:  # the branch nearest the start at the first sample
             steps = solved_at(slice(0, 1), None)[0] - start
-            steps -= period * np.round(steps / period)
+            steps -= period * np.rint(steps / period)
             arm = int(np.argmin(np.where(np.isnan(steps).any(axis=1), np.inf,
                                          np.abs(steps).max(axis=1)))) & 6
         else:
@@ -182,9 +184,11 @@ def track_in_closed_form(
         positions = candidates[np.arange(count), wrist]
         positions = _free_wrist_held(shape, positions, start, lambda rows, free: solved_at(
             rows, arm, free)[np.arange(free.shape[0]), wrist[rows]])
+        kept = arm
         if branch is None and _jumps(positions, period):
             free = positions[:, free_wrist_joint(shape)]
             positions = _nearest_all_along(solved_at(slice(None), None, free), start, period)
+            kept = None
     positions = _unwrapped_within(positions, start, period, lower, upper)
     # a sample the start already reaches keeps it as it is (not its rounded closed form)
     positions[np.abs(positions - start).max(axis=1) <= AT_START] = start
@@ -192,7 +196,9 @@ def track_in_closed_form(
         (positions >= lower - LIMIT_SLACK) & (positions <= upper + LIMIT_SLACK), axis=1)
     result = np.empty_like(positions)
     result[:, order] = positions
-    return result, valid
+    branches = None if kept is None else kept + (np.sin(
+        positions[:, 4] * shape.scales[4] - shape.wrist_straight) <= 0.0).astype(np.int64)
+    return result, valid, branches
 
 
 def _free_wrist_held(shape: ArmShape, positions: FloatArray, start: FloatArray,
@@ -220,7 +226,7 @@ def _jumps(positions: FloatArray, period: FloatArray) -> bool:
     if positions.shape[0] < 2:
         return False
     steps = np.diff(positions, axis=0)
-    steps = np.abs(steps - period * np.round(steps / period)).max(axis=1)
+    steps = np.abs(steps - period * np.rint(steps / period)).max(axis=1)
     steps = np.nan_to_num(steps)
     return bool((steps > JUMP + 4.0 * np.median(steps)).any())
 
@@ -235,7 +241,7 @@ def _nearest_all_along(angles: FloatArray, start: FloatArray, period: FloatArray
     previous = start
     for sample in range(angles.shape[0]):
         steps = angles[sample] - previous
-        steps -= period * np.round(steps / period)
+        steps -= period * np.rint(steps / period)
         distances = np.abs(steps).max(axis=1)
         if np.isnan(distances).all():
             continue
@@ -251,7 +257,7 @@ def _wrist_passing_through(candidates: FloatArray, start: FloatArray, period: Fl
     on which is held)."""
     def distance(first: FloatArray, second: FloatArray) -> FloatArray:
         steps = second - first
-        steps -= period * np.round(steps / period)
+        steps -= period * np.rint(steps / period)
         return np.abs(steps).sum(axis=-1)
 
     stay = distance(candidates[:-1, 0], candidates[1:, 0])
@@ -272,10 +278,10 @@ def _unwrapped_within(positions: FloatArray, start: FloatArray, period: FloatArr
         return positions
     values = positions[known]
     steps = np.diff(values, axis=0)
-    steps -= period * np.round(steps / period)
+    steps -= period * np.rint(steps / period)
     values = values[0] + np.concatenate([np.zeros((1, 6)), np.cumsum(steps, axis=0)])
     for joint in range(6):
-        near = np.round((start[joint] - values[0, joint]) / period[joint])
+        near = np.rint((start[joint] - values[0, joint]) / period[joint])
         for turns in sorted(range(-2, 3), key=abs):
             moved = values[:, joint] + (near + turns) * period[joint]
             if moved.min() >= lower[joint] - LIMIT_SLACK and (
@@ -291,21 +297,25 @@ def _unwrapped_within(positions: FloatArray, start: FloatArray, period: FloatArr
 
 def solve_in_closed_form(request: PathToSolve, shape: ArmShape, start: FloatArray,
                          branch: tuple[str, int] | None, strict: bool, frame: str
-                         ) -> Tracked | None:
+                         ) -> tuple[Tracked, NDArray[np.int64] | None] | None:
     """The solve of ``request`` tracked on one branch (:func:`track_in_closed_form`), its
     errors measured with the compiled path's forward kinematics; None when no
     configuration was requested and the branch misses a sample (the numeric solver then
     solves it). Where a requested branch has no solution, the sample holds the nearest
-    one before it (else after it, else ``start``) and is not reached."""
+    one before it (else after it, else ``start``) and is not reached. With it, each sample's
+    branch index where :func:`track_in_closed_form` knows them."""
     plan = request.plan
     path, times, shifts = plan.path, plan.sample_times, plan.shifts
     shift = shifts.get(TARGET_SOURCE, 0)
+    sampled: dict[int, Transform | None] = {}  # by chunk start: each chunk sampled once
 
     def targets(part: slice) -> Transform | None:
-        return _targets(request.target, times[part], shift)
+        if part.start not in sampled:
+            sampled[part.start] = _targets(request.target, times[part], shift)
+        return sampled[part.start]
 
-    positions, valid = track_in_closed_form(shape, path, times, shifts, request.joints,
-                                            targets, start, branch)
+    positions, valid, branches = track_in_closed_form(shape, path, times, shifts,
+                                                      request.joints, targets, start, branch)
     if not valid.all():
         if branch is None:
             return None
@@ -326,7 +336,7 @@ def solve_in_closed_form(request: PathToSolve, shape: ArmShape, start: FloatArra
         _raise_unreached([Tracked(*(getattr(tracked, name)[:last] for name in (
             "positions", "position_error", "orientation_error", "reached", "measured")))],
             request, frame)
-    return tracked
+    return tracked, branches
 
 
 def _held_where_missing(positions: FloatArray, valid: NDArray[np.bool_], start: FloatArray

@@ -84,18 +84,21 @@ def evaluate_solve_joints(
         raise ArgumentTypeError("configuration= keeps a whole pose on a branch of the closed "
                                 "form; it does not combine with free_axis=, tilt= or flat=",
                                 frame=frame, field="configuration")
-    tracked = None if not closed or arm is None else solve_in_closed_form(
+    closed_form = None if not closed or arm is None else solve_in_closed_form(
         request, arm, start, branch, strict, frame)
-    tilts = None
-    if tracked is None:
+    tilts, branches = None, None
+    if closed_form is None:
         tracked, tilts = track_in_chunks(request, start, seed is None, strict, frame)
+    else:
+        tracked, branches = closed_form
+    if arm is not None and branches is None:
+        branches = branch_flags(arm, tracked.positions[:, arm_order(arm, solved.names)])
     offsets = np.zeros(1, dtype=np.int64) if plan.offsets is None else plan.offsets
     solution = JointSolution(
         solved.names, tracked.positions, offsets.astype("timedelta64[ns]"),
         plan.reference_time, tracked.position_error, tracked.orientation_error,
         tracked.reached, solved.velocity_limits, solved.velocity_limit_joints, tilt=tilts,
-        configurations=None if arm is None else np.array(BRANCH_NAMES)[branch_flags(
-            arm, tracked.positions[:, arm_order(arm, solved.names)])])
+        configurations=None if branches is None else np.array(BRANCH_NAMES)[branches])
     if strict:
         require_within_speed(solution, tree.joints_by_name, frame)
     return solution
