@@ -151,7 +151,7 @@ def every_solution(shape: ArmShape, rotations: FloatArray, translations: FloatAr
     positions = positions.reshape(count, -1, 6)
     valid = np.all((positions >= lower - LIMIT_SLACK) & (positions <= upper + LIMIT_SLACK),
                    axis=-1)
-    positions[~valid] = np.nan
+    np.copyto(positions, np.nan, where=~valid[..., None])
     several = counts > 1
     suffixes = [""] if not several.any() else [
         "/" + "".join(str(turn) for turn in row[several]) for row in turns]

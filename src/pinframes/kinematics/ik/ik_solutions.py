@@ -11,6 +11,7 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ...errors import JointError
 from ...values.pose import Pose
@@ -48,18 +49,27 @@ def evaluate_ik_solutions(tree: TreeDescription, frame: str, target: str | Pose,
     lower, upper = solved.limits.lower[order], solved.limits.upper[order]
     moments = plan.sample_times
     shift = plan.shifts.get(TARGET_SOURCE, 0)
-    parts = []
+    columns: NDArray[np.float64] | None = None  # (T, k, n): every chunk written into it
+    valid: NDArray[np.bool_] | None = None
+    branches: NDArray[np.str_] | None = None
     for begin in range(0, moments.shape[0], KERNEL_CHUNK):
         chunk = moments[begin:begin + KERNEL_CHUNK]
         motions = flange_motions(path, chunk, plan.shifts, solved.names,
                                  _targets(target_pose, chunk, shift))
-        parts.append(every_solution(shape, *motions, lower, upper, whole_turns))
-    positions = np.concatenate([part[0] for part in parts])
-    valid = np.concatenate([part[2] for part in parts])
-    columns = np.empty_like(positions)
-    columns[..., order] = positions
+        positions, branches, chunk_valid = every_solution(shape, *motions, lower, upper,
+                                                       whole_turns)
+        if columns is None or valid is None:
+            columns = np.empty((moments.shape[0], *positions.shape[1:]))
+            valid = np.empty((moments.shape[0], positions.shape[1]), dtype=bool)
+        part = slice(begin, begin + chunk.shape[0])
+        if order == sorted(order):
+            columns[part] = positions
+        else:
+            columns[part][..., order] = positions
+        valid[part] = chunk_valid
+    assert columns is not None and valid is not None and branches is not None
     offsets = np.zeros(1, dtype=np.int64) if plan.offsets is None else plan.offsets
     rotation, translation = flange_motions(path, moments[:1], plan.shifts, solved.names, None)
-    return IkSolutions(solved.names, columns, parts[0][1], valid,
+    return IkSolutions(solved.names, columns, branches, valid,
                        offsets.astype("timedelta64[ns]"), plan.reference_time, shape,
                        (rotation[..., 0].copy(), translation[..., 0].copy()))
