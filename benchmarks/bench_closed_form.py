@@ -25,6 +25,7 @@ import statistics
 import sys
 import time
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pinocchio as pin
@@ -72,45 +73,64 @@ def measure(quick: bool) -> list[dict]:
                                     times=np.arange(count) / SAMPLE_RATE_HZ)
             pink_loop(model, tool, targets[:WARM_UP], configurations[0], "daqp")
             tree.solve_joints(tool, target, seed=configurations[0])  # compiled, cached
-            ours: list[float] = []
-            pink: list[float] = []
-            solutions: dict[str, list[float]] = {"whole turns": [], "one per branch": []}
+            ours: list[tuple[float, float]] = []  # (wall, CPU) seconds per sample
+            pink: list[tuple[float, float]] = []
+            solutions: dict[str, list[tuple[float, float]]] = {"whole turns": [],
+                                                               "one per branch": []}
             found = {}
             for _ in range(rounds):
-                start = time.perf_counter()
-                solution = tree.solve_joints(tool, target, seed=configurations[0])
-                ours.append((time.perf_counter() - start) / count)
-                start = time.perf_counter()
-                _, pink_reached = pink_loop(model, tool, targets[:PINK_SAMPLES],
-                                            configurations[0], "daqp")
-                pink.append((time.perf_counter() - start) / PINK_SAMPLES)
+                solution, elapsed = timed(tree.solve_joints, tool, target,
+                                          seed=configurations[0])
+                ours.append((elapsed[0] / count, elapsed[1] / count))
+                (_, pink_reached), elapsed = timed(pink_loop, model, tool,
+                                                   targets[:PINK_SAMPLES], configurations[0],
+                                                   "daqp")
+                pink.append((elapsed[0] / PINK_SAMPLES, elapsed[1] / PINK_SAMPLES))
                 for kind, whole in (("whole turns", True), ("one per branch", False)):
                     if whole and count * (64 if "UR5" in robot else 4) > 10**6:
                         continue  # (T, 8 x 2^6, 6) doubles: 2.5 GB for the UR5 at 10^5
-                    start = time.perf_counter()
-                    every = tree.ik_solutions(tool, target, whole_turns=whole)
-                    elapsed = time.perf_counter() - start
+                    every, elapsed = timed(tree.ik_solutions, tool, target,
+                                           whole_turns=whole)
                     found[kind] = int(every.valid.sum())
-                    solutions[kind].append(elapsed / found[kind])
+                    solutions[kind].append((elapsed[0] / found[kind],
+                                            elapsed[1] / found[kind]))
             position, orientation = largest_errors(model, tool, targets, configurations,
                                                    solution.joint_names, solution.positions)
             case = f"{robot}, {count:,}"
-            rows.append({"case": case, "method": "solve_joints",
-                         "seconds": statistics.median(ours), "ratio": statistics.median(
-                             theirs / mine for theirs, mine in zip(pink, ours, strict=True)),
+            rows.append({"case": case, "method": "solve_joints", **medians(ours, pink),
                          "note": f"reached {int(solution.reached.sum()):,}/{count:,}; max "
                                  f"error {position:.1e} m, {orientation:.1e} rad"})
             rows.append({"case": case, "method": f"pink + daqp ({PINK_SAMPLES:,})",
-                         "seconds": statistics.median(pink), "ratio": 1.0,
+                         **medians(pink, pink),
                          "note": f"reached {pink_reached:,}/{PINK_SAMPLES:,}"})
             for kind, times in solutions.items():
                 if not times:
                     continue
                 rows.append({"case": case, "method": f"ik_solutions, {kind}",
-                             "seconds": statistics.median(times), "ratio": float("nan"),
+                             **medians(times, None),
                              "note": f"per solution: {found[kind]:,} solutions "
                                      f"({found[kind] / count:.1f} per sample)"})
     return rows
+
+
+def timed(function: Any, *args: Any, **kwargs: Any) -> tuple[Any, tuple[float, float]]:
+    """``function(*args, **kwargs)`` and its wall and CPU (this process) seconds."""
+    wall, cpu = time.perf_counter(), time.process_time()
+    result = function(*args, **kwargs)
+    return result, (time.perf_counter() - wall, time.process_time() - cpu)
+
+
+def medians(ours: list[tuple[float, float]], theirs: list[tuple[float, float]] | None
+            ) -> dict[str, float]:
+    """Median wall and CPU seconds, and the medians of ``theirs / ours`` per round (NaN
+    without a reference)."""
+    def ratio(column: int) -> float:
+        if theirs is None:
+            return float("nan")
+        return statistics.median(other[column] / mine[column]
+                                 for other, mine in zip(theirs, ours, strict=True))
+    return {"seconds": statistics.median(wall for wall, _ in ours), "ratio": ratio(0),
+            "cpu": statistics.median(cpu for _, cpu in ours), "cpu_ratio": ratio(1)}
 
 
 def child(quick: bool) -> None:
@@ -123,17 +143,22 @@ def main() -> None:
         return
     print(describe_machine())
     results = run_in_settings(__file__, ["--quick"] if quick else [])
-    header = "".join(f" {setting:>21} {'pink/ours':>9}" for setting in SETTINGS)
+    header = "".join(f" {setting:>10} {'pink/ours':>9} {'CPU':>9} {'pink/ours':>9}"
+                     for setting in SETTINGS)
     print(f"\n{'case':<24} {'method':<30}{header}  note (1 thread)")
     for index, entry in enumerate(results[SETTINGS[0]]):
-        cells = "".join(f" {format_seconds(results[s][index]['seconds']):>21} "
-                        f"{results[s][index]['ratio']:>9.1f}" for s in SETTINGS)
+        cells = "".join(f" {format_seconds(results[s][index]['seconds']):>10} "
+                        f"{results[s][index]['ratio']:>9.1f} "
+                        f"{format_seconds(results[s][index]['cpu']):>9} "
+                        f"{results[s][index]['cpu_ratio']:>9.1f}" for s in SETTINGS)
         print(f"{entry['case']:<24} {entry['method']:<30}{cells}  {entry['note']}")
     print("\ntimes: medians over rounds, per sample (solve_joints, pink) or per solution "
-          "(ik_solutions); pink/ours: median over rounds of pink's time per sample / "
-          "solve_joints' (above 1: solve_joints is faster); pink runs on the first 1,000 "
-          "samples of each case, warmed up.\n1 thread: OMP_NUM_THREADS=OPENBLAS_NUM_THREADS=1; "
-          "busy: default threads beside a spinning process")
+          "(ik_solutions), wall clock and CPU time of this process (on a shared machine the "
+          "CPU time is the steadier); pink/ours: median over rounds of pink's time per "
+          "sample / solve_joints' (above 1: solve_joints is faster); pink runs on the first "
+          "1,000 samples of each case, warmed up.\n1 thread: "
+          "OMP_NUM_THREADS=OPENBLAS_NUM_THREADS=1; busy: default threads beside a spinning "
+          "process")
 
 
 if __name__ == "__main__":

@@ -100,3 +100,15 @@ def test_without_whole_turns_each_branch_appears_once():
     # joints 4 and 6 turn +-350 degrees: two values each within the range
     assert every.positions.shape[1] == 32 and every.configurations[1] == "front,up,noflip/01"
     assert every.valid.sum() > once.valid.sum()
+
+
+def test_the_columns_follow_the_joints_as_named():
+    model = arm_model(KR6R900)
+    target = targets_pose([tool_pose(model, np.array([0.3, -1.2, 1.5, 0.4, 0.8, 0.2]))])
+    tree = arm_tree(KR6R900)
+    names = [f"joint_a{index}" for index in range(6, 0, -1)]
+    reversed_order = tree.ik_solutions("tool0", target, relative_to="floor", joints=names)
+    plain = tree.ik_solutions("tool0", target, relative_to="floor")
+    assert reversed_order.joint_names == tuple(names)
+    np.testing.assert_array_equal(reversed_order.positions[..., ::-1], plain.positions)
+    np.testing.assert_array_equal(reversed_order.configurations, plain.configurations)
