@@ -165,6 +165,7 @@ def track_in_closed_form(
         return np.concatenate(parts)
 
     kept: int | None = None
+    steps: FloatArray | None = None  # the path's steps, once known
     if branch is not None and branch[0] == "kuka_status":
         angles = solved_at(slice(None), None)
         matching = kuka_status(shape, angles) == branch[1]
@@ -172,10 +173,10 @@ def track_in_closed_form(
         positions[~matching.any(axis=1)] = np.nan
     else:
         if branch is None:  # the branch nearest the start at the first sample
-            steps = solved_at(slice(0, 1), None)[0] - start
-            steps -= period * np.rint(steps / period)
-            arm = int(np.argmin(np.where(np.isnan(steps).any(axis=1), np.inf,
-                                         np.abs(steps).max(axis=1)))) & 6
+            away = solved_at(slice(0, 1), None)[0] - start
+            away -= period * np.rint(away / period)
+            arm = int(np.argmin(np.where(np.isnan(away).any(axis=1), np.inf,
+                                         np.abs(away).max(axis=1)))) & 6
         else:
             arm = branch[1] & 6
         candidates = solved_at(slice(None), arm)
@@ -185,11 +186,13 @@ def track_in_closed_form(
         positions = _free_wrist_held(shape, positions, start, lambda rows, free: solved_at(
             rows, arm, free)[np.arange(free.shape[0]), wrist[rows]])
         kept = arm
-        if branch is None and _jumps(positions, period):
+        steps = _wrapped_steps(positions, period)
+        if branch is None and _jumps(steps):
             free = positions[:, free_wrist_joint(shape)]
             positions = _nearest_all_along(solved_at(slice(None), None, free), start, period)
             kept = None
-    positions = _unwrapped_within(positions, start, period, lower, upper)
+            steps = None
+    positions = _unwrapped_within(positions, start, period, lower, upper, steps)
     # a sample the start already reaches keeps it as it is (not its rounded closed form)
     positions[np.abs(positions - start).max(axis=1) <= AT_START] = start
     valid = ~np.isnan(positions).any(axis=1) & np.all(
@@ -220,15 +223,21 @@ def _free_wrist_held(shape: ArmShape, positions: FloatArray, start: FloatArray,
     return positions
 
 
-def _jumps(positions: FloatArray, period: FloatArray) -> bool:
-    """Whether a step of ``positions`` (T, 6) is far longer than the path's usual step (a
-    singular configuration crossed: the closed form's branch changes name there)."""
-    if positions.shape[0] < 2:
-        return False
+def _wrapped_steps(positions: FloatArray, period: FloatArray) -> FloatArray:
+    """The steps (T - 1, 6) between the samples of ``positions`` (T, 6), each joint's the
+    shorter way round."""
     steps = np.diff(positions, axis=0)
-    steps = np.abs(steps - period * np.rint(steps / period)).max(axis=1)
-    steps = np.nan_to_num(steps)
-    return bool((steps > JUMP + 4.0 * np.median(steps)).any())
+    steps -= period * np.rint(steps / period)
+    return steps
+
+
+def _jumps(steps: FloatArray) -> bool:
+    """Whether one of the path's ``steps`` (T - 1, 6) is far longer than its usual step (a
+    singular configuration crossed: the closed form's branch changes name there)."""
+    if not steps.shape[0]:
+        return False
+    longest = np.nan_to_num(np.abs(steps).max(axis=1))
+    return bool((longest > JUMP + 4.0 * np.median(longest)).any())
 
 
 def _nearest_all_along(angles: FloatArray, start: FloatArray, period: FloatArray
@@ -251,34 +260,39 @@ def _nearest_all_along(angles: FloatArray, start: FloatArray, period: FloatArray
 
 def _wrist_passing_through(candidates: FloatArray, start: FloatArray, period: FloatArray
                            ) -> NDArray[np.intp]:
-    """Which of the two wrists (T, 2, 6) per sample (0 or 1): the start's nearest at the first, then
+    """Which of the two wrists (T, 2, 6) per sample (0 or 1): the start's nearest at the
+    first, then
     the other where it moves the joints less than staying (the two wrists are one turn of
     joints 4 and 6 by half a turn and joint 5 mirrored, so the comparison does not depend
     on which is held)."""
+    wrists, start, period = candidates[..., 3:], start[3:], period[3:]  # 1 to 3 are one
+
     def distance(first: FloatArray, second: FloatArray) -> FloatArray:
         steps = second - first
         steps -= period * np.rint(steps / period)
         return np.abs(steps).sum(axis=-1)
 
-    stay = distance(candidates[:-1, 0], candidates[1:, 0])
-    switch = distance(candidates[:-1, 0], candidates[1:, 1])
-    toggles = np.concatenate([[int(distance(start, candidates[0, 1])
-                                   < distance(start, candidates[0, 0]))],
+    stay = distance(wrists[:-1, 0], wrists[1:, 0])
+    switch = distance(wrists[:-1, 0], wrists[1:, 1])
+    toggles = np.concatenate([[int(distance(start, wrists[0, 1])
+                                   < distance(start, wrists[0, 0]))],
                               (switch < stay).astype(int)])
     return np.cumsum(toggles) % 2
 
 
 def _unwrapped_within(positions: FloatArray, start: FloatArray, period: FloatArray,
-                      lower: FloatArray, upper: FloatArray) -> FloatArray:
+                      lower: FloatArray, upper: FloatArray, steps: FloatArray | None
+                      ) -> FloatArray:
     """``positions`` (T, 6) unwrapped along the path and moved by whole turns to begin
     nearest ``start``, or where a move by a few turns keeps a joint within its limits all
-    along, that one (NaN rows are kept and skipped)."""
+    along, that one (NaN rows are kept and skipped); ``steps`` their
+    :func:`_wrapped_steps`, when known."""
     known = ~np.isnan(positions).any(axis=1)
     if not known.any():
         return positions
     values = positions[known]
-    steps = np.diff(values, axis=0)
-    steps -= period * np.rint(steps / period)
+    if steps is None or not known.all():
+        steps = _wrapped_steps(values, period)
     values = values[0] + np.concatenate([np.zeros((1, 6)), np.cumsum(steps, axis=0)])
     for joint in range(6):
         near = np.rint((start[joint] - values[0, joint]) / period[joint])
