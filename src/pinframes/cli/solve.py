@@ -64,7 +64,8 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     parser.add_argument("--configuration", metavar="FLAGS",
                         help="for a 6-axis OPW or UR-type arm: the branch the whole path keeps, "
                              "as flags (front,up,noflip) or a KUKA Status 0..7 "
-                             "(docs/closed-form-ik.md)")
+                             "(docs/closed-form-ik.md); default: the branch nearest the seed "
+                             "or start")
     parser.add_argument("--position-tolerance", type=float, default=1e-6, metavar="M",
                         help="metres (default: 1e-6)")
     parser.add_argument("--orientation-tolerance", type=float, default=1e-6, metavar="RAD",
