@@ -56,6 +56,10 @@ class JointSolution(Timed):
         ``(a, b)`` with the tool's z ``Rx(a) Ry(b)`` the target's (about the target's x, then
         the y so turned): ``z = (sin b, -sin a cos b, cos a cos b)`` in the target's axes.
         None without windows.
+    urdf_joint_names : tuple of str or None
+        :attr:`joint_names` as the robot's URDF names them (the tree's prefix removed: what
+        the robot's controller knows), when every solved joint belongs to one robot read
+        from a URDF; None otherwise. :func:`pinframes.write_joint_trajectory` writes these.
     configurations : ndarray of str, shape (T,), or None
         For a 6-axis arm of a closed-form family (docs/closed-form-ik.md), each sample's
         configuration flags, e.g. ``"front,up,noflip"``; None for other chains.
@@ -71,6 +75,7 @@ class JointSolution(Timed):
     velocity_limits: FloatArray
     velocity_limit_joints: tuple[str, ...]
     tilt: FloatArray | None = None
+    urdf_joint_names: tuple[str, ...] | None = None
     configurations: NDArray[np.str_] | None = None
 
     @property
