@@ -46,7 +46,11 @@ def geometric_flags(model: pin.Model, q: np.ndarray, family: str) -> str:
     wrist = wrist_point(model, q, family)
     back = np.dot(wrist - points[0], forward) < 0.0
     carried = wrist if family == "opw" else points[3]  # a UR-type arm: axis 4
-    above = np.cross(forward, directions[0])
+    data = model.createData()
+    pin.forwardKinematics(model, data, q)
+    up_axis = data.oMi[1].rotation[:, 2]  # the z of the frame joint 1 turns in
+    up = directions[0] if np.dot(up_axis, directions[0]) >= 0 else -directions[0]
+    above = np.cross(forward, up)
     up = np.dot(np.cross(carried - points[1], points[2] - points[1]), above) > 0.0
     flip = q[4] <= 0.0
     return ",".join(["back" if back else "front", "up" if up else "down",

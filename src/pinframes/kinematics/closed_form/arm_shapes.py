@@ -61,6 +61,9 @@ class ArmShape:
     forward : ndarray, shape (3,)
         The unit direction across axes 1 and 2 toward which the arm reaches at zero (the
         wrist point's side of axis 1; the shoulder offset's where the wrist point is on it).
+    upward : ndarray, shape (3,)
+        Axis 1's unit direction that is up: along the z axis of the frame joint 1 turns in
+        (its parent link's, as the joint's origin places it).
     """
 
     family: str
@@ -71,6 +74,7 @@ class ArmShape:
     wrist_point: FloatArray
     carried_point: FloatArray
     forward: FloatArray
+    upward: FloatArray
 
     @property
     def parallel(self) -> FloatArray:
@@ -94,7 +98,7 @@ class ArmShape:
         axis = self.axes[2]
         stretched = math.atan2(float(np.dot(shoulder_to_elbow, np.cross(axis, offset))),
                                float(np.dot(shoulder_to_elbow, offset)))
-        above = np.cross(self.forward, self.axes[0])  # across the arm, up x forward
+        above = np.cross(self.forward, self.upward)  # across the arm, forward x up
         quarter = rotated(axis, np.array(stretched + math.pi / 2), offset)
         sign = float(np.dot(np.cross(quarter + shoulder_to_elbow, shoulder_to_elbow), above))
         return stretched, (1.0 if sign > 0.0 else -1.0)
@@ -160,9 +164,10 @@ class OpwParameters:
 
 
 def recognise_arm(names: Sequence[str], axes: FloatArray, points: FloatArray,
-                  scales: FloatArray, frame: str | None = None) -> ArmShape:
+                  scales: FloatArray, up: FloatArray, frame: str | None = None) -> ArmShape:
     """The :class:`ArmShape` of six joints (``names`` from the base out, ``axes`` and
-    ``points`` (6, 3) as :class:`ArmShape` holds them, ``scales`` (6,)).
+    ``points`` (6, 3) as :class:`ArmShape` holds them, ``scales`` (6,); ``up`` (3,) the z
+    axis of the frame joint 1 turns in, in the same axes).
 
     Raises :class:`~pinframes.errors.JointError` (naming ``frame``, field ``joints``) when
     the joints fit neither family, with what breaks each.
@@ -176,7 +181,7 @@ def recognise_arm(names: Sequence[str], axes: FloatArray, points: FloatArray,
     for family, conditions in (("opw", checks.opw), ("ur", checks.ur)):
         failure = next((message for message in conditions() if message), None)
         if failure is None:
-            return _shape(family, names, axes, points, scales)
+            return _shape(family, names, axes, points, scales, up)
         failures[family] = failure
     raise JointError(
         f"joints {', '.join(names)} form neither {FAMILIES['opw']}: {failures['opw']}; nor "
@@ -259,7 +264,7 @@ def _meeting_point(axis_a: FloatArray, point_a: FloatArray, axis_b: FloatArray,
 
 
 def _shape(family: str, names: tuple[str, ...], axes: FloatArray, points: FloatArray,
-           scales: FloatArray) -> ArmShape:
+           scales: FloatArray, up: FloatArray) -> ArmShape:
     wrist = (_meeting_point(axes[3], points[3], axes[4], points[4]) if family == "opw"
              else _meeting_point(axes[4], points[4], axes[5], points[5]))
     carried = wrist if family == "opw" else points[3]
@@ -269,6 +274,7 @@ def _shape(family: str, names: tuple[str, ...], axes: FloatArray, points: FloatA
     if abs(reach) <= 1e-6:
         reach = float(np.dot(points[1] - points[0], across))
     forward = across if reach >= 0.0 else -across
+    upward = axes[0] if float(np.dot(up, axes[0])) >= 0.0 else -axes[0]
     return ArmShape(family, names, axes.copy(), points.copy(), scales.copy(), wrist, carried,
-                    forward)
+                    forward, upward)
 

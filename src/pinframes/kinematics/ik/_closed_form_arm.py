@@ -55,15 +55,15 @@ def closed_form_arm(path: PreparedPath, solved: SolvedJoints, frame: str) -> Arm
     """The :class:`ArmShape` of ``solved`` on ``path`` (cached with the path), else
     :class:`~pinframes.errors.JointError` saying why not."""
     key = "closed form arm: " + "\0".join(solved.names)
-    cached = path.plans.get(key)
+    refused = path.plans.get(JointError, key)
+    if refused is not None:
+        raise refused
+    cached = path.plans.get(ArmShape, key)
     if cached is None:
         try:
-            cached = path.plans[key] = _arm(path, solved, frame)
+            cached = path.plans.keep(ArmShape, key, _arm(path, solved, frame))
         except JointError as error:
-            cached = path.plans[key] = error
-    if isinstance(cached, JointError):
-        raise cached
-    assert isinstance(cached, ArmShape)
+            raise path.plans.keep(JointError, key, error) from None
     return cached
 
 
@@ -100,6 +100,10 @@ def _arm(path: PreparedPath, solved: SolvedJoints, frame: str) -> ArmShape:
     jacobian = solved.jacobian(pin.computeFrameJacobian(pinocchio_model, data, q, tool, _LOCAL)
                                .reshape(6, -1))
     order = np.argsort(slots, kind="stable")
+    pin.framesForwardKinematics(pinocchio_model, data, q)
+    base_joint = next(joint for joint in support
+                      if pinocchio_model.idx_vs[joint] == int(slots[order[0]]))
+    up = data.oMf[tool].rotation.T @ data.oMi[base_joint].rotation[:, 2]
     turning = jacobian[3:, order].T
     scales = np.linalg.norm(turning, axis=1)
     for column, scale in zip(order, scales, strict=True):
@@ -109,7 +113,7 @@ def _arm(path: PreparedPath, solved: SolvedJoints, frame: str) -> ArmShape:
                              field="joints")
     axes = turning / scales[:, None]
     points = np.cross(axes, jacobian[:3, order].T)
-    return recognise_arm([solved.names[column] for column in order], axes, points, scales,
+    return recognise_arm([solved.names[column] for column in order], axes, points, scales, up,
                          frame)
 
 

@@ -17,13 +17,14 @@ from ...errors import JointError
 from ...values.pose import Pose
 from ...values.timeline import TimedSource
 from .._description import TreeDescription
+from .._joint_argument import named_joints
 from .._plan import plan_query, prepare_path
 from .._sampling import KERNEL_CHUNK
 from ..closed_form.solutions import IkSolutions, every_solution
 from ._closed_form_arm import arm_order, closed_form_arm, flange_motions
 from ._path_chunks import TARGET_SOURCE, _targets
 from ._solved_joints import solved_joints
-from .solve_joints import _joint_names, _reference
+from .solve_joints import _reference
 
 __all__ = ["evaluate_ik_solutions"]
 
@@ -33,7 +34,7 @@ def evaluate_ik_solutions(tree: TreeDescription, frame: str, target: str | Pose,
                           whole_turns: bool) -> IkSolutions:
     """``tree.ik_solutions(...)``; ``frame`` (and a target frame name) already checked."""
     reference, target_pose = _reference(tree, frame, target, relative_to)
-    names = None if joints is None else _joint_names(joints, tree.joints_by_name, frame)
+    names = None if joints is None else named_joints(joints, tree.joints_by_name, frame)
     target_times = None if target_pose is None else target_pose.times
     extra = () if target_pose is None or target_times is None else (
         TimedSource(TARGET_SOURCE, target_times.astype(np.int64), target_pose.reference_time),)
