@@ -45,6 +45,7 @@ from .formats.urdf import read_urdf, write_urdf
 from .kinematics import (
     Clearance,
     FrameJacobian,
+    IkSolutions,
     JointSolution,
     PinocchioTree,
     Snapshot,
@@ -89,6 +90,7 @@ __all__ = [
     "FramesYamlWarning",
     "GeometryError",
     "GeometryWarning",
+    "IkSolutions",
     "InvalidDataError",
     "InvalidPoseError",
     "InvalidTimeError",

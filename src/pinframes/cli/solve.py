@@ -66,6 +66,11 @@ def add_parser(subparsers: Subparsers, parents: list[argparse.ArgumentParser]) -
                         "tool's z may tilt from the target's by up to ABOUT_X about the "
                         "target's x and ABOUT_Y about its y; the summary gives the largest "
                         "tilt used (default: none, the target's z exactly)")
+    parser.add_argument("--configuration", metavar="FLAGS",
+                        help="for a 6-axis OPW or UR-type arm: the branch the whole path keeps, "
+                             "as flags (front,up,noflip) or a KUKA Status 0..7 "
+                             "(docs/closed-form-ik.md); default: the branch nearest the seed "
+                             "or start")
     parser.add_argument("--position-tolerance", type=float, default=1e-6, metavar="M",
                         help="metres (default: 1e-6)")
     parser.add_argument("--orientation-tolerance", type=float, default=1e-6, metavar="RAD",
@@ -100,7 +105,8 @@ def run(args: argparse.Namespace) -> int:
         time_ref=args.time_ref, joints=_joints_or_group(tree, args.joints),
         seed=_seed(tree, args.seed), free_axis=args.free_axis, flat=args.flat, up=args.up,
         tilt=args.tilt, add_joints=args.add_joints, position_tolerance=args.position_tolerance,
-        orientation_tolerance=args.orientation_tolerance, strict=args.strict)
+        orientation_tolerance=args.orientation_tolerance, strict=args.strict,
+        configuration=args.configuration)
     if args.output is not None:
         write_joint_trajectory(solution, args.output)
     else:  # timestamps when the solution has a reference time, else seconds
@@ -175,6 +181,10 @@ def summary(tree: FrameTree, solution: JointSolution) -> str:
         margin, name = min(margins)
         unit = "m" if joints[name].kind == "prismatic" else "rad"
         line += f"; closest to a joint limit: {margin:.3g} {unit} ({name})"
+    if solution.configurations is not None and count:
+        branches = list(dict.fromkeys(solution.configurations.tolist()))
+        line += f"; configuration {' then '.join(branches[:3])}" + (
+            "..." if len(branches) > 3 else "")
     return line + "; " + _fastest(tree, solution)
 
 

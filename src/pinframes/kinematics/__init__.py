@@ -15,8 +15,9 @@ interpolation scheme's, :mod:`pinframes.values.interpolation`).
 """
 
 from ._description import TreeDescription, paths_to_common_ancestor
+from .closed_form.solutions import IkSolutions
 from .collision import Clearance, clearance_times, evaluate_clearance
-from .ik import JointSolution, evaluate_solve_joints
+from .ik import JointSolution, evaluate_ik_solutions, evaluate_solve_joints
 from .jacobian import FrameJacobian, evaluate_jacobian
 from .pinocchio_tree import PinocchioTree
 from .pose import default_times, evaluate_pose
@@ -28,6 +29,7 @@ from .weld_process import WeldProcess, evaluate_weld_process, welding_positions
 __all__ = [
     "Clearance",
     "FrameJacobian",
+    "IkSolutions",
     "JointSolution",
     "PinocchioTree",
     "Snapshot",
@@ -37,6 +39,7 @@ __all__ = [
     "clearance_times",
     "default_times",
     "evaluate_clearance",
+    "evaluate_ik_solutions",
     "evaluate_jacobian",
     "evaluate_pose",
     "evaluate_poses",

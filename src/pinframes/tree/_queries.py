@@ -25,12 +25,14 @@ from ..errors import (
 )
 from ..kinematics import (
     FrameJacobian,
+    IkSolutions,
     JointSolution,
     PinocchioTree,
     Snapshot,
     Velocity,
     WeldProcess,
     default_times,
+    evaluate_ik_solutions,
     evaluate_jacobian,
     evaluate_pose,
     evaluate_poses,
@@ -301,7 +303,7 @@ class TreeQueries(EditableTree):
         free_axis: str | None = None, seed: Any = None, position_tolerance: float = 1e-6,
         orientation_tolerance: float = 1e-6, strict: bool = False, flat: str | None = None,
         up: Any = None, tilt: tuple[float, float] | None = None,
-        add_joints: Sequence[str] | None = None,
+        add_joints: Sequence[str] | None = None, configuration: Any = None,
     ) -> JointSolution:
         """Joint values that put ``frame`` (a tool) on ``target`` at each time: inverse
         kinematics along a path.
@@ -377,6 +379,13 @@ class TreeQueries(EditableTree):
             ``free_axis="z"`` the spin about the tool's z is free too; without, it is the
             target's. A sample is reached within the windows (to ``orientation_tolerance``)
             and the position tolerance.
+        configuration : str or int, optional
+            For a 6-axis arm of a closed-form family (docs/closed-form-ik.md): the branch
+            the whole path keeps, as flags (``"front,up,noflip"``) or a KUKA Status (0..7).
+            Samples the branch does not reach hold the nearest solution and are not
+            reached. Without it such an arm is solved in closed form on the branch nearest
+            the seed (or default start), the wrist passing through straight continuously,
+            unless that branch misses a sample (then as any other chain).
 
         Returns
         -------
@@ -410,9 +419,45 @@ class TreeQueries(EditableTree):
             time_ref=time_ref, joints=joints, free_axis=free_axis, seed=seed,
             position_tolerance=position_tolerance,
             orientation_tolerance=orientation_tolerance, strict=strict, flat=flat, up=up,
-            tilt=tilt, add_joints=add_joints)
+            tilt=tilt, add_joints=add_joints, configuration=configuration)
         named = urdf_joint_names(self, solution.joint_names)
         return solution if named is None else replace(solution, urdf_joint_names=tuple(named))
+
+    def ik_solutions(
+        self, frame: str, target: str | Pose, *, relative_to: str | None = None,
+        times: Any = None, time_ref: Any = None, joints: str | Sequence[str] | None = None,
+        whole_turns: bool = True,
+    ) -> IkSolutions:
+        """Every joint solution that puts ``frame`` on ``target`` at each time, for a 6-axis
+        arm of a closed-form family: an OPW arm (ortho-parallel base, spherical wrist) or a
+        UR-type arm, recognised from the joints' axes (docs/closed-form-ik.md).
+
+        ``target``, ``relative_to``, ``times``, ``time_ref`` and ``joints`` are as for
+        :meth:`solve_joints`. With ``whole_turns`` (default), a joint whose range spans
+        more than a turn gives each of its values within the range as a further branch;
+        without, the one nearest the middle of its range.
+
+        Returns
+        -------
+        IkSolutions
+            ``positions`` (T, k, n), NaN where a branch has no solution within the limits,
+            ``valid`` (T, k), ``configurations`` (k,) naming the branches, ``arm`` the
+            recognised arm.
+
+        Raises :class:`~pinframes.errors.JointError` for joints that form neither family,
+        naming them and what breaks each shape.
+        """
+        self._require(frame, "frame")
+        if isinstance(target, str):
+            self._require(target, "target")
+        if relative_to is not None:
+            self._require(relative_to, "relative_to")
+        if isinstance(joints, str) and joints not in self.joints:
+            joints = group_joints(self, joints, [frame] + (
+                [target] if isinstance(target, str) else []))
+        return evaluate_ik_solutions(
+            self._frozen(), frame, target, relative_to=relative_to, times=times,
+            time_ref=time_ref, joints=joints, whole_turns=bool(whole_turns))
 
     def sample_times(self, frame: str, relative_to: str | None = None) -> TimeAxis | None:
         """The times :meth:`pose` evaluates at when given none, without evaluating.

@@ -6,10 +6,13 @@ result. Its steps: the solved joints (``_solved_joints``), where the solve start
 (``_newton_tracking``) with the tool's error (``_tool_error``), the step within limits
 (``_bounded_step``) and the secondary objectives (``_null_space``, ``_flat``), and the
 batched check of its samples (``_batch_check``). The planning and sampling it shares with
-the other queries are the ``_`` modules of :mod:`pinframes.kinematics`.
+the other queries are the ``_`` modules of :mod:`pinframes.kinematics`. A 6-axis arm of a
+closed-form family (:mod:`pinframes.kinematics.closed_form`) is solved in closed form
+(``_closed_form_arm``); :mod:`.ik_solutions` gives all its solutions.
 """
 
+from .ik_solutions import evaluate_ik_solutions
 from .joint_solution import JointSolution
 from .solve_joints import evaluate_solve_joints
 
-__all__ = ["JointSolution", "evaluate_solve_joints"]
+__all__ = ["JointSolution", "evaluate_ik_solutions", "evaluate_solve_joints"]

@@ -60,6 +60,9 @@ class JointSolution(Timed):
         :attr:`joint_names` as the robot's URDF names them (the tree's prefix removed: what
         the robot's controller knows), when every solved joint belongs to one robot read
         from a URDF; None otherwise. :func:`pinframes.write_joint_trajectory` writes these.
+    configurations : ndarray of str, shape (T,), or None
+        For a 6-axis arm of a closed-form family (docs/closed-form-ik.md), each sample's
+        configuration flags, e.g. ``"front,up,noflip"``; None for other chains.
     """
 
     joint_names: tuple[str, ...]
@@ -73,6 +76,7 @@ class JointSolution(Timed):
     velocity_limit_joints: tuple[str, ...]
     tilt: FloatArray | None = None
     urdf_joint_names: tuple[str, ...] | None = None
+    configurations: NDArray[np.str_] | None = None
 
     @property
     def velocities(self) -> FloatArray:

@@ -23,12 +23,15 @@ from ...values.pose import Pose
 from ...values.timeline import TimedSource
 from .._description import TreeDescription
 from .._joint_argument import named_joints
-from .._plan import plan_query, prepare_path
+from .._plan import PreparedPath, plan_query, prepare_path
+from ..closed_form.arm_shapes import ArmShape
+from ..closed_form.configurations import BRANCH_NAMES, branch_flags, requested_branch
 from ._bounded_step import LeastSquares
+from ._closed_form_arm import arm_order, closed_form_arm, solve_in_closed_form
 from ._flat import flat_objective
 from ._null_space import AwayFromLimits, NullSpaceObjective
 from ._path_chunks import TARGET_SOURCE, PathToSolve, track_in_chunks
-from ._solved_joints import solved_joints
+from ._solved_joints import SolvedJoints, solved_joints
 from ._starts import first_start
 from ._tool_error import AXES, AxisMatch, PoseMatch, ToolMatch, WindowMatch
 from .joint_solution import JointSolution
@@ -46,8 +49,10 @@ def evaluate_solve_joints(
     times: Any, time_ref: Any, joints: Any, free_axis: str | None, seed: Any,
     position_tolerance: float, orientation_tolerance: float, strict: bool,
     flat: str | None = None, up: Any = None, tilt: Any = None, add_joints: Any = None,
+    configuration: Any = None,
 ) -> JointSolution:
     """``tree.solve_joints(...)``; ``frame`` (and a target frame name) already checked."""
+    branch = None if configuration is None else requested_branch(configuration, frame=frame)
     reference, target_pose = _reference(tree, frame, target, relative_to)
     error = _tool_match(free_axis, tilt, frame)
     if up is not None and flat is None:
@@ -77,15 +82,42 @@ def evaluate_solve_joints(
         AwayFromLimits(solved.limits) if flat is None
         else flat_objective(tree, path.model, solved, flat, up, frame, solver))
     request = PathToSolve(plan, solved, target_pose, error, *tolerances, objective, solver)
-    tracked, tilts = track_in_chunks(request, start, seed is None, strict, frame)
+    arm = _closed_form(path, solved, frame, branch is not None)
+    closed = arm is not None and flat is None and isinstance(error, PoseMatch)
+    if branch is not None and not closed:
+        raise ArgumentTypeError("configuration= keeps a whole pose on a branch of the closed "
+                                "form; it does not combine with free_axis=, tilt= or flat=",
+                                frame=frame, field="configuration")
+    closed_form = None if not closed or arm is None else solve_in_closed_form(
+        request, arm, start, branch, strict, frame)
+    tilts, branches = None, None
+    if closed_form is None:
+        tracked, tilts = track_in_chunks(request, start, seed is None, strict, frame)
+    else:
+        tracked, branches = closed_form
+    if arm is not None and branches is None:
+        branches = branch_flags(arm, tracked.positions[:, arm_order(arm, solved.names)])
     offsets = np.zeros(1, dtype=np.int64) if plan.offsets is None else plan.offsets
     solution = JointSolution(
         solved.names, tracked.positions, offsets.astype("timedelta64[ns]"),
         plan.reference_time, tracked.position_error, tracked.orientation_error,
-        tracked.reached, solved.velocity_limits, solved.velocity_limit_joints, tilt=tilts)
+        tracked.reached, solved.velocity_limits, solved.velocity_limit_joints, tilt=tilts,
+        configurations=None if branches is None else np.array(BRANCH_NAMES)[branches])
     if strict:
         require_within_speed(solution, tree.joints_by_name, frame)
     return solution
+
+
+def _closed_form(path: PreparedPath, solved: SolvedJoints, frame: str, needed: bool
+                 ) -> ArmShape | None:
+    """The solved joints' arm when they form one of a closed-form family, else None (or,
+    when ``needed``, the error saying why not)."""
+    try:
+        return closed_form_arm(path, solved, frame)
+    except JointError:
+        if needed:
+            raise
+        return None
 
 
 def _reference(tree: TreeDescription, frame: str, target: str | Pose, relative_to: str | None

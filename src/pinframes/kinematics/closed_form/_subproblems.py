@@ -1,0 +1,101 @@
+"""The three small problems both closed forms are made of, vectorised over samples: turning
+a vector about a unit axis, the angle that turns one vector onto another about an axis, and
+the two angles where ``A cos + B sin`` takes a value.
+
+Vectors are ``(3, ...)`` arrays, components first (a constant one is ``(3,)``), so that
+every product is an element-wise pass over contiguous rows; rotations are ``(3, 3, T)``,
+samples last, as :mod:`pinframes.values.se3` holds them.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+__all__ = ["AT_LIMIT", "Turn", "applied", "backwards", "column", "cross", "dot", "rotated",
+           "turn_angle", "turn_of", "two_angles"]
+
+FloatArray = NDArray[np.float64]
+
+AT_LIMIT = 1e-9
+"""How far past +-1 a cosine may fall (rounding at a stretched arm or a straight wrist) and
+still be taken as +-1; further past, the pose is out of reach and the angles are NaN."""
+
+
+def column(vector: FloatArray, dimensions: int) -> FloatArray:
+    """A constant ``vector`` (3,) shaped to broadcast against vectors ``(3,)`` followed by
+    ``dimensions`` more axes."""
+    return vector.reshape((3,) + (1,) * dimensions)
+
+
+def dot(first: FloatArray, second: FloatArray) -> FloatArray:
+    """The dot product of two vectors (components first, broadcast)."""
+    return first[0] * second[0] + first[1] * second[1] + first[2] * second[2]
+
+
+def cross(first: FloatArray, second: FloatArray) -> FloatArray:
+    """The cross product of two vectors (components first, broadcast)."""
+    return _stacked(first[1] * second[2] - first[2] * second[1],
+                    first[2] * second[0] - first[0] * second[2],
+                    first[0] * second[1] - first[1] * second[0])
+
+
+def _stacked(x: FloatArray, y: FloatArray, z: FloatArray) -> FloatArray:
+    """Three components (broadcast) as one vector array."""
+    shape = np.broadcast_shapes(np.shape(x), np.shape(y), np.shape(z))
+    out = np.empty((3, *shape))
+    out[0], out[1], out[2] = x, y, z
+    return out
+
+
+def applied(rotations: FloatArray, vector: FloatArray) -> FloatArray:
+    """``rotations`` (3, 3, T) applied to ``vector`` (3,) or (3, T, ...)."""
+    extra = vector.ndim - 2 if vector.ndim > 1 else 0
+    rows = rotations.reshape(rotations.shape[:3] + (1,) * extra)
+    return _stacked(*(rows[row, 0] * vector[0] + rows[row, 1] * vector[1]
+                      + rows[row, 2] * vector[2] for row in range(3)))
+
+
+Turn = tuple[FloatArray, FloatArray]
+"""An angle as its cosine and sine (computed once for the several vectors it turns)."""
+
+
+def turn_of(angle: FloatArray) -> Turn:
+    """``angle`` (...) radians as a :data:`Turn`."""
+    return np.cos(angle), np.sin(angle)
+
+
+def backwards(turn: Turn) -> Turn:
+    """The opposite :data:`Turn`."""
+    return turn[0], -turn[1]
+
+
+def rotated(axis: FloatArray, angle: FloatArray | Turn, vector: FloatArray) -> FloatArray:
+    """``vector`` (3, ...) turned by ``angle`` (...) radians (or a :data:`Turn`) about the
+    unit ``axis`` (3,) (Rodrigues' formula)."""
+    cosine, sine = angle if isinstance(angle, tuple) else (np.cos(angle), np.sin(angle))
+    along = dot(axis, vector) * (1.0 - cosine)
+    x, y, z = vector[0], vector[1], vector[2]
+    a, b, c = axis
+    return _stacked(x * cosine + (b * z - c * y) * sine + a * along,
+                    y * cosine + (c * x - a * z) * sine + b * along,
+                    z * cosine + (a * y - b * x) * sine + c * along)
+
+
+def turn_angle(axis: FloatArray, start: FloatArray, end: FloatArray) -> FloatArray:
+    """The angle (...) in ``(-pi, pi]`` about the unit ``axis`` (3,) that turns ``start``
+    onto ``end`` (3, ...), their parts across the axis compared (0 where either has none)."""
+    return np.arctan2(dot(axis, cross(start, end)),
+                      dot(start, end) - dot(axis, start) * dot(axis, end))
+
+
+def two_angles(cos_part: FloatArray, sin_part: FloatArray, value: FloatArray
+               ) -> tuple[FloatArray, FloatArray]:
+    """The centre ``g`` and half-width ``h`` of the two angles ``g + h`` and ``g - h`` at
+    which ``cos_part cos(x) + sin_part sin(x)`` equals ``value`` (arrays broadcast); ``h`` is
+    NaN where no angle does (:data:`AT_LIMIT`)."""
+    centre = np.arctan2(sin_part, cos_part)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = value / np.hypot(cos_part, sin_part)
+    ratio = np.where(np.abs(ratio) <= 1.0 + AT_LIMIT, np.clip(ratio, -1.0, 1.0), np.nan)
+    return centre, np.arccos(ratio)

@@ -1,0 +1,120 @@
+"""The configuration flags of a recognised arm, from its joint values, and the vendor forms
+that follow from them.
+
+- shoulder ``front`` / ``back``: the wrist point (the wrist centre of an OPW arm, where
+  axes 5 and 6 meet on a UR-type arm) lies on the :attr:`~.arm_shapes.ArmShape.forward`
+  side of axis 1 (turned with joint 1), or behind it;
+- elbow ``up`` / ``down``: joint 3 on the side of the stretched-arm angle that puts the
+  elbow above the line from axis 2 to the point joints 2 and 3 carry (the wrist centre; a
+  UR-type arm's axis 4) while the arm reaches forward, or the other side;
+- wrist ``noflip`` / ``flip``: joint 5 above the straight-wrist angle (axis 6 along axis 4,
+  or on a UR-type arm along axes 2 to 4; that angle is 0 on every arm we know), or not
+  (the straight wrist itself counts as ``flip``, as KUKA's Status does).
+
+A branch is named ``"front,up,noflip"``: its index is ``4 back + 2 down + flip``.
+
+KUKA's Status and Turn are read from the joint values as KUKA's controllers define them,
+in the signs of the URDF's joints (ROS-Industrial's KUKA descriptions use the controller's):
+Status bit 0 the wrist point behind axis 1, bit 1 joint 3 at or above the stretched-arm
+angle (in ``(-pi, pi]``), bit 2 joint 5 at or below 0; Turn bit ``i`` joint ``i + 1``
+below 0. ABB's ``cf1``, ``cf4``, ``cf6`` are the quadrants of joints 1, 4 and 6
+(``floor(q / (pi / 2))``).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ...errors import ArgumentTypeError
+from ._subproblems import column, dot, rotated
+from .arm_shapes import ArmShape
+
+__all__ = ["BRANCH_NAMES", "abb_quadrants", "branch_flags", "kuka_status", "kuka_turn",
+           "requested_branch"]
+
+FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+_WORDS = (("front", "back"), ("up", "down"), ("noflip", "flip"))
+
+BRANCH_NAMES = tuple(f"{shoulder},{elbow},{wrist}" for shoulder in _WORDS[0]
+                     for elbow in _WORDS[1] for wrist in _WORDS[2])
+"""The eight branches, by index ``4 back + 2 down + flip``."""
+
+
+def branch_flags(shape: ArmShape, positions: FloatArray) -> IntArray:
+    """The branch index ``4 back + 2 down + flip`` (...) of joint values ``positions``
+    (..., 6) in the shape's joint order (NaN rows give 0)."""
+    angles = np.nan_to_num(positions * shape.scales)
+    axes, points = shape.axes, shape.points
+    extra = angles.ndim - 1
+    wrist = column(shape.wrist_point, extra)
+    for joint in (4, 3, 2, 1):  # the wrist point through joints 5 to 2 (6 keeps it)
+        point = column(points[joint], extra)
+        wrist = rotated(axes[joint], angles[..., joint], wrist - point) + point
+    back = dot(shape.forward, wrist - column(points[0], extra)) < 0.0
+    stretched, up_sign = shape.elbow
+    down = up_sign * np.sin(angles[..., 2] - stretched) <= 0.0
+    flip = np.sin(angles[..., 4] - shape.wrist_straight) <= 0.0
+    return (4 * back + 2 * down + flip).astype(np.int64)
+
+
+def requested_branch(configuration: Any, field: str = "configuration",
+                     frame: str | None = None) -> tuple[str, int]:
+    """``("flags", index)`` for words such as ``"front,up,noflip"`` (any order, one of each
+    pair), ``("kuka_status", value)`` for a KUKA Status 0..7 (an int or its digits)."""
+    if isinstance(configuration, (int, np.integer)) and not isinstance(configuration, bool):
+        status = int(configuration)
+    elif isinstance(configuration, str) and configuration.strip().isdigit():
+        status = int(configuration.strip())
+    elif isinstance(configuration, str):
+        words = [word.strip().lower() for word in configuration.split(",") if word.strip()]
+        index = 0
+        for weight, pair in zip((4, 2, 1), _WORDS, strict=True):
+            chosen = [word for word in words if word in pair]
+            if len(chosen) != 1:
+                raise ArgumentTypeError(
+                    f"expected one of {' / '.join(pair)} in {configuration!r} (a "
+                    "configuration is e.g. 'front,up,noflip', or a KUKA Status 0..7)",
+                    frame=frame, field=field)
+            index += weight * pair.index(chosen[0])
+        unknown = [word for word in words if not any(word in pair for pair in _WORDS)]
+        if unknown:
+            raise ArgumentTypeError(f"unknown configuration word {unknown[0]!r} (known: "
+                                    f"{', '.join(w for pair in _WORDS for w in pair)})",
+                                    frame=frame, field=field)
+        return "flags", index
+    else:
+        raise ArgumentTypeError(f"expected configuration words such as 'front,up,noflip' or "
+                                f"a KUKA Status 0..7, got {configuration!r}", frame=frame,
+                                field=field)
+    if not 0 <= status <= 7:
+        raise ArgumentTypeError(f"a KUKA Status is 0..7 (three bits), got {status}",
+                                frame=frame, field=field)
+    return "kuka_status", status
+
+
+def kuka_status(shape: ArmShape, positions: FloatArray) -> IntArray:
+    """KUKA's Status (...) of joint values ``positions`` (..., 6) in the shape's order."""
+    stretched = shape.elbow[0] / shape.scales[2]
+    period = 2.0 * math.pi / shape.scales[2]
+    stretched = stretched - period * math.floor((stretched + 0.5 * period) / period)
+    back = branch_flags(shape, positions) >= 4
+    return (back + 2 * (positions[..., 2] >= stretched)
+            + 4 * (positions[..., 4] <= 0.0)).astype(np.int64)
+
+
+def kuka_turn(positions: FloatArray) -> IntArray:
+    """KUKA's Turn (...): bit ``i`` set where joint ``i + 1`` of ``positions`` (..., 6) is
+    below 0."""
+    return np.sum((positions < 0.0) << np.arange(positions.shape[-1]), axis=-1)
+
+
+def abb_quadrants(positions: FloatArray) -> IntArray:
+    """ABB's ``cf1``, ``cf4``, ``cf6`` (..., 3): the quadrants ``floor(q / (pi / 2))`` of
+    joints 1, 4 and 6 of ``positions`` (..., 6)."""
+    return np.floor(positions[..., [0, 3, 5]] / (0.5 * math.pi)).astype(np.int64)

@@ -1,0 +1,370 @@
+"""A solve's arm in closed form: whether the solved joints are a 6-axis arm of a family of
+:mod:`..closed_form` (their screws at zero read from Pinocchio's Jacobian of the tool), the
+flange motions each target asks, and a whole path tracked on one branch.
+
+Tracking: every sample's eight branches come from the closed form; the shoulder and elbow
+of the requested configuration, else of the branch nearest the start at the first sample,
+are kept, and without a requested configuration the wrist passes through its straight
+position continuously (between samples it takes the other wrist branch where that moves the
+wrist joints less). Each joint is then unwrapped along the path and moved by whole turns to
+start nearest the start within its limits. A path that this branch does not reach at every
+sample is left to the numeric solver unless a configuration was requested.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pinocchio as pin
+from numpy.typing import NDArray
+
+from ...errors import JointError
+from ...values.se3 import Transform, compose, inverse, samples_last
+from .._plan import PreparedPath
+from .._sampling import KERNEL_CHUNK, sample_joints
+from ..closed_form.arm_shapes import ArmShape, recognise_arm
+from ..closed_form.configurations import kuka_status
+from ..closed_form.solutions import (
+    LIMIT_SLACK,
+    STRAIGHT_WRIST,
+    branch_angles,
+    free_wrist_joint,
+    turn_periods,
+)
+from ._batch_check import _tools_in_targets
+from ._newton_tracking import Tracked
+from ._path_chunks import TARGET_SOURCE, PathToSolve, _raise_unreached, _targets
+from ._solved_joints import SolvedJoints
+
+__all__ = ["AT_START", "JUMP", "arm_order", "closed_form_arm", "flange_motions",
+           "solve_in_closed_form", "track_in_closed_form"]
+
+FloatArray = NDArray[np.float64]
+
+_LOCAL = pin.ReferenceFrame.LOCAL
+
+AT_START = 1e-12
+"""Radians within which a closed-form solution is the start itself (rounding)."""
+
+JUMP = 0.02
+"""Radians: a step this much longer than four times the path's median step is a jump."""
+
+
+def closed_form_arm(path: PreparedPath, solved: SolvedJoints, frame: str) -> ArmShape:
+    """The :class:`ArmShape` of ``solved`` on ``path`` (cached with the path), else
+    :class:`~pinframes.errors.JointError` saying why not."""
+    key = "closed form arm: " + "\0".join(solved.names)
+    refused = path.plans.get(JointError, key)
+    if refused is not None:
+        raise refused
+    cached = path.plans.get(ArmShape, key)
+    if cached is None:
+        try:
+            cached = path.plans.keep(ArmShape, key, _arm(path, solved, frame))
+        except JointError as error:
+            raise path.plans.keep(JointError, key, error) from None
+    return cached
+
+
+def _arm(path: PreparedPath, solved: SolvedJoints, frame: str) -> ArmShape:
+    model = path.model
+    assert model is not None
+    if solved.moves_reference:
+        raise JointError("closed-form inverse kinematics is for an arm that moves the tool "
+                         "only; a solved joint moves the target's frame", frame=frame,
+                         field="joints")
+    if len(solved.names) != 6:
+        raise JointError(f"closed-form inverse kinematics is for six joints in a chain; got "
+                         f"{len(solved.names)}", frame=frame, field="joints")
+    drives = solved.tangent != 0.0
+    if not np.all(drives.sum(axis=0) == 1):
+        raise JointError("closed-form inverse kinematics is for an arm whose joints each "
+                         "turn one axis; a solved joint drives mimic joints", frame=frame,
+                         field="joints")
+    slots = np.argmax(drives, axis=0)
+    pinocchio_model = model.model
+    tool = model.frame_ids[frame]
+    support = [joint for joint in pinocchio_model.supports[
+        pinocchio_model.frames[tool].parentJoint] if joint > 0]
+    moving = [pinocchio_model.idx_vs[joint] for joint in support]
+    first = min(int(slot) for slot in slots)
+    between = [slot for slot in moving if slot >= first and slot not in set(slots.tolist())]
+    if between:
+        raise JointError("closed-form inverse kinematics is for an arm whose solved joints "
+                         "are all that moves between its base and the tool", frame=frame,
+                         field="joints")
+    q = pin.neutral(pinocchio_model)
+    solved.set_configuration(q, np.zeros(len(solved.names)))
+    data = pinocchio_model.createData()
+    jacobian = solved.jacobian(pin.computeFrameJacobian(pinocchio_model, data, q, tool, _LOCAL)
+                               .reshape(6, -1))
+    order = np.argsort(slots, kind="stable")
+    pin.framesForwardKinematics(pinocchio_model, data, q)
+    base_joint = next(joint for joint in support
+                      if pinocchio_model.idx_vs[joint] == int(slots[order[0]]))
+    up = data.oMf[tool].rotation.T @ data.oMi[base_joint].rotation[:, 2]
+    turning = jacobian[3:, order].T
+    scales = np.linalg.norm(turning, axis=1)
+    for column, scale in zip(order, scales, strict=True):
+        if scale == 0.0:
+            raise JointError(f"closed-form inverse kinematics is for revolute joints; "
+                             f"{solved.names[column]!r} is not one", frame=frame,
+                             field="joints")
+    axes = turning / scales[:, None]
+    points = np.cross(axes, jacobian[:3, order].T)
+    return recognise_arm([solved.names[column] for column in order], axes, points, scales, up,
+                         frame)
+
+
+def arm_order(shape: ArmShape, names: tuple[str, ...]) -> list[int]:
+    """The columns of ``names`` in the shape's joint order."""
+    return [names.index(name) for name in shape.joint_names]
+
+
+def flange_motions(path: PreparedPath, times: NDArray[np.int64], shifts: dict[str, int],
+                   names: tuple[str, ...], targets: Transform | None) -> Transform:
+    """Per time, the motion of the tool from where the solved joints at zero put it to its
+    target, in the tool's axes there: ``(3, 3, N)`` rotations and ``(3, N)`` translations
+    (samples last)."""
+    count = times.shape[0]
+    zeros = dict.fromkeys(names, 0.0)
+    model = path.model
+    assert model is not None
+    samples = sample_joints(path.samplers, times, shifts, held=zeros)
+    tool, reference = model.forward_kinematics(samples, [path.frame, path.relative_to])
+    motion = compose(inverse(tool), reference)
+    if targets is not None:
+        motion = compose(motion, samples_last(targets))
+    rotation, translation = motion
+    return (np.broadcast_to(rotation.reshape(3, 3, -1), (3, 3, count)),
+            np.broadcast_to(translation.reshape(3, -1), (3, count)))
+
+
+def track_in_closed_form(
+    shape: ArmShape, path: PreparedPath, times: NDArray[np.int64], shifts: dict[str, int],
+    solved: SolvedJoints, targets: Any, start: FloatArray, branch: tuple[str, int] | None,
+) -> tuple[FloatArray, NDArray[np.bool_], NDArray[np.int64] | None]:
+    """Joint values (T, n) in ``solved``'s order along the path, where the branch has a
+    solution within the limits (T,), and each sample's branch index when the shoulder and
+    elbow were kept (None when a KUKA Status or a singular crossing chose them); ``branch`` as
+    :func:`..closed_form.configurations.requested_branch` gives it, or None (the start's).
+    ``targets(part)`` gives the targets of the samples ``part`` (None: the frame itself)."""
+    order = arm_order(shape, solved.names)
+    lower, upper = solved.limits.lower[order], solved.limits.upper[order]
+    start = start[order]
+    period = turn_periods(shape)
+    count = times.shape[0]
+    chunks = [flange_motions(path, times[begin:begin + KERNEL_CHUNK], shifts, solved.names,
+                             targets(slice(begin, begin + KERNEL_CHUNK)))
+              for begin in range(0, count, KERNEL_CHUNK)]
+    rotations = np.concatenate([chunk[0] for chunk in chunks], axis=-1)
+    translations = np.concatenate([chunk[1] for chunk in chunks], axis=-1)
+
+    def solved_at(rows: Any, arm: int | None, free: FloatArray | None = None) -> FloatArray:
+        parts = [branch_angles(shape, rotations[..., rows][..., begin:begin + KERNEL_CHUNK],
+                               translations[..., rows][..., begin:begin + KERNEL_CHUNK], arm,
+                               None if free is None else free[begin:begin + KERNEL_CHUNK])
+                 for begin in range(0, rotations[..., rows].shape[-1], KERNEL_CHUNK)]
+        return np.concatenate(parts)
+
+    kept: int | None = None
+    steps: FloatArray | None = None  # the path's steps, once known
+    if branch is not None and branch[0] == "kuka_status":
+        angles = solved_at(slice(None), None)
+        matching = kuka_status(shape, angles) == branch[1]
+        positions = angles[np.arange(count), np.argmax(matching, axis=1)]
+        positions[~matching.any(axis=1)] = np.nan
+    else:
+        if branch is None:  # the branch nearest the start at the first sample
+            away = solved_at(slice(0, 1), None)[0] - start
+            away -= period * np.rint(away / period)
+            arm = int(np.argmin(np.where(np.isnan(away).any(axis=1), np.inf,
+                                         np.abs(away).max(axis=1)))) & 6
+        else:
+            arm = branch[1] & 6
+        candidates = solved_at(slice(None), arm)
+        wrist = (np.full(count, branch[1] & 1) if branch is not None
+                 else _wrist_passing_through(candidates, start, period))
+        positions = candidates[np.arange(count), wrist]
+        positions = _free_wrist_held(shape, positions, start, lambda rows, free: solved_at(
+            rows, arm, free)[np.arange(free.shape[0]), wrist[rows]])
+        kept = arm
+        steps = _wrapped_steps(positions, period)
+        if branch is None and _jumps(steps):
+            free = positions[:, free_wrist_joint(shape)]
+            positions = _nearest_all_along(solved_at(slice(None), None, free), start, period)
+            kept = None
+            steps = None
+    positions = _unwrapped_within(positions, start, period, lower, upper, steps)
+    # a sample the start already reaches keeps it as it is (not its rounded closed form)
+    positions[np.abs(positions - start).max(axis=1) <= AT_START] = start
+    valid = ~np.isnan(positions).any(axis=1) & np.all(
+        (positions >= lower - LIMIT_SLACK) & (positions <= upper + LIMIT_SLACK), axis=1)
+    result = np.empty_like(positions)
+    result[:, order] = positions
+    branches = None if kept is None else kept + (np.sin(
+        positions[:, 4] * shape.scales[4] - shape.wrist_straight) <= 0.0).astype(np.int64)
+    return result, valid, branches
+
+
+def _free_wrist_held(shape: ArmShape, positions: FloatArray, start: FloatArray,
+                     again: Any) -> FloatArray:
+    """``positions`` (T, 6) with the samples at a straight wrist solved ``again(rows, free)``
+    with the wrist's free joint held where the sample before left it (the first: the
+    start)."""
+    straight = np.abs(np.sin(positions[:, 4] * shape.scales[4] - shape.wrist_straight)
+                      ) < STRAIGHT_WRIST
+    if not straight.any():
+        return positions
+    joint = free_wrist_joint(shape)
+    index = np.arange(positions.shape[0])
+    before = np.maximum.accumulate(np.where(straight, -1, index))
+    held = np.where(before >= 0, positions[np.maximum(before, 0), joint], start[joint])
+    rows = np.flatnonzero(straight)
+    positions = positions.copy()
+    positions[rows] = again(rows, held[rows])
+    return positions
+
+
+def _wrapped_steps(positions: FloatArray, period: FloatArray) -> FloatArray:
+    """The steps (T - 1, 6) between the samples of ``positions`` (T, 6), each joint's the
+    shorter way round."""
+    steps = np.diff(positions, axis=0)
+    steps -= period * np.rint(steps / period)
+    return steps
+
+
+def _jumps(steps: FloatArray) -> bool:
+    """Whether one of the path's ``steps`` (T - 1, 6) is far longer than its usual step (a
+    singular configuration crossed: the closed form's branch changes name there)."""
+    if not steps.shape[0]:
+        return False
+    longest = np.nan_to_num(np.abs(steps).max(axis=1))
+    return bool((longest > JUMP + 4.0 * np.median(longest)).any())
+
+
+def _nearest_all_along(angles: FloatArray, start: FloatArray, period: FloatArray
+                       ) -> FloatArray:
+    """Per sample of ``angles`` (T, 8, 6), the solution nearest the one before (the first:
+    nearest ``start``), unwrapped onto it; a sample out of reach is NaN and the next is
+    compared with the last solution. A loop over the samples: taken only where a
+    singular configuration is crossed."""
+    positions = np.full(angles.shape[::2], np.nan)
+    previous = start
+    for sample in range(angles.shape[0]):
+        steps = angles[sample] - previous
+        steps -= period * np.rint(steps / period)
+        distances = np.abs(steps).max(axis=1)
+        if np.isnan(distances).all():
+            continue
+        previous = positions[sample] = previous + steps[int(np.nanargmin(distances))]
+    return positions
+
+
+def _wrist_passing_through(candidates: FloatArray, start: FloatArray, period: FloatArray
+                           ) -> NDArray[np.intp]:
+    """Which of the two wrists (T, 2, 6) per sample (0 or 1): the start's nearest at the
+    first, then
+    the other where it moves the joints less than staying (the two wrists are one turn of
+    joints 4 and 6 by half a turn and joint 5 mirrored, so the comparison does not depend
+    on which is held)."""
+    wrists, start, period = candidates[..., 3:], start[3:], period[3:]  # 1 to 3 are one
+
+    def distance(first: FloatArray, second: FloatArray) -> FloatArray:
+        steps = second - first
+        steps -= period * np.rint(steps / period)
+        return np.abs(steps).sum(axis=-1)
+
+    stay = distance(wrists[:-1, 0], wrists[1:, 0])
+    switch = distance(wrists[:-1, 0], wrists[1:, 1])
+    toggles = np.concatenate([[int(distance(start, wrists[0, 1])
+                                   < distance(start, wrists[0, 0]))],
+                              (switch < stay).astype(int)])
+    return np.cumsum(toggles) % 2
+
+
+def _unwrapped_within(positions: FloatArray, start: FloatArray, period: FloatArray,
+                      lower: FloatArray, upper: FloatArray, steps: FloatArray | None
+                      ) -> FloatArray:
+    """``positions`` (T, 6) unwrapped along the path and moved by whole turns to begin
+    nearest ``start``, or where a move by a few turns keeps a joint within its limits all
+    along, that one (NaN rows are kept and skipped); ``steps`` their
+    :func:`_wrapped_steps`, when known."""
+    known = ~np.isnan(positions).any(axis=1)
+    if not known.any():
+        return positions
+    values = positions[known]
+    if steps is None or not known.all():
+        steps = _wrapped_steps(values, period)
+    values = values[0] + np.concatenate([np.zeros((1, 6)), np.cumsum(steps, axis=0)])
+    for joint in range(6):
+        near = np.rint((start[joint] - values[0, joint]) / period[joint])
+        for turns in sorted(range(-2, 3), key=abs):
+            moved = values[:, joint] + (near + turns) * period[joint]
+            if moved.min() >= lower[joint] - LIMIT_SLACK and (
+                    moved.max() <= upper[joint] + LIMIT_SLACK):
+                near += turns
+                break
+        values[:, joint] += near * period[joint]
+    result = positions.copy()
+    result[known] = values
+    return result
+
+
+
+def solve_in_closed_form(request: PathToSolve, shape: ArmShape, start: FloatArray,
+                         branch: tuple[str, int] | None, strict: bool, frame: str
+                         ) -> tuple[Tracked, NDArray[np.int64] | None] | None:
+    """The solve of ``request`` tracked on one branch (:func:`track_in_closed_form`), its
+    errors measured with the compiled path's forward kinematics; None when no
+    configuration was requested and the branch misses a sample (the numeric solver then
+    solves it). Where a requested branch has no solution, the sample holds the nearest
+    one before it (else after it, else ``start``) and is not reached. With it, each sample's
+    branch index where :func:`track_in_closed_form` knows them."""
+    plan = request.plan
+    path, times, shifts = plan.path, plan.sample_times, plan.shifts
+    shift = shifts.get(TARGET_SOURCE, 0)
+    sampled: dict[int, Transform | None] = {}  # by chunk start: each chunk sampled once
+
+    def targets(part: slice) -> Transform | None:
+        if part.start not in sampled:
+            sampled[part.start] = _targets(request.target, times[part], shift)
+        return sampled[part.start]
+
+    positions, valid, branches = track_in_closed_form(shape, path, times, shifts,
+                                                      request.joints, targets, start, branch)
+    if not valid.all():
+        if branch is None:
+            return None
+        positions = _held_where_missing(positions, valid, start)
+    position_error = np.empty(times.shape[0])
+    orientation_error = np.empty(times.shape[0])
+    for begin in range(0, times.shape[0], KERNEL_CHUNK):
+        part = slice(begin, begin + KERNEL_CHUNK)
+        position_error[part], orientation_error[part] = request.error.errors(
+            *_tools_in_targets(path, times[part], shifts, request.joints.names,
+                               positions[part], targets(part)))
+    reached = valid & (position_error <= request.position_tolerance) & (
+        orientation_error <= request.orientation_tolerance)
+    tracked = Tracked(positions, position_error, orientation_error, reached,
+                      np.ones(times.shape[0], dtype=bool))
+    if strict and not reached.all():
+        last = int(np.argmin(reached)) + 1
+        _raise_unreached([Tracked(*(getattr(tracked, name)[:last] for name in (
+            "positions", "position_error", "orientation_error", "reached", "measured")))],
+            request, frame)
+    return tracked, branches
+
+
+def _held_where_missing(positions: FloatArray, valid: NDArray[np.bool_], start: FloatArray
+                        ) -> FloatArray:
+    """``positions`` with each invalid row the nearest valid row before it, else after it,
+    else ``start``."""
+    if not valid.any():
+        return np.broadcast_to(start, positions.shape).copy()
+    index = np.arange(valid.shape[0])
+    before = np.maximum.accumulate(np.where(valid, index, -1))
+    after = np.minimum.accumulate(np.where(valid, index, valid.shape[0])[::-1])[::-1]
+    source = np.where(before >= 0, before, after)
+    return positions[source]
