@@ -148,9 +148,9 @@ def _seed(tree: FrameTree, given: list[tuple[str, float]] | None) -> dict[str, f
 
 
 def summary(tree: FrameTree, solution: JointSolution) -> str:
-    """One line: samples, reached, the largest errors, the largest tilt (with process
-    windows), the smallest distance to a position limit, the fastest joint against its
-    velocity limit."""
+    """One line: samples, reached, the largest errors, how far the joint-interpolated tool
+    strays between samples, the largest tilt (with process windows), the smallest distance
+    to a position limit, the fastest joint against its velocity limit."""
     count, reached = len(solution), int(solution.reached.sum())
     line = (f"{count} samples, {reached} reached; largest errors "
             f"{solution.position_error.max():.2g} m, {solution.orientation_error.max():.2g} "
@@ -164,6 +164,10 @@ def summary(tree: FrameTree, solution: JointSolution) -> str:
             margins.append((float(np.min(values - joint.lower)), name))
         if joint.kind != "continuous" and joint.upper is not None:
             margins.append((float(np.min(joint.upper - values)), name))
+    if solution.path_deviation is not None and count > 1:
+        assert solution.path_angle_deviation is not None  # set with path_deviation
+        line += (f"; between samples within {solution.path_deviation.max():.2g} m, "
+                 f"{solution.path_angle_deviation.max():.2g} rad")
     if solution.tilt is not None and count:
         largest = np.abs(solution.tilt).max(axis=0)
         line += f"; largest tilt {largest[0]:.3g} rad about x, {largest[1]:.3g} rad about y"

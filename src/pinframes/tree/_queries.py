@@ -39,6 +39,7 @@ from ..kinematics import (
     paths_to_common_ancestor,
     snapshot,
 )
+from ..kinematics.ik.solve_joints import DEFAULT_PATH_TOLERANCE
 from ..values.geometry import GEOMETRY_METADATA_KEY, FrameGeometry
 from ..values.numbers import require_finite_result
 from ..values.pose import Pose
@@ -299,6 +300,7 @@ class TreeQueries(EditableTree):
         free_axis: str | None = None, seed: Any = None, position_tolerance: float = 1e-6,
         orientation_tolerance: float = 1e-6, strict: bool = False, flat: str | None = None,
         up: Any = None, tilt: tuple[float, float] | None = None,
+        path_tolerance: float | tuple[float, float] | None = DEFAULT_PATH_TOLERANCE,
     ) -> JointSolution:
         """Joint values that put ``frame`` (a tool) on ``target`` at each time: inverse
         kinematics along a path.
@@ -316,7 +318,9 @@ class TreeQueries(EditableTree):
         times, time_ref
             As for :meth:`pose`. Default: every keyframe and joint sample of what moves on
             the path from ``frame`` to the target (a ``Pose`` target's times too), except
-            the samples of the solved joints themselves.
+            the samples of the solved joints themselves, and between them as many more as
+            ``path_tolerance`` needs. Given times are the samples, and
+            ``JointSolution.path_deviation`` says how far the tool strays between them.
         joints : str or sequence of str, optional
             The actuated joints to solve for (default: every robot joint between ``frame``
             and the lowest common ancestor of the two frames), or the name of a joint group
@@ -372,6 +376,16 @@ class TreeQueries(EditableTree):
             target's. A sample is reached within the windows (to ``orientation_tolerance``)
             and the position tolerance.
 
+        path_tolerance : float or (float, float) or None
+            Without ``times``: how far the tool may stray from its target between two
+            samples while the solved joints move linearly from the one to the other (as a
+            controller interpolates a joint trajectory), metres and radians (default 0.1 mm
+            and 0.1 degree; one number: metres, the angle the default). An interval that
+            strays further (measured at its midpoint and quarter points) is halved, its
+            midpoint added and the path solved again, down to 1 ms, where both its ends
+            reach their targets (an added sample out of reach is taken out again). None:
+            the default times only.
+
         Returns
         -------
         JointSolution
@@ -404,7 +418,7 @@ class TreeQueries(EditableTree):
             time_ref=time_ref, joints=joints, free_axis=free_axis, seed=seed,
             position_tolerance=position_tolerance,
             orientation_tolerance=orientation_tolerance, strict=strict, flat=flat, up=up,
-            tilt=tilt)
+            tilt=tilt, path_tolerance=path_tolerance)
 
     def sample_times(self, frame: str, relative_to: str | None = None) -> TimeAxis | None:
         """The times :meth:`pose` evaluates at when given none, without evaluating.

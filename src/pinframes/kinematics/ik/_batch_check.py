@@ -15,12 +15,12 @@ from .._sampling import sample_joints
 from ._newton_tracking import Tracked, TrackingProblem, solve_again
 from ._tool_error import tilts_of
 
-__all__ = ["check_unmeasured", "tilts_at"]
+__all__ = ["check_unmeasured", "tilts_at", "tools_in_targets"]
 
 FloatArray = NDArray[np.float64]
 
 
-def _tools_in_targets(
+def tools_in_targets(
     path: PreparedPath, times: NDArray[np.int64], shifts: dict[str, int],
     joint_names: tuple[str, ...], positions: FloatArray, targets: Transform | None,
 ) -> Transform:
@@ -47,7 +47,7 @@ def check_unmeasured(path: PreparedPath, times: NDArray[np.int64], shifts: dict[
     if not unmeasured.shape[0]:
         return
     subset = None if targets is None else (targets[0][unmeasured], targets[1][unmeasured])
-    position, orientation = problem.error.errors(*_tools_in_targets(
+    position, orientation = problem.error.errors(*tools_in_targets(
         path, times[unmeasured], shifts, problem.joints.names,
         tracked.positions[unmeasured], subset))
     tracked.position_error[unmeasured] = position
@@ -66,5 +66,5 @@ def tilts_at(
 ) -> FloatArray:
     """The tilts (N, 2) of the tool of ``path`` about its targets' x and y, radians, with the
     solved joints at ``positions`` (N, n)."""
-    rotations, _ = _tools_in_targets(path, times, shifts, joint_names, positions, targets)
+    rotations, _ = tools_in_targets(path, times, shifts, joint_names, positions, targets)
     return tilts_of(rotations)

@@ -218,6 +218,11 @@ class Tracked:
     reached: NDArray[np.bool_]
     measured: NDArray[np.bool_]
 
+    def taken(self, rows: NDArray[np.intp] | NDArray[np.bool_]) -> Tracked:
+        """The samples ``rows`` (indices or a mask) of these."""
+        return Tracked(self.positions[rows], self.position_error[rows],
+                       self.orientation_error[rows], self.reached[rows], self.measured[rows])
+
 
 class TrackingHistory:
     """What the next sample starts from: the seed, the last two solutions when both reached

@@ -56,6 +56,15 @@ class JointSolution(Timed):
         ``(a, b)`` with the tool's z ``Rx(a) Ry(b)`` the target's (about the target's x, then
         the y so turned): ``z = (sin b, -sin a cos b, cos a cos b)`` in the target's axes.
         None without windows.
+    path_deviation : ndarray, shape (T,), or None
+        Per sample, how far (metres) the tool strays from its target between the sample
+        before and it while the solved joints move linearly from the one to the other (a
+        controller interpolating the solution): the distance at the interval's midpoint,
+        or the largest at its quarter points where that comes near the tolerance; 0 for the
+        first sample. Without given times the samples are dense enough to keep it within
+        ``path_tolerance`` wherever both ends are reached (see ``FrameTree.solve_joints``).
+    path_angle_deviation : ndarray, shape (T,), or None
+        The same for the orientation, radians (as :attr:`orientation_error`).
     """
 
     joint_names: tuple[str, ...]
@@ -68,6 +77,8 @@ class JointSolution(Timed):
     velocity_limits: FloatArray
     velocity_limit_joints: tuple[str, ...]
     tilt: FloatArray | None = None
+    path_deviation: FloatArray | None = None
+    path_angle_deviation: FloatArray | None = None
 
     @property
     def velocities(self) -> FloatArray:

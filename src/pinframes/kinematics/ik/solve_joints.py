@@ -23,17 +23,18 @@ from ...values.pose import Pose
 from ...values.timeline import TimedSource
 from .._description import TreeDescription
 from .._plan import plan_query, prepare_path
+from ._between_samples import DEFAULT_PATH_TOLERANCE, densely_tracked
 from ._bounded_step import LeastSquares
 from ._flat import flat_objective
 from ._null_space import AwayFromLimits, NullSpaceObjective
-from ._path_chunks import TARGET_SOURCE, PathToSolve, track_in_chunks
+from ._path_chunks import TARGET_SOURCE, PathToSolve
 from ._solved_joints import solved_joints
 from ._starts import first_start
 from ._tool_error import AXES, AxisMatch, PoseMatch, ToolMatch, WindowMatch
 from .joint_solution import JointSolution
 from .joint_speeds import require_within_speed
 
-__all__ = ["SMALLEST_TOLERANCE", "evaluate_solve_joints"]
+__all__ = ["DEFAULT_PATH_TOLERANCE", "SMALLEST_TOLERANCE", "evaluate_solve_joints"]
 
 SMALLEST_TOLERANCE = 1e-12
 """The smallest position (m) and orientation (rad) tolerance: errors of poses a few metres
@@ -45,8 +46,10 @@ def evaluate_solve_joints(
     times: Any, time_ref: Any, joints: Any, free_axis: str | None, seed: Any,
     position_tolerance: float, orientation_tolerance: float, strict: bool,
     flat: str | None = None, up: Any = None, tilt: Any = None,
+    path_tolerance: Any = DEFAULT_PATH_TOLERANCE,
 ) -> JointSolution:
     """``tree.solve_joints(...)``; ``frame`` (and a target frame name) already checked."""
+    between = _path_tolerance(path_tolerance, frame)
     reference, target_pose = _reference(tree, frame, target, relative_to)
     error = _tool_match(free_axis, tilt, frame)
     if up is not None and flat is None:
@@ -74,12 +77,16 @@ def evaluate_solve_joints(
         AwayFromLimits(solved.limits) if flat is None
         else flat_objective(tree, path.model, solved, flat, up, frame, solver))
     request = PathToSolve(plan, solved, target_pose, error, *tolerances, objective, solver)
-    tracked, tilts = track_in_chunks(request, start, seed is None, strict, frame)
+    # given times are the samples; without, they are made dense enough for the tolerance
+    request, tracked, tilts, deviation = densely_tracked(
+        request, start, seed is None, strict, frame, between if times is None else None)
+    plan = request.plan
     offsets = np.zeros(1, dtype=np.int64) if plan.offsets is None else plan.offsets
     solution = JointSolution(
         solved.names, tracked.positions, offsets.astype("timedelta64[ns]"),
         plan.reference_time, tracked.position_error, tracked.orientation_error,
-        tracked.reached, solved.velocity_limits, solved.velocity_limit_joints, tilt=tilts)
+        tracked.reached, solved.velocity_limits, solved.velocity_limit_joints, tilt=tilts,
+        path_deviation=deviation.position, path_angle_deviation=deviation.orientation)
     if strict:
         require_within_speed(solution, tree.joints_by_name, frame)
     return solution
@@ -125,6 +132,21 @@ def _windows(tilt: Any, frame: str) -> tuple[float, float]:
             raise InvalidDataError(f"expected angles from 0 to below pi/2 radians, got {tilt!r}",
                                    frame=frame, field="tilt")
     return about_x, about_y
+
+
+def _path_tolerance(value: Any, frame: str) -> tuple[float, float] | None:
+    """``path_tolerance`` as (metres, radians): a pair, or one length (the angle then the
+    default's); None: the default times as they are."""
+    if value is None:
+        return None
+    pair = (value, DEFAULT_PATH_TOLERANCE[1]) if isinstance(value, (int, float)) else value
+    try:
+        length, angle = pair
+    except (TypeError, ValueError):
+        raise ArgumentTypeError(f"expected metres or (metres, radians), got {value!r}",
+                                frame=frame, field="path_tolerance") from None
+    return (_tolerance(length, "path_tolerance", frame),
+            _tolerance(angle, "path_tolerance", frame))
 
 
 def _tolerance(value: Any, field: str, frame: str) -> float:
