@@ -39,6 +39,7 @@ from ..kinematics import (
     paths_to_common_ancestor,
     snapshot,
 )
+from ..kinematics.ik.joint_jumps import DEFAULT_JUMP_FACTOR
 from ..kinematics.ik.solve_joints import DEFAULT_PATH_TOLERANCE
 from ..values.geometry import GEOMETRY_METADATA_KEY, FrameGeometry
 from ..values.numbers import require_finite_result
@@ -301,6 +302,7 @@ class TreeQueries(EditableTree):
         orientation_tolerance: float = 1e-6, strict: bool = False, flat: str | None = None,
         up: Any = None, tilt: tuple[float, float] | None = None,
         path_tolerance: float | tuple[float, float] | None = DEFAULT_PATH_TOLERANCE,
+        jump_threshold: float = DEFAULT_JUMP_FACTOR,
     ) -> JointSolution:
         """Joint values that put ``frame`` (a tool) on ``target`` at each time: inverse
         kinematics along a path.
@@ -349,7 +351,8 @@ class TreeQueries(EditableTree):
             not reached and its errors, instead of returning it as not reached; and
             :class:`~pinframes.errors.JointSpeedError`, naming the joint, the time and the
             ratio, where a joint moves faster than its URDF velocity limit (a mimic joint
-            that moves: its own limit).
+            that moves: its own limit); and :class:`~pinframes.errors.JointJumpError` at
+            the first jump (see ``jump_threshold``).
         flat : str, optional
             A frame the solved joints move (a seam on a positioner solved with the robot):
             once the tool is on its target, the freedom left turns this frame's z toward
@@ -385,6 +388,11 @@ class TreeQueries(EditableTree):
             midpoint added and the path solved again, down to 1 ms, where both its ends
             reach their targets (an added sample out of reach is taken out again). None:
             the default times only.
+        jump_threshold : float
+            A sample whose step from the one before (the largest change of one solved
+            joint) is more than this many times the path's median step, and more than 0.1
+            radian (or metre), jumps: ``JointSolution.jumps`` lists it, and ``strict=True``
+            raises :class:`~pinframes.errors.JointJumpError` naming its time and joint.
 
         Returns
         -------
@@ -418,7 +426,7 @@ class TreeQueries(EditableTree):
             time_ref=time_ref, joints=joints, free_axis=free_axis, seed=seed,
             position_tolerance=position_tolerance,
             orientation_tolerance=orientation_tolerance, strict=strict, flat=flat, up=up,
-            tilt=tilt, path_tolerance=path_tolerance)
+            tilt=tilt, path_tolerance=path_tolerance, jump_threshold=jump_threshold)
 
     def sample_times(self, frame: str, relative_to: str | None = None) -> TimeAxis | None:
         """The times :meth:`pose` evaluates at when given none, without evaluating.

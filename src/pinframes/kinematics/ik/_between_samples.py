@@ -25,6 +25,7 @@ from numpy.typing import NDArray
 from .._plan import QueryPlan
 from .._sampling import KERNEL_CHUNK
 from ._batch_check import tools_in_targets
+from ._jump_bridge import bridged_jumps
 from ._newton_tracking import Tracked
 from ._path_chunks import (
     TARGET_SOURCE,
@@ -107,15 +108,19 @@ def _strays(request: PathToSolve, positions: FloatArray, ends: NDArray[np.intp],
 
 
 def densely_tracked(request: PathToSolve, start: FloatArray, search_starts: bool,
-                    strict: bool, frame: str, tolerance: tuple[float, float] | None
-                    ) -> tuple[PathToSolve, Tracked, FloatArray | None, Deviations]:
+                    strict: bool, frame: str, tolerance: tuple[float, float] | None,
+                    jump_factor: float) -> tuple[PathToSolve, Tracked, FloatArray | None,
+                                                 Deviations]:
     """``request`` solved (:func:`track_in_chunks`) on its plan's times, with
     ``tolerance`` (metres, radians) on times made denser where an interval passes it (see
     the module docstring): the request on the times solved, its solutions, tilts and
     deviations. An added sample that is not reached is taken out again, and the interval
-    it halved is not halved again (a target interpolated off what the joints can reach)."""
+    it halved is not halved again (a target interpolated off what the joints can reach).
+    After each solve its jumps (``jump_factor``, :mod:`.joint_jumps`) are bridged where
+    they can be (:mod:`._jump_bridge`)."""
     measuring = DEFAULT_PATH_TOLERANCE if tolerance is None else tolerance
     tracked, tilts = track_in_chunks(request, start, search_starts, strict, frame)
+    tracked = bridged_jumps(request, tracked, jump_factor, frame)
     measured = deviations(request, tracked.positions, measuring)
     if tolerance is None:
         return request, tracked, tilts, measured
@@ -135,12 +140,13 @@ def densely_tracked(request: PathToSolve, start: FloatArray, search_starts: bool
         request = dataclasses.replace(request, plan=_with_midpoints(request.plan, halved))
         given, settled = np.insert(given, halved, False), np.insert(settled, halved, False)
         tracked, tilts = track_in_chunks(request, first, False, False, frame)
+        tracked = bridged_jumps(request, tracked, jump_factor, frame)
         missed = np.flatnonzero(~given & ~tracked.reached)
         if missed.shape[0]:
             settled[missed + 1] = True  # (an added sample always has one after it)
             kept = np.ones_like(given)
             kept[missed] = False
-            request = dataclasses.replace(request, plan=_subset(request.plan, kept))
+            request = dataclasses.replace(request, plan=request.plan.at(kept))
             tracked = tracked.taken(kept)
             tilts = None if tilts is None else tilts[kept]
             given, settled = given[kept], settled[kept]
@@ -161,10 +167,3 @@ def _with_midpoints(plan: QueryPlan, halved: NDArray[np.intp]) -> QueryPlan:
     return QueryPlan(plan.path, plan.timeline, plan.shifts, plan.extrapolation,
                      np.insert(times, halved, middles), np.insert(offsets, halved,
                                                                   middles + shift))
-
-
-def _subset(plan: QueryPlan, kept: NDArray[np.bool_]) -> QueryPlan:
-    """``plan`` with the samples ``kept`` only."""
-    assert plan.times is not None and plan.offsets is not None
-    return QueryPlan(plan.path, plan.timeline, plan.shifts, plan.extrapolation,
-                     plan.times[kept], plan.offsets[kept])

@@ -327,11 +327,13 @@ def _cost(problem: TrackingProblem, solved: Solved) -> float:
                       solved[2] / problem.orientation_tolerance)
 
 
-def solve_again(problem: TrackingProblem, index: int, theta: FloatArray) -> Solution:
-    """Sample ``index`` solved from ``theta`` and measured: the solution, its position and
-    orientation errors (m, rad) and whether it is reached."""
+def solve_again(problem: TrackingProblem, index: int, theta: FloatArray, serve: bool = True
+                ) -> Solution:
+    """Sample ``index`` solved from ``theta`` and measured (with ``serve``, offered to the
+    secondary objective): the solution, its position and orientation errors (m, rad) and
+    whether it is reached."""
     solution, position, orientation, reached, _ = _SampleSolver(problem).solve(
-        index, theta, 0.0, trust_newton=False, bridge=True)
+        index, theta, 0.0, trust_newton=False, bridge=True, serve=serve)
     return solution, position, orientation, reached
 
 

@@ -32,7 +32,7 @@ from ._solved_joints import SolvedJoints
 from ._starts import track_from_the_best_start
 from ._tool_error import ToolMatch, WindowMatch
 
-__all__ = ["STILL", "TARGET_SOURCE", "PathToSolve", "raise_unreached", "targets_at",
+__all__ = ["STILL", "TARGET_SOURCE", "PathToSolve", "problem_of", "raise_unreached", "targets_at",
            "track_in_chunks"]
 
 FloatArray = NDArray[np.float64]
@@ -214,11 +214,19 @@ class _Chunk:
             _standing_still(self.configurations, self.target_rows))
 
 
+def problem_of(request: PathToSolve) -> TrackingProblem:
+    """The :class:`TrackingProblem` of every sample of ``request``'s plan at once (a few:
+    one chunk)."""
+    moments = request.plan.sample_times
+    return _Chunk.sampled(request, slice(0, moments.shape[0]), _step_ratios(moments)).problem(
+        request)
+
+
 def _step_ratios(moments: NDArray[np.int64]) -> FloatArray:
     """Per sample, its time step over the previous one (1 where there is none)."""
     ratios = np.ones(moments.shape[0])
     if moments.shape[0] > 2:
-        steps = np.diff(moments).astype(float)
+        steps = np.abs(np.diff(moments)).astype(float)  # (times in reverse: a path back)
         before = steps[:-1]
         # a step after a repeated time (none before it) is not predicted: inf
         ratios[2:] = np.divide(steps[1:], before, out=np.full(before.shape, np.inf),

@@ -65,6 +65,10 @@ class JointSolution(Timed):
         ``path_tolerance`` wherever both ends are reached (see ``FrameTree.solve_joints``).
     path_angle_deviation : ndarray, shape (T,), or None
         The same for the orientation, radians (as :attr:`orientation_error`).
+    jumps : ndarray of int, shape (J,), or None
+        The samples whose step from the one before jumps: one joint changes by more than
+        ``jump_threshold`` times the path's median step and more than 0.1 radian (or metre)
+        (``pinframes.kinematics.ik.joint_jumps``). Empty when none does.
     """
 
     joint_names: tuple[str, ...]
@@ -79,6 +83,7 @@ class JointSolution(Timed):
     tilt: FloatArray | None = None
     path_deviation: FloatArray | None = None
     path_angle_deviation: FloatArray | None = None
+    jumps: NDArray[np.intp] | None = None
 
     @property
     def velocities(self) -> FloatArray:
@@ -106,6 +111,12 @@ class JointSolution(Timed):
         """Per sample (T,), the largest of :attr:`joint_speed_ratios`: above 1 a joint moves
         faster than its URDF velocity limit allows; 0 without limits."""
         return self.joint_speed_ratios.max(axis=1, initial=0.0)
+
+    def when(self, index: int) -> str:
+        """Sample ``index``'s time as messages give it: seconds, after the reference time
+        when there is one."""
+        return f"{int(self.times[index].astype(np.int64)) / 1e9:.9g} s" + (
+            "" if self.reference_time is None else f" after {self.reference_time}")
 
     @property
     def all_reached(self) -> bool:

@@ -31,6 +31,7 @@ from ._path_chunks import TARGET_SOURCE, PathToSolve
 from ._solved_joints import solved_joints
 from ._starts import first_start
 from ._tool_error import AXES, AxisMatch, PoseMatch, ToolMatch, WindowMatch
+from .joint_jumps import DEFAULT_JUMP_FACTOR, jumps_of, require_no_jumps
 from .joint_solution import JointSolution
 from .joint_speeds import require_within_speed
 
@@ -46,10 +47,11 @@ def evaluate_solve_joints(
     times: Any, time_ref: Any, joints: Any, free_axis: str | None, seed: Any,
     position_tolerance: float, orientation_tolerance: float, strict: bool,
     flat: str | None = None, up: Any = None, tilt: Any = None,
-    path_tolerance: Any = DEFAULT_PATH_TOLERANCE,
+    path_tolerance: Any = DEFAULT_PATH_TOLERANCE, jump_threshold: Any = DEFAULT_JUMP_FACTOR,
 ) -> JointSolution:
     """``tree.solve_joints(...)``; ``frame`` (and a target frame name) already checked."""
     between = _path_tolerance(path_tolerance, frame)
+    jump_factor = _tolerance(jump_threshold, "jump_threshold", frame)
     reference, target_pose = _reference(tree, frame, target, relative_to)
     error = _tool_match(free_axis, tilt, frame)
     if up is not None and flat is None:
@@ -79,15 +81,18 @@ def evaluate_solve_joints(
     request = PathToSolve(plan, solved, target_pose, error, *tolerances, objective, solver)
     # given times are the samples; without, they are made dense enough for the tolerance
     request, tracked, tilts, deviation = densely_tracked(
-        request, start, seed is None, strict, frame, between if times is None else None)
+        request, start, seed is None, strict, frame, between if times is None else None,
+        jump_factor)
     plan = request.plan
     offsets = np.zeros(1, dtype=np.int64) if plan.offsets is None else plan.offsets
     solution = JointSolution(
         solved.names, tracked.positions, offsets.astype("timedelta64[ns]"),
         plan.reference_time, tracked.position_error, tracked.orientation_error,
         tracked.reached, solved.velocity_limits, solved.velocity_limit_joints, tilt=tilts,
-        path_deviation=deviation.position, path_angle_deviation=deviation.orientation)
+        path_deviation=deviation.position, path_angle_deviation=deviation.orientation,
+        jumps=jumps_of(tracked.positions, jump_factor))
     if strict:
+        require_no_jumps(solution, jump_factor, frame)
         require_within_speed(solution, tree.joints_by_name, frame)
     return solution
 
