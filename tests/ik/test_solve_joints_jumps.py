@@ -145,3 +145,26 @@ def test_a_long_gap_by_default_keeps_the_branch_between_samples():
         turn = start.rotation @ pin.exp3(share * pin.log3(start.rotation.T @ end.rotation))
         assert np.linalg.norm(tool.translation - point) <= 1.01e-4
         assert np.linalg.norm(pin.log3(turn.T @ tool.rotation)) <= np.radians(0.1) * 1.01
+
+
+def test_iiwa_seeded_near_its_joint_7_limit_reaches_every_sample():
+    """The LBR iiwa 14 (ROS-Industrial) swinging with joint 7 up to 0.01 rad from its
+    limit: tracked forward alone, the smallest motion walked it onto the limit and lost a
+    sample; solved backwards from where the solver found its way back, none is lost."""
+    iiwa = Arm("LBR iiwa 14", EXTRA / "kuka_experimental" / "lbr_iiwa_14_r820.urdf", "tool0",
+               7, (0.0,) * 7, (0.4, 0.3, 0.3, 0.5, 0.4, 0.8, 0.6))
+    model = iiwa.model()
+    lower, upper = model.lowerPositionLimit, model.upperPositionLimit
+    swing = np.asarray(iiwa.swing)
+    generator = np.random.default_rng(5)
+    for _ in range(3):
+        generator.uniform(lower + swing, upper - swing)
+    home = generator.uniform(lower + swing, upper - swing)
+    home[6] = upper[6] - swing[6] - 0.01
+    times = np.arange(201) / 50.0
+    trajectory = swinging(home, swing, times)
+    targets = frame_poses(model, iiwa.tool, trajectory)
+    solution = iiwa.tree().solve_joints(iiwa.tool, as_pose(targets, times), times=times,
+                                        seed=trajectory[0])
+    assert on_target(model, iiwa.tool, solution.positions, targets).all()
+    assert within_limits(model, solution.positions)

@@ -1,9 +1,9 @@
-"""A jump bridged: where the solved path steps far more than usual between two reached
-samples (``joint_jumps``), the samples before the jump are solved again backwards from the
-sample after it, and over the stretch where the two solutions differ the joints are taken
-from the one to the other, each sample put back on its target by Newton: led sample by
-sample from the one before (a share of the way left to the backward solution), or blended
-in proportion to the time, whichever steps least.
+"""Jumps bridged and lost stretches recovered. Where the solved path steps far more than
+usual between two reached samples (``joint_jumps``), the samples before the jump are solved
+again backwards from the sample after it, and over the stretch where the two solutions
+differ the joints are taken from the one to the other, each sample put back on its target
+by Newton: led sample by sample from the one before (a share of the way left to the
+backward solution), or blended in proportion to the time, whichever steps least.
 
 This is what keeps a path that rests in a singular configuration on its way: a UR5 with
 wrist 2 at 0 while wrists 1 and 3 turn can split the turn between them in any way, and
@@ -13,6 +13,12 @@ across the resting stretch instead, where the task leaves it free (the samples s
 their targets). A bridge is kept only when every sample it changes is reached and its
 largest step is below the jump's and within the jump bar; a flip between two branches that
 no such stretch joins stays, reported as a jump.
+
+Before that, a stretch of samples not reached that ends in a reached sample (the solver
+found its way back) is solved backwards from that sample: a 7-axis arm whose self-motion
+walked a joint onto its limit comes back along the way the later samples take, and the
+samples it reaches take its solutions; the jump where the stretch began is then bridged as
+any other.
 """
 
 from __future__ import annotations
@@ -43,11 +49,35 @@ def bridged_jumps(request: PathToSolve, tracked: Tracked, factor: float, frame: 
                   ) -> Tracked:
     """``tracked`` (the solutions of ``request``'s samples) with its jumps bridged where a
     bridge holds (see the module docstring); changed in place."""
+    _recover_lost_stretches(request, tracked, frame)
     bar = jump_bar(tracked.positions, factor)
     for after in jumps_of(tracked.positions, factor).tolist():
         if tracked.reached[after - 1] and tracked.reached[after]:
             _bridge(request, tracked, after, bar, frame)
     return tracked
+
+
+def _recover_lost_stretches(request: PathToSolve, tracked: Tracked, frame: str) -> None:
+    """Each stretch of samples not reached that ends in a reached one, solved again
+    backwards from that one: the samples it reaches take its solutions (in place; the jump
+    where the stretch began is then bridged as any other)."""
+    reached = tracked.reached
+    ends = np.flatnonzero(reached[1:] & ~reached[:-1]) + 1  # reached after a miss
+    for end in ends.tolist():
+        begin = end - 1
+        while begin > 0 and not reached[begin - 1]:
+            begin -= 1
+        if begin == 0:
+            continue  # lost from the first sample: the start's business
+        rows = np.arange(end - 1, begin - 1, -1)
+        back, _ = track_in_chunks(dataclasses.replace(request, plan=request.plan.at(rows)),
+                                  tracked.positions[end], False, False, frame)
+        found = rows[back.reached]
+        tracked.positions[found] = back.positions[back.reached]
+        tracked.position_error[found] = back.position_error[back.reached]
+        tracked.orientation_error[found] = back.orientation_error[back.reached]
+        tracked.reached[found] = True
+        tracked.measured[found] = back.measured[back.reached]
 
 
 def _bridge(request: PathToSolve, tracked: Tracked, after: int, bar: float, frame: str
