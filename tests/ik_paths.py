@@ -142,3 +142,37 @@ def serial_urdf(name: str, joints: list[tuple[str, str, str, str, float, float]]
 
 POSITIONER = serial_urdf("positioner", [("turn", "revolute", "faceplate", "0 0 0.4", -3.0, 3.0)])
 """A one-axis positioner: its faceplate 0.4 m above its base, turning about z."""
+
+
+TILT_TURN = serial_urdf("positioner", [
+    ("tilt_x", "revolute", "cradle", "0 0 0.3", -2.0, 2.0),
+    ("turn", "revolute", "faceplate", "0 0 0", -6.0, 6.0)])
+"""A two-axis positioner: tilt about x 0.3 m above its base, then turn about z."""
+
+GIRTH_RADIUS = 0.1  # m, the pipe of girth_seam
+GIRTH_HEIGHT = 0.05  # m, the seam's height on the faceplate
+
+
+def girth_seam(count: int) -> tuple[np.ndarray, np.ndarray]:
+    """Half a turn along the pipe's girth on the faceplate: origins (T, 3) and axes (T, 3, 3),
+    x along the travel, z out of the pipe (the weld's face)."""
+    around = np.linspace(0.0, np.pi, count)
+    zeros = np.zeros(count)
+    origins = np.stack([GIRTH_RADIUS * np.cos(around), GIRTH_RADIUS * np.sin(around),
+                        zeros + GIRTH_HEIGHT], 1)
+    outward = np.stack([np.cos(around), np.sin(around), zeros], 1)
+    travel = np.stack([-np.sin(around), np.cos(around), zeros], 1)
+    return origins, np.stack([travel, np.cross(outward, travel), outward], axis=2)
+
+
+def faceplates(urdf: Path, base: pin.SE3, positioner: np.ndarray) -> list[pin.SE3]:
+    """The frame ``faceplate`` of the positioner ``urdf`` mounted at ``base``, per row of
+    its joint values ``positioner``, by Pinocchio."""
+    model = pin.buildModelFromUrdf(str(urdf))
+    data = model.createData()
+    frame = model.getFrameId("faceplate")
+    placements = []
+    for q in positioner:
+        pin.framesForwardKinematics(model, data, q)
+        placements.append(base * data.oMf[frame])
+    return placements

@@ -149,7 +149,8 @@ def _seed(tree: FrameTree, given: list[tuple[str, float]] | None) -> dict[str, f
 
 def summary(tree: FrameTree, solution: JointSolution) -> str:
     """One line: samples, reached, the largest errors, how far the joint-interpolated tool
-    strays between samples, the largest tilt (with process windows), the smallest distance
+    strays between samples, the flat frame's largest angle from up (with --flat), the
+    largest tilt (with process windows), the smallest distance
     to a position limit, the fastest joint against its velocity limit."""
     count, reached = len(solution), int(solution.reached.sum())
     line = (f"{count} samples, {reached} reached; largest errors "
@@ -168,6 +169,8 @@ def summary(tree: FrameTree, solution: JointSolution) -> str:
         assert solution.path_angle_deviation is not None  # set with path_deviation
         line += (f"; between samples within {solution.path_deviation.max():.2g} m, "
                  f"{solution.path_angle_deviation.max():.2g} rad")
+    if solution.flat_error is not None and count:
+        line += f"; --flat frame at most {solution.flat_error.max():.2g} rad from up"
     if solution.tilt is not None and count:
         largest = np.abs(solution.tilt).max(axis=0)
         line += f"; largest tilt {largest[0]:.3g} rad about x, {largest[1]:.3g} rad about y"

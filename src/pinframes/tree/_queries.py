@@ -40,7 +40,7 @@ from ..kinematics import (
     snapshot,
 )
 from ..kinematics.ik.joint_jumps import DEFAULT_JUMP_FACTOR
-from ..kinematics.ik.solve_joints import DEFAULT_PATH_TOLERANCE
+from ..kinematics.ik.solve_joints import DEFAULT_PATH_TOLERANCE, FLAT_TOLERANCE
 from ..values.geometry import GEOMETRY_METADATA_KEY, FrameGeometry
 from ..values.numbers import require_finite_result
 from ..values.pose import Pose
@@ -302,7 +302,7 @@ class TreeQueries(EditableTree):
         orientation_tolerance: float = 1e-6, strict: bool = False, flat: str | None = None,
         up: Any = None, tilt: tuple[float, float] | None = None,
         path_tolerance: float | tuple[float, float] | None = DEFAULT_PATH_TOLERANCE,
-        jump_threshold: float = DEFAULT_JUMP_FACTOR,
+        jump_threshold: float = DEFAULT_JUMP_FACTOR, flat_tolerance: float = FLAT_TOLERANCE,
     ) -> JointSolution:
         """Joint values that put ``frame`` (a tool) on ``target`` at each time: inverse
         kinematics along a path.
@@ -388,6 +388,13 @@ class TreeQueries(EditableTree):
             midpoint added and the path solved again, down to 1 ms, where both its ends
             reach their targets (an added sample out of reach is taken out again). None:
             the default times only.
+        flat_tolerance : float
+            With ``flat=``: radians (default 0.5 degree) the frame's z may stray from
+            ``up``; a sample beyond it where the solved joints could turn it up (the tool
+            let go) is not reached. ``JointSolution.flat_error`` gives the angle per
+            sample. Without a seed, the first sample's start turns the frame up from
+            starts spread over the ranges of the joints that turn it (4 per joint, the
+            first 3 such joints), and keeps the one nearest to up.
         jump_threshold : float
             A sample whose step from the one before (the largest change of one solved
             joint) is more than this many times the path's median step, and more than 0.1
@@ -426,7 +433,8 @@ class TreeQueries(EditableTree):
             time_ref=time_ref, joints=joints, free_axis=free_axis, seed=seed,
             position_tolerance=position_tolerance,
             orientation_tolerance=orientation_tolerance, strict=strict, flat=flat, up=up,
-            tilt=tilt, path_tolerance=path_tolerance, jump_threshold=jump_threshold)
+            tilt=tilt, path_tolerance=path_tolerance, jump_threshold=jump_threshold,
+            flat_tolerance=flat_tolerance)
 
     def sample_times(self, frame: str, relative_to: str | None = None) -> TimeAxis | None:
         """The times :meth:`pose` evaluates at when given none, without evaluating.

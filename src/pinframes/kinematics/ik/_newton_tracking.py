@@ -451,13 +451,15 @@ class _SampleSolver:
         tool gets back within its tolerances from there; else ``solved`` (with its margin
         measured afresh when that is wide enough for the objective to ask nothing: the
         bound carried from sample to sample stays above it for a while). ``from_a_start``:
-        served again while it asks, up to its ``rounds_from_a_start``."""
+        served again while it asks, up to its ``rounds_from_a_start`` (else its
+        ``rounds_tracked``)."""
         assert self.objective is not None
         theta = solved[0]
         margin = self.limits.margin(theta.tolist())
         if margin > self.objective_margin:
             return solved[0], solved[1], solved[2], solved[3], margin
-        for _ in range(self.objective.rounds_from_a_start if from_a_start else 1):
+        for _ in range(self.objective.rounds_from_a_start if from_a_start
+                       else self.objective.rounds_tracked):
             theta = solved[0]
             self.joints.set_configuration(q, theta)
             self._asked_rows, self._asked_at = None, q

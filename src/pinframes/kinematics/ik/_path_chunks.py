@@ -122,7 +122,8 @@ def track_in_chunks(request: PathToSolve, start: FloatArray, search_starts: bool
                 chunk = first.leading(chunk)
             problem = chunk.problem(request)
             if isinstance(request.objective, FlatFrame):
-                start = request.objective.turned_up(start, problem.configurations[0])
+                start = request.objective.turned_up_globally(start,
+                                                             problem.configurations[0])
             tracked, history = track_from_the_best_start(problem, start, strict)
         else:
             problem = chunk.problem(request)

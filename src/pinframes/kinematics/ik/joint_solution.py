@@ -65,6 +65,10 @@ class JointSolution(Timed):
         ``path_tolerance`` wherever both ends are reached (see ``FrameTree.solve_joints``).
     path_angle_deviation : ndarray, shape (T,), or None
         The same for the orientation, radians (as :attr:`orientation_error`).
+    flat_error : ndarray, shape (T,), or None
+        With ``flat=``: the angle between the flat frame's z and ``up``, radians; a sample
+        more than ``flat_tolerance`` from up where the solved joints could turn it up (the
+        tool let go, from the sample's solution) is not :attr:`reached`. None without.
     jumps : ndarray of int, shape (J,), or None
         The samples whose step from the one before jumps: one joint changes by more than
         ``jump_threshold`` times the path's median step and more than 0.1 radian (or metre)
@@ -84,6 +88,7 @@ class JointSolution(Timed):
     path_deviation: FloatArray | None = None
     path_angle_deviation: FloatArray | None = None
     jumps: NDArray[np.intp] | None = None
+    flat_error: FloatArray | None = None
 
     @property
     def velocities(self) -> FloatArray:

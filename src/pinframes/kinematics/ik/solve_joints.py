@@ -11,23 +11,33 @@ joints, whose samples are what is being solved for, and the first sample's start
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
-from ...errors import ArgumentTypeError, InvalidDataError, JointError, joint_not_found
+from ...errors import (
+    ArgumentTypeError,
+    InvalidDataError,
+    JointError,
+    TargetNotReachedError,
+    joint_not_found,
+)
 from ...values.joint import Joint
 from ...values.pose import Pose
 from ...values.timeline import TimedSource
 from .._description import TreeDescription
 from .._plan import plan_query, prepare_path
+from ._batch_check import flat_errors
 from ._between_samples import DEFAULT_PATH_TOLERANCE, densely_tracked
 from ._bounded_step import LeastSquares
-from ._flat import flat_objective
+from ._flat import FLAT_TOLERANCE, FlatFrame, flat_objective
+from ._newton_tracking import Tracked
 from ._null_space import AwayFromLimits, NullSpaceObjective
-from ._path_chunks import TARGET_SOURCE, PathToSolve
+from ._path_chunks import TARGET_SOURCE, PathToSolve, problem_of
 from ._solved_joints import solved_joints
 from ._starts import first_start
 from ._tool_error import AXES, AxisMatch, PoseMatch, ToolMatch, WindowMatch
@@ -35,7 +45,10 @@ from .joint_jumps import DEFAULT_JUMP_FACTOR, jumps_of, require_no_jumps
 from .joint_solution import JointSolution
 from .joint_speeds import require_within_speed
 
-__all__ = ["DEFAULT_PATH_TOLERANCE", "SMALLEST_TOLERANCE", "evaluate_solve_joints"]
+__all__ = ["DEFAULT_PATH_TOLERANCE", "FLAT_TOLERANCE", "SMALLEST_TOLERANCE",
+           "evaluate_solve_joints"]
+
+FloatArray = NDArray[np.float64]
 
 SMALLEST_TOLERANCE = 1e-12
 """The smallest position (m) and orientation (rad) tolerance: errors of poses a few metres
@@ -48,6 +61,7 @@ def evaluate_solve_joints(
     position_tolerance: float, orientation_tolerance: float, strict: bool,
     flat: str | None = None, up: Any = None, tilt: Any = None,
     path_tolerance: Any = DEFAULT_PATH_TOLERANCE, jump_threshold: Any = DEFAULT_JUMP_FACTOR,
+    flat_tolerance: Any = FLAT_TOLERANCE,
 ) -> JointSolution:
     """``tree.solve_joints(...)``; ``frame`` (and a target frame name) already checked."""
     between = _path_tolerance(path_tolerance, frame)
@@ -77,24 +91,52 @@ def evaluate_solve_joints(
     solver = LeastSquares()
     objective: NullSpaceObjective = (
         AwayFromLimits(solved.limits) if flat is None
-        else flat_objective(tree, path.model, solved, flat, up, frame, solver))
+        else flat_objective(tree, path.model, solved, flat, up, frame, solver,
+                            _tolerance(flat_tolerance, "flat_tolerance", frame)))
     request = PathToSolve(plan, solved, target_pose, error, *tolerances, objective, solver)
     # given times are the samples; without, they are made dense enough for the tolerance
     request, tracked, tilts, deviation = densely_tracked(
         request, start, seed is None, strict, frame, between if times is None else None,
         jump_factor)
     plan = request.plan
+    flat_error = None if not isinstance(objective, FlatFrame) else _flat_errors(
+        request, objective, tracked, strict, frame)
     offsets = np.zeros(1, dtype=np.int64) if plan.offsets is None else plan.offsets
     solution = JointSolution(
         solved.names, tracked.positions, offsets.astype("timedelta64[ns]"),
         plan.reference_time, tracked.position_error, tracked.orientation_error,
         tracked.reached, solved.velocity_limits, solved.velocity_limit_joints, tilt=tilts,
         path_deviation=deviation.position, path_angle_deviation=deviation.orientation,
-        jumps=jumps_of(tracked.positions, jump_factor))
+        jumps=jumps_of(tracked.positions, jump_factor), flat_error=flat_error)
     if strict:
         require_no_jumps(solution, jump_factor, frame)
         require_within_speed(solution, tree.joints_by_name, frame)
     return solution
+
+
+def _flat_errors(request: PathToSolve, flat: FlatFrame, tracked: Tracked, strict: bool,
+                 frame: str) -> FloatArray:
+    """Per sample, the flat frame's angle from up (radians); a reached sample beyond the
+    tolerance where the solved joints could turn it up (:meth:`FlatFrame.could_turn_up`)
+    is made not reached (``strict``: an error)."""
+    plan = request.plan
+    assert plan.offsets is not None  # a path that moves
+    errors = flat_errors(plan.path, plan.sample_times, plan.shifts, request.joints.names,
+                         tracked.positions, flat.carrier, flat.z_on_carrier, flat.up)
+    beyond = np.flatnonzero(tracked.reached & (errors > flat.tolerance))
+    if beyond.shape[0]:
+        configurations = problem_of(dataclasses.replace(request, plan=plan.at(beyond))
+                                    ).configurations
+        for index, configuration in zip(beyond.tolist(), configurations, strict=True):
+            if flat.could_turn_up(tracked.positions[index], configuration):
+                tracked.reached[index] = False
+                if strict:
+                    raise TargetNotReachedError(
+                        f"the flat frame could be flat at {plan.offsets[index] / 1e9:.9g} s "
+                        f"(sample {index + 1}) but its z is {errors[index]:.3g} rad from up "
+                        f"(flat_tolerance {flat.tolerance:.3g} rad)", frame=frame,
+                        field="flat")
+    return errors
 
 
 def _reference(tree: TreeDescription, frame: str, target: str | Pose, relative_to: str | None
