@@ -4,6 +4,7 @@ pinframes' own kinematics."""
 
 from __future__ import annotations
 
+import textwrap
 from dataclasses import dataclass
 from importlib import metadata
 from pathlib import Path
@@ -176,3 +177,31 @@ def faceplates(urdf: Path, base: pin.SE3, positioner: np.ndarray) -> list[pin.SE
         pin.framesForwardKinematics(model, data, q)
         placements.append(base * data.oMf[frame])
     return placements
+
+
+def pipe_scene(positioner: Path, trajectories: tuple[str, str] | None = None) -> str:
+    """A scene: the UR5 (prefix ur/) and the positioner ``positioner`` (prefix pos/, its
+    base at x 0.55 m) with a seam on its faceplate whose face turns a quarter turn about the
+    faceplate's y over 1 s, the torch target 0.1 m above it; each robot's ``trajectory``
+    the file named in ``trajectories``."""
+    sine, cosine = float(np.sin(np.pi / 8)), float(np.cos(np.pi / 8))
+    ur_motion, pos_motion = ("", "") if trajectories is None else (
+        f", trajectory: {trajectories[0]}", f", trajectory: {trajectories[1]}")
+    return textwrap.dedent(f"""\
+        pinframes_scene: 1
+        name: pipe
+        frames:
+          - {{name: positioner_base, parent: world, xyz: [0.55, 0, 0]}}
+          - name: seam
+            parent: pos/faceplate
+            xyz: [0, 0, 0.05]
+            keyframes:
+              - {{time: 0, quaternion: [0.5, 0.5, 0.5, 0.5]}}
+              - {{time: 1, quaternion: [0, {sine!r}, 0, {cosine!r}]}}
+          - {{name: torch_target, parent: seam, xyz: [0, 0, 0.1], quaternion: [1, 0, 0, 0]}}
+        robots:
+          - {{name: ur5, urdf: {example_robot("ur5_robot.urdf")}, parent: world,
+              prefix: ur/{ur_motion}}}
+          - {{name: positioner, urdf: {positioner}, parent: positioner_base,
+              prefix: pos/{pos_motion}}}
+        """)

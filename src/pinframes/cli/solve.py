@@ -5,10 +5,11 @@ from __future__ import annotations
 
 import argparse
 import sys
+import warnings
 
 import numpy as np
 
-from ..errors import JointError, joint_not_found
+from ..errors import JointError, JointWithoutSamplesWarning, joint_not_found
 from ..formats.trajectory_files import joint_trajectory_csv
 from ..formats.trajectory_writer import urdf_joint_names, write_joint_trajectory
 from ..kinematics import JointSolution
@@ -88,9 +89,13 @@ def run(args: argparse.Namespace) -> int:
     """Solve, write the CSV, print the summary."""
     tree = read_tree(args.file, args)
     require_frames(tree, args.file, args.frame, args.target, args.flat)
-    times = requested_times(args, tree, args.frame, args.target)
-    if args.target != tree.root:  # the target's own motion (the solved joints have none)
-        check_extrapolation(args, tree, [(args.target, tree.root)], times, args.time_ref)
+    with warnings.catch_warnings():
+        # the joints being solved have no samples, nor need any: the solve itself warns
+        # of every other joint that has none
+        warnings.simplefilter("ignore", JointWithoutSamplesWarning)
+        times = requested_times(args, tree, args.frame, args.target)
+        if args.target != tree.root:  # the target's own motion (the solved joints have none)
+            check_extrapolation(args, tree, [(args.target, tree.root)], times, args.time_ref)
     solution = tree.solve_joints(
         args.frame, args.target, times=None if times is None else times.as_numpy(),
         time_ref=args.time_ref, joints=_joints_or_group(tree, args.joints),
