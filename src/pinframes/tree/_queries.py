@@ -373,8 +373,10 @@ class TreeQueries(EditableTree):
             Process windows, radians (each from 0 to below pi/2): the tool's z may tilt
             from the target's by up to ``about_x`` about the target's x and ``about_y`` about
             its y (a seam-like target, x along the travel: the work and travel angle
-            windows). The tilt is free within them: the solver spends it on reach and the
-            smallest motion, and reports it per sample (``JointSolution.tilt``). With
+            windows). The windows are used only where needed: the target's own
+            orientation (no tilt) wherever it is reachable, and on the stretches where it
+            is not, the tilt within the windows that the smallest motion from the sample
+            before needs; reported per sample (``JointSolution.tilt``). With
             ``free_axis="z"`` the spin about the tool's z is free too; without, it is the
             target's. A sample is reached within the windows (to ``orientation_tolerance``)
             and the position tolerance.

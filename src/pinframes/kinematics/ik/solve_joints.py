@@ -41,6 +41,7 @@ from ._path_chunks import TARGET_SOURCE, PathToSolve, problem_of
 from ._solved_joints import solved_joints
 from ._starts import first_start
 from ._tool_error import AXES, AxisMatch, PoseMatch, ToolMatch, WindowMatch
+from ._windows_where_needed import nominal_where_reachable
 from .joint_jumps import DEFAULT_JUMP_FACTOR, jumps_of, require_no_jumps
 from .joint_solution import JointSolution
 from .joint_speeds import require_within_speed
@@ -95,9 +96,14 @@ def evaluate_solve_joints(
                             _tolerance(flat_tolerance, "flat_tolerance", frame)))
     request = PathToSolve(plan, solved, target_pose, error, *tolerances, objective, solver)
     # given times are the samples; without, they are made dense enough for the tolerance
-    request, tracked, tilts, deviation = densely_tracked(
-        request, start, seed is None, strict, frame, between if times is None else None,
-        jump_factor)
+    tolerance = between if times is None else None
+    tilts: FloatArray | None
+    if isinstance(error, WindowMatch):  # the nominal orientation where it is reachable
+        request, tracked, tilts, deviation = nominal_where_reachable(
+            request, error, start, seed is None, strict, frame, tolerance, jump_factor)
+    else:
+        request, tracked, tilts, deviation = densely_tracked(
+            request, start, seed is None, strict, frame, tolerance, jump_factor)
     plan = request.plan
     flat_error = None if not isinstance(objective, FlatFrame) else _flat_errors(
         request, objective, tracked, strict, frame)
