@@ -1,7 +1,7 @@
 """Write docs/api.md, the API reference, from the docstrings of ``pinframes``' public names.
 
 Run ``python docs/make_api_reference.py`` after changing a public docstring or signature;
-``tests/test_api_reference.py`` fails while docs/api.md differs from what this writes.
+``tests/docs/test_api_reference.py`` fails while docs/api.md differs from what this writes.
 Every name of ``pinframes.__all__`` gets a section: its signature and its whole docstring,
 and for a class its public methods and properties, each with its signature and the first
 paragraph of its docstring.

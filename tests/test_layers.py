@@ -24,6 +24,7 @@ LAYERS = [
     ("values",),
     ("kinematics",),
     ("tree",),
+    ("program",),
     ("formats",),
     ("",),  # the package's own __init__: the public names
     ("cli", "plotting", "view", "batch"),

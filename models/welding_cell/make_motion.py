@@ -56,7 +56,7 @@ import yaml
 import pinframes
 from pinframes import JointSolution
 from pinframes.formats.atomic import atomic_write
-from pinframes.formats.trajectory_files import joint_trajectory_csv
+from pinframes.formats.joint_trajectory import joint_trajectory_csv
 
 HERE = Path(__file__).resolve().parent
 URDF_PATH = HERE.parent / "welding_robot" / "welding_robot.urdf"

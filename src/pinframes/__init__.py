@@ -35,11 +35,11 @@ from .errors import (
 )
 from .formats import read, read_joint_trajectory, write
 from .formats.frames_yaml import read_frames_yaml, write_frames_yaml
+from .formats.joint_trajectory.writer import write_joint_trajectory
 from .formats.limits import Limits
-from .formats.pose_files import write_poses
 from .formats.rosbag import read_rosbag
 from .formats.scene import read_scene, write_scene
-from .formats.trajectory_writer import write_joint_trajectory
+from .formats.tables import write_poses
 from .formats.urdf import read_urdf, write_urdf
 from .kinematics import (
     Clearance,

@@ -278,8 +278,8 @@ class SrdfWarning(UserWarning):
 
 class GeometryWarning(UserWarning):
     """Something left out of a drawing: a link's mesh that is missing, unreadable, empty,
-    compressed or too large, a point cloud; on the 3-D page also geometry or a frame that is
-    not finite or too far away to draw."""
+    compressed or too large, a point cloud, an ``<origin>`` inside a URDF ``<geometry>``; on
+    the 3-D page also geometry or a frame that is not finite or too far away to draw."""
 
 
 class JointWithoutSamplesWarning(UserWarning):

@@ -35,8 +35,8 @@ def test_info_lists_frames_with_kind_span_and_reference(run_cli, turntable):
     result = run_cli("info", turntable)
     assert result.returncode == 0, result.stderr
     lines = result.stdout.splitlines()
-    assert lines[0] == ("tree turntable: 3 frames, 1 moving, 0 robot joints; reference "
-                        "time none")
+    assert lines[0] == ("tree turntable: 3 frames, 1 moving, 0 robot joints (0 with samples); "
+                        "reference time none")
     assert lines[1].split() == ["FRAME", "KIND", "TIME", "SPAN", "REFERENCE", "TIME"]
     assert lines[2].split() == ["world", "root"]
     assert lines[3].split() == ["`--", "table", "moving", "0", "s", "..", "10", "s", "(2",

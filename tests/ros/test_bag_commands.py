@@ -27,7 +27,9 @@ def test_info_lists_topics_used_and_ignored_and_the_time_span():
     result = _run("info", BUNDLED)
     assert result.returncode == 0, result.stderr
     lines = result.stdout.splitlines()
-    assert lines[0].startswith("tree cell_run: 15 frames, 1 moving, 6 robot joints")
+    # the bag's joint states carry samples of all six joints
+    assert lines[0].startswith("tree cell_run: 15 frames, 1 moving, 6 robot joints (6 with "
+                               "samples)")
     assert "MCAP" in result.stdout and "stamps 2024-03-01T08:00:00 .. 2024-03-01T08:00:20" \
         in result.stdout
     assert any(line.startswith("topics ignored: /weld_current (std_msgs/msg/Float64")

@@ -19,7 +19,7 @@ import pyarrow as pa  # type: ignore[import-untyped]
 
 from .. import FrameTree, Pose, TimeAxis, Velocity
 from ..errors import FrameNotFoundError, InvalidTimeError, near_misses
-from ..formats.pose_files import COLUMNS, VELOCITY_COLUMNS
+from ..formats.tables import COLUMNS, VELOCITY_COLUMNS
 from ._options import BatchOptions
 
 __all__ = ["MAX_GRID_SAMPLES", "POSE_SCHEMA", "VELOCITY_SCHEMA", "output_schema",

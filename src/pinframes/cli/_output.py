@@ -1,5 +1,5 @@
-"""The ``pose``, ``transform`` and ``demo`` outputs: :mod:`pinframes.formats.pose_files` to a
-file or standard output."""
+"""The ``pose``, ``transform`` and ``demo`` outputs: :mod:`pinframes.formats.tables.pose_files`
+to a file or standard output."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from pathlib import Path
 
 from ..errors import FileFormatError
 from ..formats.atomic import atomic_write
-from ..formats.pose_files import POSE_FILE_FORMATS, pose_file_format, poses_text, write_poses
+from ..formats.tables import POSE_FILE_FORMATS, pose_file_format, poses_text, write_poses
 from ..kinematics import Velocity
 from ..values.pose import Pose
 

@@ -10,8 +10,8 @@ from typing import Any
 
 import numpy as np
 
-from ..formats.clearance_files import CLEARANCE_FILE_FORMATS, clearance_text
 from ..formats.limits import current_limits
+from ..formats.tables import CLEARANCE_FILE_FORMATS, clearance_text
 from ..kinematics import Clearance
 from ..tree import FrameTree
 from ..values.geometry import GEOMETRY_KINDS
@@ -98,8 +98,10 @@ def clearance_summary(result: Clearance, counts: bool = True) -> str:
                f"and {second}{when}; {touching}")
     if not counts:
         return summary
+    fixed = len(result.fixed_together)
+    left_out = f", {fixed} pairs fixed to each other left out" if fixed else ""
     return (f"{summary} ({len(result)} samples, {len(result.frames_a)} x "
-            f"{len(result.frames_b)} frames)")
+            f"{len(result.frames_b)} frames{left_out})")
 
 
 def frame_names(tree: FrameTree, text: str) -> list[str]:

@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from ..formats.rosbag import ROSBAG_METADATA_KEY
+from ..formats.urdf import URDF_METADATA_KEY
 from ..tree import FrameTree
 from ..tree.robot_semantics import semantic_robots
 from ..values.timeconv import format_timestamp_iso
@@ -93,9 +94,12 @@ def describe_json(tree: FrameTree) -> dict[str, Any]:
 
 
 def _srdf_robots(tree: FrameTree) -> list[dict[str, Any]]:
-    """Per robot read with an SRDF: its top frame, the file, each group's joints (tree
-    names), the group states and the number of link pairs never checked."""
-    return [{"frame": robot.top, "file": robot.semantics.source,
+    """Per robot read with an SRDF: the robot's name (its URDF's), its top frame, the file,
+    each group's joints (tree names), the group states and the number of link pairs never
+    checked."""
+    robots = tree.metadata.get(URDF_METADATA_KEY, {})
+    return [{"robot": robots.get(robot.top, {}).get("name"),
+             "frame": robot.top, "file": robot.semantics.source,
              "groups": {group: [name for joint in joints
                                 if (name := robot.joint(tree, joint)) is not None]
                         for group, joints in robot.semantics.groups.items()},
@@ -113,9 +117,11 @@ def describe(tree: FrameTree) -> str:
     """A text table of the tree: one line per frame, children indented under parents; names
     with characters that do not print show them escaped."""
     reference = "none" if tree.reference_time is None else str(tree.reference_time)
+    sampled = sum(tree.joint_trajectory(name) is not None for name in tree.joints)
     header = (f"tree {tree.name or '(unnamed)'}: {len(tree)} frames, "
               f"{sum(tree.is_moving(f) for f in tree.frames[1:])} moving, "
-              f"{len(tree.joints)} robot joints; reference time {reference}")
+              f"{len(tree.joints)} robot joints ({sampled} with samples); "
+              f"reference time {reference}")
     rows = [["FRAME", "KIND", "TIME SPAN", "REFERENCE TIME"]]
     for prefix, name in _walk(tree, tree.root, "", ""):
         rows.append([printable(cell) for cell in (prefix + name, *_frame_columns(tree, name))])
@@ -132,7 +138,8 @@ def describe(tree: FrameTree) -> str:
         groups = ", ".join(f"{name!r} ({len(joints)} joints)"
                            for name, joints in robot["groups"].items()) or "none"
         states = ", ".join(map(repr, robot["group_states"])) or "none"
-        lines.append(printable(f"srdf of {robot['frame']!r}: groups {groups}; group states "
+        lines.append(printable(f"srdf of robot {robot['robot']!r} (top frame "
+                               f"{robot['frame']!r}): groups {groups}; group states "
                                f"{states}; {robot['disabled_pairs']} link pairs never checked"))
     if ROSBAG_METADATA_KEY in tree.metadata:
         lines += map(printable, _bag_lines(tree.metadata[ROSBAG_METADATA_KEY]))

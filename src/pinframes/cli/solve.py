@@ -10,8 +10,8 @@ import warnings
 import numpy as np
 
 from ..errors import JointError, JointWithoutSamplesWarning, joint_not_found
-from ..formats.trajectory_files import joint_trajectory_csv
-from ..formats.trajectory_writer import urdf_joint_names, write_joint_trajectory
+from ..formats.joint_trajectory import joint_trajectory_csv
+from ..formats.joint_trajectory.writer import urdf_joint_names, write_joint_trajectory
 from ..kinematics import JointSolution
 from ..kinematics.ik.joint_speeds import speed_unit
 from ..tree import FrameTree

@@ -14,7 +14,7 @@ from collections.abc import Iterable, Sequence
 from typing import Any
 
 from ..errors import ArgumentTypeError, FrameNotFoundError, GeometryError, near_misses
-from ..kinematics import Clearance, clearance_times, evaluate_clearance
+from ..kinematics import Clearance, TreeDescription, clearance_times, evaluate_clearance
 from ..kinematics.collision.mesh_reader import DEFAULT_BOUNDS, MeshBounds
 from ..values.timeconv import TimeAxis
 from ._queries import TreeQueries
@@ -62,6 +62,10 @@ class CollisionQueries(TreeQueries):
             Also leave out the link pairs whose collisions the robots' SRDFs disable
             (``srdf=`` when the robot was read; default True). The pairs left out are in
             :attr:`Clearance.excluded`.
+
+            Pairs whose distance cannot change (no robot joint and no moving frame between
+            the two frames: links bolted together by a fixed joint) are left out too, unless
+            both frames are named outright; they are in :attr:`Clearance.fixed_together`.
         limits : pinframes.Limits or None
             Its ``max_triangles`` bounds the triangles of each mesh file after
             instancing, its ``max_decompressed_bytes`` the file's size (None: 1,000,000
@@ -96,9 +100,11 @@ class CollisionQueries(TreeQueries):
         recorded = {frame: self._recorded_geometry(frame) for frame in [*frames_a, *frames_b]}
         bounds = DEFAULT_BOUNDS if limits is None else MeshBounds(
             limits.max_triangles, limits.max_decompressed_bytes)
-        return evaluate_clearance(self._frozen(), recorded, frames_a, frames_b, excluded,
+        description = self._frozen()
+        return evaluate_clearance(description, recorded, frames_a, frames_b, excluded,
                                   geometry, package_dirs, times, time_ref, extrapolation,
-                                  bounds)
+                                  bounds, _fixed_together(description, frames_a, frames_b,
+                                                          _named_outright(a, b), excluded))
 
     def clearance_times(self, a: str | Sequence[str], b: str | Sequence[str], *,
                         geometry: str = "collision") -> TimeAxis | None:
@@ -147,6 +153,32 @@ class CollisionQueries(TreeQueries):
                                 "shapes by add_geometry have some)",
                                 field=field)
         return kept
+
+
+def _named_outright(a: str | Sequence[str], b: str | Sequence[str]) -> set[str]:
+    """The names of ``a`` and ``b`` that are no glob patterns."""
+    names = [*([a] if isinstance(a, str) else a), *([b] if isinstance(b, str) else b)]
+    return {name for name in names if isinstance(name, str) and not _is_pattern(name)}
+
+
+def _fixed_together(description: TreeDescription, frames_a: list[str], frames_b: list[str],
+                    outright: set[str], excluded: list[tuple[str, str]]
+                    ) -> list[tuple[str, str]]:
+    """The pairs of one frame of ``frames_a`` and one of ``frames_b`` whose distance cannot
+    change: both hang from the same robot joint or moving frame (their anchor), with only
+    fixed placements between. A pair whose two frames are both named outright stays in, and
+    a pair already ``excluded`` is not listed again."""
+    anchor_b = {frame: description.anchor(frame)[0] for frame in frames_b}
+    skipped = {frozenset(pair) for pair in excluded}
+    found: dict[frozenset[str], tuple[str, str]] = {}
+    for first in frames_a:
+        anchor = description.anchor(first)[0]
+        for second in frames_b:
+            pair = frozenset((first, second))
+            if (first != second and anchor_b[second] == anchor and pair not in found
+                    and pair not in skipped and not {first, second} <= outright):
+                found[pair] = (first, second)
+    return list(found.values())
 
 
 def _is_pattern(name: str) -> bool:

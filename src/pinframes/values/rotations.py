@@ -124,16 +124,22 @@ def rpy_from_matrix(matrix: ArrayLike) -> FloatArray:
     """Roll, pitch, yaw ``(..., 3)`` in radians from rotation matrices.
 
     Pitch lies in ``[-pi/2, pi/2]``; at the gimbal lock (pitch = +-pi/2) roll is set to 0.
+    Near the lock, yaw read from the first column (whose entries are about cos(pitch)) is
+    uncertain by about 1e-16 / cos(pitch); roll is therefore read after undoing that yaw,
+    from entries of size one (``Rz(yaw)^T R = Ry(pitch) Rx(roll)``, whose middle row is
+    ``(0, cos roll, -sin roll)``), so the three angles give back the matrix to rounding
+    at any pitch.
     """
     m = np.asarray(matrix, dtype=float)
-    pitch = np.arctan2(-m[..., 2, 0], np.hypot(m[..., 0, 0], m[..., 1, 0]))
-    locked = np.hypot(m[..., 0, 0], m[..., 1, 0]) < 1e-12
-    roll = np.where(locked, 0.0, np.arctan2(m[..., 2, 1], m[..., 2, 2]))
-    yaw = np.where(
-        locked,
-        np.arctan2(-m[..., 0, 1], m[..., 1, 1]),
-        np.arctan2(m[..., 1, 0], m[..., 0, 0]),
-    )
+    column = np.hypot(m[..., 0, 0], m[..., 1, 0])
+    pitch = np.arctan2(-m[..., 2, 0], column)
+    locked = column < 1e-12
+    yaw = np.where(locked, np.arctan2(-m[..., 0, 1], m[..., 1, 1]),
+                   np.arctan2(m[..., 1, 0], m[..., 0, 0]))
+    cy, sy = np.cos(yaw), np.sin(yaw)
+    roll = np.where(locked, 0.0,
+                    np.arctan2(sy * m[..., 0, 2] - cy * m[..., 1, 2],
+                               cy * m[..., 1, 1] - sy * m[..., 0, 1]))
     return np.stack([roll, pitch, yaw], axis=-1)
 
 

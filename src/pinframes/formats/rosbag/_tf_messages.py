@@ -11,7 +11,7 @@ that their length counts, and may pad the message by up to 3 bytes.
 Decoding a message at a time in Python costs about 20 µs (rosbags' deserialiser); here the
 messages of a topic are joined into one buffer and every message's k-th transform is read
 by the same few array operations, so the cost is a few passes over the bytes plus one step
-per transform position in the longest message. tests/rosbag/test_tf_messages.py checks it
+per transform position in the longest message. tests/ros/test_tf_messages.py checks it
 against rosbags' own deserialiser.
 """
 

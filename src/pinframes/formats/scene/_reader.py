@@ -30,9 +30,9 @@ from ...errors import FileFormatError, PinframesError, UnsupportedFeatureError
 from ...tree import FrameTree
 from ...values.pose import Pose
 from .._registry import detect_format, read, require_format
+from ..joint_trajectory import read_joint_trajectory
 from ..limits import Limits, reader_with_limits
 from ..reading import InputFile
-from ..trajectory_files import read_joint_trajectory
 from ..urdf import RobotDescription, mount_robot, parse_urdf
 from ._fields import SceneFields
 from ._geometry import add_geometry, read_geometry

@@ -13,14 +13,23 @@ amplification factor``); within those 8 MiB a tiny file still yields two million
 - elements are counted (``max_xml_elements``) and their nesting measured (``max_depth``)
   as the parser produces them, and the parse stops at the first one over a limit, before
   the rest of the document is built.
+
+XML forbids ``--`` inside a comment; ROS tools (urdfdom and MoveIt on TinyXML2) end a comment
+at the first ``-->`` whatever it holds, and published files rely on it (a comment closed by
+``--!>`` in Kawasaki's duAro SRDF). A document that expat refuses and that holds such a
+comment is read again with its comments cut where TinyXML2 cuts them, with one warning.
 """
 
 from __future__ import annotations
 
+import re
 import xml.etree.ElementTree as ET
 
-from ...errors import FileFormatError
+from ...errors import FileFormatError, warn_at_caller
 from ..limits import current_limits, exceeded
+
+_COMMENT = re.compile(r"<!--(.*?)-->", re.DOTALL)
+"""A comment as TinyXML2 delimits it: from ``<!--`` to the first ``-->``."""
 
 __all__ = ["parse_bounded_xml"]
 
@@ -29,12 +38,29 @@ def parse_bounded_xml(text: str, source: str) -> ET.Element:
     """The root element of ``text``; a :class:`FileFormatError` naming ``source`` for
     malformed XML, a DOCTYPE declaration, or more elements or nesting than the limits allow.
     """
-    parser = ET.XMLParser(target=_BoundedBuilder(source))
     try:
-        parser.feed(text)
-        return parser.close()
+        return _parse(text, source)
     except ET.ParseError as exc:
-        raise FileFormatError(f"malformed XML: {exc}", file=source) from None
+        refused = exc
+    dashed = [match for match in _COMMENT.finditer(text) if "--" in match.group(1)]
+    if dashed:
+        try:
+            root = _parse(_COMMENT.sub("", text), source)
+        except ET.ParseError:
+            pass
+        else:
+            line = text.count("\n", 0, dashed[0].start()) + 1
+            warn_at_caller(f"{source}: {len(dashed)} comment(s) holding '--' (the first on "
+                           f"line {line}), which XML forbids, read as ROS tools read them "
+                           "(each comment ends at the first '-->')")
+            return root
+    raise FileFormatError(f"malformed XML: {refused}", file=source) from None
+
+
+def _parse(text: str, source: str) -> ET.Element:
+    parser = ET.XMLParser(target=_BoundedBuilder(source))
+    parser.feed(text)
+    return parser.close()
 
 
 class _BoundedBuilder(ET.TreeBuilder):

@@ -16,9 +16,9 @@ from typing import Any
 from ...errors import PinframesError
 from ...tree import FrameTree
 from .._registry import FileFormat
+from ..joint_trajectory import read_joint_trajectory
 from ..limits import Limits
 from ..reading import InputFile
-from ..trajectory_files import read_joint_trajectory
 from ._parse import is_urdf
 from ._read_write import joint_state_path, read_robot, write_urdf
 

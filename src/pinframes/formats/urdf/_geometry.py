@@ -6,7 +6,9 @@ a ``<box size>``, ``<cylinder radius length>``, ``<sphere radius>`` or ``<mesh f
 ``<material>``. Poses never need geometry, so a malformed element does not stop the robot
 from mounting: it is recorded in :attr:`FrameGeometry.unreadable` with its field
 (``collision[0].geometry.box.size``) and problem, for whoever uses that geometry to report.
-Mesh files are not opened. :func:`shape_elements` writes recorded shapes back as such
+An ``<origin>`` inside ``<geometry>`` (where urdfdom and Pinocchio ignore it) is ignored too;
+:func:`stray_geometry_origins` names them for the reader's one warning. Mesh files are not
+opened. :func:`shape_elements` writes recorded shapes back as such
 elements, for frames that are no URDF link (shapes given by ``FrameTree.add_geometry``).
 """
 
@@ -19,7 +21,7 @@ from ...errors import FileFormatError
 from ...values.geometry import FrameGeometry, Shape
 from ._numbers import numbers
 
-__all__ = ["link_geometry", "named_colours", "shape_elements"]
+__all__ = ["link_geometry", "named_colours", "shape_elements", "stray_geometry_origins"]
 
 _SIZES = {"box": ("size",), "cylinder": ("radius", "length"), "sphere": ("radius",)}
 Colour = tuple[float, float, float, float]
@@ -53,11 +55,23 @@ def link_geometry(link: ET.Element, name: str, source: str, colours: dict[str, C
                          tuple(unreadable), package_dirs)
 
 
+def stray_geometry_origins(root: ET.Element) -> list[str]:
+    """The ``<origin>`` elements inside a link's ``<geometry>``, as ``link.collision[0]``."""
+    found = []
+    for link in root.iterfind("link"):
+        for kind in ("collision", "visual"):
+            for index, element in enumerate(link.iterfind(kind)):
+                if element.find("geometry/origin") is not None:
+                    found.append(f"{link.get('name')}.{kind}[{index}]")
+    return found
+
+
 def _shape(element: ET.Element, where: str, link: str, source: str,
            colours: dict[str, Colour]) -> Shape:
     geometry = element.find("geometry")
     described = [] if geometry is None else [child for child in geometry
-                                             if isinstance(child.tag, str)]
+                                             if isinstance(child.tag, str)
+                                             and child.tag != "origin"]
     if len(described) != 1:
         raise FileFormatError(
             "expected one <geometry> holding one box, cylinder, sphere or mesh",

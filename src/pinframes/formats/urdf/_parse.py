@@ -11,13 +11,13 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import BrokenMimicWarning, FileFormatError, warn_at_caller
+from ...errors import BrokenMimicWarning, FileFormatError, GeometryWarning, warn_at_caller
 from ...values.pose import Pose
 from .._content import xml_root
 from ..limits import Limits, current_limits, exceeded, reader_with_limits
 from ..reading import InputFile, read_text
 from ._bounded_xml import parse_bounded_xml
-from ._geometry import link_geometry, named_colours
+from ._geometry import link_geometry, named_colours, stray_geometry_origins
 from ._numbers import numbers
 from ._robot_description import JointDescription, RobotDescription
 from ._srdf import looks_like_srdf, read_srdf
@@ -99,6 +99,11 @@ def parse_urdf(urdf: str | os.PathLike[str], *, strict: bool = False,
     colours = named_colours(root, source)
     geometry = {link: link_geometry(element, link, source, colours, folders)
                 for link, element in _link_elements(root)}
+    stray = stray_geometry_origins(root)
+    if stray:
+        warn_at_caller(f"{source}: an <origin> inside <geometry> is ignored, as urdfdom and "
+                       f"Pinocchio ignore it (the shape's <origin> belongs beside its "
+                       f"<geometry>): {', '.join(stray)}", GeometryWarning)
     robot = RobotDescription(name, source, root_link, links, tuple(ordered), tuple(extra),
                              geometry)
     if srdf is None:

@@ -19,8 +19,8 @@ from ...values.rotations import rpy_from_matrix
 from .._snapshot import moving_parts, one_instant
 from .._writable import check_writable_tree, refuse_attached_data
 from ..atomic import atomic_write
+from ..joint_trajectory import joint_trajectory_csv
 from ..limits import Limits
-from ..trajectory_files import joint_trajectory_csv
 from ._geometry import shape_elements
 from ._mount import URDF_METADATA_KEY, mount_robot
 from ._parse import parse_urdf

@@ -73,6 +73,9 @@ class Clearance(Timed):
         The pairs of frames left out: ``exclude=``, and those the robots' SRDFs disable.
     geometry : {"collision", "visual"}
         Which URDF geometry was used.
+    fixed_together : tuple of (str, str)
+        The pairs of frames left out because their distance cannot change: no robot joint
+        and no moving frame lies between them (two links bolted together by a fixed joint).
     """
 
     distance: FloatArray
@@ -85,6 +88,7 @@ class Clearance(Timed):
     frames_b: tuple[str, ...]
     excluded: tuple[tuple[str, str], ...]
     geometry: str
+    fixed_together: tuple[tuple[str, str], ...] = ()
 
     def __len__(self) -> int:
         return int(self.distance.shape[0])
@@ -115,22 +119,27 @@ def evaluate_clearance(
     frames_a: Sequence[str], frames_b: Sequence[str], excluded: Iterable[tuple[str, str]],
     kind: str, package_dirs: Iterable[str | os.PathLike[str]], times: Any, time_ref: Any,
     extrapolation: str, bounds: MeshBounds = DEFAULT_BOUNDS,
+    fixed_together: Iterable[tuple[str, str]] = (),
 ) -> Clearance:
     """``tree.clearance(...)`` for frames already named and checked.
 
     ``geometry`` holds the recorded geometry of every frame of ``frames_a`` and
-    ``frames_b``; ``excluded`` the frame pairs (either order) not to check;
+    ``frames_b``; ``excluded`` the frame pairs (either order) not to check, and
+    ``fixed_together`` those left out because nothing moves between them;
     ``bounds`` what reading each mesh file may cost.
     """
+    excluded, fixed_together = list(excluded), list(fixed_together)
     loader = _loader(tree, kind, package_dirs, bounds)
     frames = list(dict.fromkeys([*frames_a, *frames_b]))
     shapes = [shape for frame in frames for shape in loader.shapes(frame, geometry[frame])]
-    skipped = {frozenset(pair) for pair in excluded}
+    skipped = {frozenset(pair) for pair in [*excluded, *fixed_together]}
     pairs = _shape_pairs(shapes, set(frames_a), set(frames_b), skipped)
     if not len(pairs):
         raise GeometryError("a and b leave no pair of two different frames to check (a frame "
-                            "is never checked against itself; see also exclude, and the pairs "
-                            "an SRDF disables: srdf_exclude=False, --no-srdf-exclude)",
+                            "is never checked against itself; see also exclude, the pairs "
+                            "an SRDF disables: srdf_exclude=False, --no-srdf-exclude, and "
+                            f"the {len(fixed_together)} pairs fixed to each other, which "
+                            "pinframes checks only when both frames are named outright)",
                             field="b")
     plan = _plan(tree, frames, times, time_ref, extrapolation)
     count = plan.count
@@ -156,7 +165,7 @@ def evaluate_clearance(
                      plan.result_times, plan.reference_time, tuple(dict.fromkeys(frames_a)),
                      tuple(dict.fromkeys(frames_b)),
                      tuple(tuple(pair) for pair in excluded),  # type: ignore[misc]
-                     kind)
+                     kind, tuple(tuple(pair) for pair in fixed_together))  # type: ignore[misc]
 
 
 def _loader(tree: TreeDescription, kind: str,

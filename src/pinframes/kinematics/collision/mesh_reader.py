@@ -167,7 +167,9 @@ def _read_collada(data: bytes, max_triangles: int, path: Path) -> TriangleMesh:
     if end is None:
         raise GeometryError("cannot be read: not a COLLADA document (no </COLLADA> end tag)",
                             file=str(path))
-    document = data[:end.end()]
+    # whitespace before the XML declaration (a Doosan mesh has a line break there) is what
+    # assimp reads past and an XML parser refuses
+    document = data[:end.end()].lstrip(b"\xef\xbb\xbf \t\r\n")
     if any(declaration in document for declaration in _XML_DECLARATIONS):
         raise GeometryError("cannot be read: COLLADA with a DOCTYPE or entity declarations "
                             "is not read",

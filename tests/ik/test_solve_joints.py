@@ -26,7 +26,7 @@ from pinframes.errors import (
     PinframesError,
 )
 
-ROBOT = Path(__file__).resolve().parents[1] / "models" / "welding_robot" / "welding_robot.urdf"
+ROBOT = Path(__file__).resolve().parents[2] / "models" / "welding_robot" / "welding_robot.urdf"
 ARM = [f"robot/joint_{index}" for index in range(1, 7)]
 HOME = np.array([0.2, 0.4, -0.6, 0.1, 0.9, 0.3])  # rad: elbow up, wrist bent, inside limits
 SWING = np.array([0.5, 0.3, 0.3, 0.6, 0.4, 0.8])

@@ -25,7 +25,7 @@ from pinframes.errors import ExtrapolationError, FrameNotFoundError, JointError
 FIXED = settings(max_examples=25, deadline=None, derandomize=True, database=None,
                  suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
 LWA = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
-ROBOT = Path(__file__).resolve().parents[1] / "models" / "welding_robot" / "welding_robot.urdf"
+ROBOT = Path(__file__).resolve().parents[2] / "models" / "welding_robot" / "welding_robot.urdf"
 
 
 def panda_urdf() -> Path:
@@ -153,7 +153,7 @@ def test_velocity_is_the_derivative_of_the_numpy_model(spec, data):
 def test_velocity_is_the_derivative_of_pose_on_the_welding_cell():
     from pinframes import read_scene
 
-    cell = read_scene(Path(__file__).resolve().parents[1] / "models" / "welding_cell"
+    cell = read_scene(Path(__file__).resolve().parents[2] / "models" / "welding_cell"
                       / "scene.yaml")
     knots = cell.sample_times("torch_tcp", "workpiece").offsets
     middles = knots[:-1] + np.diff(knots) // 2

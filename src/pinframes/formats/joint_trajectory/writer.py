@@ -17,22 +17,22 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import (
+from ...errors import (
     ArgumentTypeError,
     FileFormatError,
     InvalidDataError,
     InvalidTimeError,
     PinframesError,
 )
-from ..kinematics import JointSolution
-from ..tree import FrameTree
-from ..values.numbers import float_array
-from ..values.timeconv import parse_time_axis
-from ._paths import path_argument
-from .atomic import atomic_write
-from .rosbag import write_trajectory_bag
-from .trajectory_files import joint_trajectory_csv
-from .urdf import URDF_METADATA_KEY
+from ...kinematics import JointSolution
+from ...tree import FrameTree
+from ...values.numbers import float_array
+from ...values.timeconv import parse_time_axis
+from .._paths import path_argument
+from ..atomic import atomic_write
+from ..rosbag import write_trajectory_bag
+from ..urdf import URDF_METADATA_KEY
+from ._files import joint_trajectory_csv
 
 __all__ = ["urdf_joint_names", "write_joint_trajectory"]
 

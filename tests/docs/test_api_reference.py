@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pinframes
 
-DOCS = Path(__file__).resolve().parents[1] / "docs"
+DOCS = Path(__file__).resolve().parents[2] / "docs"
 
 
 def _generator():

@@ -8,7 +8,7 @@ import pytest
 
 from pinframes import FrameTree, InvalidTimeError, Pose, TreeStructureError
 
-ROBOT = Path(__file__).parents[1] / "models" / "welding_robot" / "welding_robot.urdf"
+ROBOT = Path(__file__).parents[2] / "models" / "welding_robot" / "welding_robot.urdf"
 
 
 def random_tree(rng, size=40):

@@ -15,7 +15,7 @@ from pinframes.errors import FrameNotFoundError, InvalidDataError, TreeStructure
 
 from geometry import rot_x, rot_y, rot_z
 
-MODELS = Path(__file__).resolve().parents[1] / "models"
+MODELS = Path(__file__).resolve().parents[2] / "models"
 
 
 def torch_rotation(travel: float, work: float, spin: float = 0.0) -> np.ndarray:

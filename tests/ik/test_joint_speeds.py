@@ -20,7 +20,7 @@ from pinframes import FrameTree, JointSpeedError, Pose
 from pinframes.errors import JointError, PinframesError
 from robot_checks import placements, urdf_mimic_multiplier, urdf_velocity_limits
 
-ROBOT = Path(__file__).resolve().parents[1] / "models" / "welding_robot" / "welding_robot.urdf"
+ROBOT = Path(__file__).resolve().parents[2] / "models" / "welding_robot" / "welding_robot.urdf"
 ARM = [f"robot/joint_{index}" for index in range(1, 7)]
 HOME = np.array([0.2, 0.4, -0.6, 0.1, 0.9, 0.3])  # rad
 TOLERANCE = 1e-6

@@ -28,13 +28,13 @@ from typing import IO, Any
 
 import numpy as np
 
-from ..errors import ArgumentTypeError, FileFormatError
-from ..kinematics import Velocity
-from ..values.pose import Pose
-from ..values.timeconv import format_timestamp_iso
-from ._registry import FileFormat
-from .atomic import atomic_write
-from .reading import InputFile
+from ...errors import ArgumentTypeError, FileFormatError
+from ...kinematics import Velocity
+from ...values.pose import Pose
+from ...values.timeconv import format_timestamp_iso
+from .._registry import FileFormat
+from ..atomic import atomic_write
+from ..reading import InputFile
 
 __all__ = ["COLUMNS", "POSES", "POSE_FILE_FORMATS", "POSE_FORMATS", "VELOCITY_COLUMNS",
            "pose_file_format", "poses_text", "write_poses"]

@@ -23,7 +23,7 @@ from mpl_toolkits.mplot3d import proj3d
 from pinframes.plotting import new_figure, plot_frames
 
 MAPS = sorted((SHARED_DATA / "duckietown-maps").glob("*/frames.yaml"))
-CELL = Path(__file__).resolve().parents[1] / "models" / "welding_cell" / "scene.yaml"
+CELL = Path(__file__).resolve().parents[2] / "models" / "welding_cell" / "scene.yaml"
 
 
 def drawn_labels(tree):

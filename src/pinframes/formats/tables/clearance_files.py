@@ -11,8 +11,8 @@ CSV
     a reference time the first column is ``time_s_after_<timestamp>``. ``pandas.read_csv``
     reads it, and ``numpy.genfromtxt(path, delimiter=",", names=True, dtype=None)``.
 JSON
-    ``{"frames_a", "frames_b", "excluded", "geometry", "reference_time", "units",
-    "samples": [{column: value}]}``.
+    ``{"frames_a", "frames_b", "excluded", "fixed_together", "geometry", "reference_time",
+    "units", "samples": [{column: value}]}``.
 """
 
 from __future__ import annotations
@@ -25,10 +25,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import FileFormatError
-from ..kinematics import Clearance
-from ..values.timeconv import format_timestamp_iso
-from .atomic import atomic_write
+from ...errors import FileFormatError
+from ...kinematics import Clearance
+from ...values.timeconv import format_timestamp_iso
+from ..atomic import atomic_write
 
 __all__ = ["CLEARANCE_COLUMNS", "CLEARANCE_FILE_FORMATS", "clearance_text", "write_clearance"]
 
@@ -68,6 +68,7 @@ def clearance_text(clearance: Clearance, format: str = "csv") -> str:
                 record["time_s"] = None
         document = {"frames_a": list(clearance.frames_a), "frames_b": list(clearance.frames_b),
                     "excluded": [list(pair) for pair in clearance.excluded],
+                    "fixed_together": [list(pair) for pair in clearance.fixed_together],
                     "geometry": clearance.geometry, "reference_time": reference,
                     "units": {"time_s": "s", "distance_m point_*_m": "m",
                               "point axes": "the tree's root"},

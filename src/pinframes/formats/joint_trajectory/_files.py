@@ -29,12 +29,12 @@ from typing import IO
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import FileFormatError, InvalidTimeError, PinframesError
-from ..values.timeconv import format_timestamp_iso, parse_time_axis
-from ._paths import path_argument
-from ._registry import FileFormat, detect_format, file_format
-from .limits import Limits, current_limits, exceeded, reader_with_limits
-from .reading import InputFile, read_bytes, read_text
+from ...errors import FileFormatError, InvalidTimeError, PinframesError
+from ...values.timeconv import format_timestamp_iso, parse_time_axis
+from .._paths import path_argument
+from .._registry import FileFormat, detect_format, file_format
+from ..limits import Limits, current_limits, exceeded, reader_with_limits
+from ..reading import InputFile, read_bytes, read_text
 
 __all__ = [
     "CSV_TRAJECTORY_FORMAT",
