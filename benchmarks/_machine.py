@@ -139,7 +139,7 @@ def interleaved(case: str, calls: dict[str, Callable[[], object]], repeats: int,
 
 
 def interleaved_per_call(case: str, calls: dict[str, Callable[[], object]], rounds: int,
-                         in_a_row: int = 50) -> list[dict]:
+                         in_a_row: int = 50, reference: str = "numpy reference") -> list[dict]:
     """:func:`interleaved` for calls of a few microseconds: each measurement makes a call
     ``in_a_row`` times in a row, and the rows give the time per call. Timed one call at a
     time, the one-query cases of bench_queries ran 2-3x slower in the one-thread child than
@@ -153,7 +153,7 @@ def interleaved_per_call(case: str, calls: dict[str, Callable[[], object]], roun
         return calls_in_a_row
 
     measured = interleaved(case, {name: repeated(call) for name, call in calls.items()},
-                           rounds)
+                           rounds, reference)
     return [{**entry, "seconds": entry["seconds"] / in_a_row} for entry in measured]
 
 

@@ -35,6 +35,7 @@ from .errors import (
 )
 from .formats import read, read_joint_trajectory, write
 from .formats.frames_yaml import read_frames_yaml, write_frames_yaml
+from .formats.joint_limits import read_joint_limits
 from .formats.joint_trajectory.writer import write_joint_trajectory
 from .formats.limits import Limits
 from .formats.rosbag import read_rosbag
@@ -53,6 +54,7 @@ from .kinematics import (
 from .tree import FrameTree
 from .values.geometry import FrameGeometry, Shape
 from .values.joint import Joint, Mimic
+from .values.joint_rate_limits import JointRateLimits
 from .values.joint_trajectory import JointTrack, JointTrajectory
 from .values.pose import Pose
 from .values.pose_stack import PoseStack
@@ -91,6 +93,7 @@ __all__ = [
     "JointJumpError",
     "JointLimitWarning",
     "JointNotFoundError",
+    "JointRateLimits",
     "JointSolution",
     "JointSpeedError",
     "JointTrack",
@@ -124,6 +127,7 @@ __all__ = [
     "__version__",
     "read",
     "read_frames_yaml",
+    "read_joint_limits",
     "read_joint_trajectory",
     "read_rosbag",
     "read_scene",

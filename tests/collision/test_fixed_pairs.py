@@ -14,7 +14,7 @@ import pinframes
 from ik_paths import example_robot
 from pinframes.cli.clearance import clearance_summary
 from pinframes.errors import JointWithoutSamplesWarning
-from pinframes.formats.clearance_files import clearance_text
+from pinframes.formats.tables import clearance_text
 
 
 def _ur5() -> tuple[pinframes.FrameTree, pin.Model, str]:
