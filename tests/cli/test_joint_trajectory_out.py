@@ -10,6 +10,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from mcap.reader import make_reader
+from mcap_ros2.decoder import DecoderFactory
 
 import pinframes
 from pinframes import FrameTree, Pose
@@ -74,9 +76,13 @@ def test_solution_csv_and_npz_read_back_exactly(scene, tmp_path):
         assert np.array_equal(positions, solution.positions)
         seconds = times if times.dtype.kind == "f" else times.astype(np.int64) / 1e9
         assert np.array_equal(seconds, TIMES)
-    pinframes.write_joint_trajectory(solution, tmp_path / "tree_names.csv")
-    assert pinframes.read_joint_trajectory(tmp_path / "tree_names.csv")[2] == [
-        "arm/a,b", "arm/time_s"]
+    # without tree=: the solution knows its robot and names the joints as the URDF does
+    assert solution.urdf_joint_names == tuple(NAMES)
+    pinframes.write_joint_trajectory(solution, tmp_path / "no_tree.csv")
+    assert pinframes.read_joint_trajectory(tmp_path / "no_tree.csv")[2] == NAMES
+    # a bag for the robot's controller: the JointTrajectory names, read by the mcap library
+    pinframes.write_joint_trajectory(solution, tmp_path / "motion.mcap")
+    assert _trajectory_joint_names(tmp_path / "motion.mcap") == NAMES
 
 
 def test_a_scene_robot_reads_what_solve_wrote(scene, tmp_path, run_cli):
@@ -176,3 +182,12 @@ def test_a_tree_with_joints_not_from_a_urdf_puts_them_on_tf(tmp_path):
     instants = np.array([0, 10**9, 2 * 10**9]).astype("datetime64[ns]")
     np.testing.assert_allclose(back.pose("wheel", times=instants).matrix,
                                tree.pose("wheel", times=[0.0, 1.0, 2.0]).matrix, atol=1e-12)
+
+
+def _trajectory_joint_names(path):
+    """The joint names of the first /joint_trajectory message, decoded by the mcap library."""
+    with open(path, "rb") as handle:
+        reader = make_reader(handle, decoder_factories=[DecoderFactory()])
+        for _, _, _, message in reader.iter_decoded_messages(topics=["/joint_trajectory"]):
+            return list(message.joint_names)
+    raise AssertionError("no /joint_trajectory message")

@@ -158,10 +158,12 @@ def test_solve_reproduces_the_bundled_robot_motion(run_cli, tmp_path):
     np.testing.assert_allclose(positions, recorded, atol=5e-6)
 
 
-def test_solve_keeps_a_seam_flat_with_a_positioner(run_cli, tmp_path):
+@pytest.mark.parametrize("add", [False, True], ids=["--joints", "--add-joints"])
+def test_solve_keeps_a_seam_flat_with_a_positioner(run_cli, tmp_path, add):
     """--flat: a tilt-turn positioner turns a seam whose face turns a quarter turn about
     the faceplate's z so that the face looks up; the CSV checked with Pinocchio on the
-    positioner's URDF."""
+    positioner's URDF. The positioner's joints named with the arm's (--joints), or added to
+    the default set, the arm's (--add-joints)."""
     from ik_paths import pipe_scene, serial_urdf
     positioner = tmp_path / "positioner.urdf"
     positioner.write_text(serial_urdf("positioner", [
@@ -173,10 +175,12 @@ def test_solve_keeps_a_seam_flat_with_a_positioner(run_cli, tmp_path):
     arm = [f"ur/{name}" for name in ("shoulder_pan_joint", "shoulder_lift_joint",
                                      "elbow_joint", "wrist_1_joint", "wrist_2_joint",
                                      "wrist_3_joint")]
+    joints = ["--add-joints"] if add else ["--joints", *arm]
     result = run_cli("solve", scene, "--frame", "ur/tool0", "--target", "torch_target",
-                     "--free-axis", "z", "--joints", *arm, "pos/tilt_x", "pos/turn",
+                     "--free-axis", "z", *joints, "pos/tilt_x", "pos/turn",
                      "--flat", "seam", "--up", "0", "0", "2", "--times", "0", "0.5", "1")
     assert result.returncode == 0, result.stderr
+    assert result.stdout.splitlines()[0].split(",")[1:] == [*arm, "pos/tilt_x", "pos/turn"]
     assert "3 samples, 3 reached" in result.stderr
     rows = np.array([[float(cell) for cell in line.split(",")]
                      for line in result.stdout.splitlines()[1:]])

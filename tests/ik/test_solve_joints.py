@@ -280,9 +280,13 @@ def test_a_pose_target_relative_to_another_frame():
 # -- coordinated motion ----------------------------------------------------------------------
 
 
-def test_robot_and_positioner_solved_together(tmp_path):
+@pytest.mark.parametrize("named", [{"joints": [*ARM, "positioner/turn"]},
+                                   {"add_joints": ["positioner/turn"]}],
+                         ids=["joints", "add_joints"])
+def test_robot_and_positioner_solved_together(tmp_path, named):
     """A seam point runs round the faceplate; solving the robot and the positioner's turn
-    together, both move, and the torch stays on the seam."""
+    together (all named, or the turn added to the default set: the robot's joints), both
+    move, and the torch stays on the seam."""
     urdf = tmp_path / "positioner.urdf"
     urdf.write_text(POSITIONER)
     robot_model, positioner_model = welding_robot(), pin.buildModelFromUrdf(str(urdf))
@@ -299,8 +303,7 @@ def test_robot_and_positioner_solved_together(tmp_path):
              Pose(np.stack([0.1 * np.cos(angles), 0.1 * np.sin(angles), 0 * angles], axis=1),
                   np.tile(rotation, (9, 1, 1)), times=times))
     sample_times = np.linspace(0.0, 4.0, 201)
-    solution = tree.solve_joints("robot/flange", "seam", times=sample_times,
-                                 joints=[*ARM, "positioner/turn"],
+    solution = tree.solve_joints("robot/flange", "seam", times=sample_times, **named,
                                  seed=dict(zip(ARM, HOME, strict=True)))
     assert solution.joint_names == (*ARM, "positioner/turn") and solution.all_reached
     turn = solution.positions[:, 6]

@@ -11,7 +11,7 @@ import numpy as np
 
 from ..errors import JointError, JointWithoutSamplesWarning, joint_not_found
 from ..formats.joint_trajectory import joint_trajectory_csv
-from ..formats.joint_trajectory.writer import urdf_joint_names, write_joint_trajectory
+from ..formats.joint_trajectory.writer import write_joint_trajectory
 from ..kinematics import JointSolution
 from ..kinematics.ik.joint_speeds import speed_unit
 from ..tree import FrameTree
@@ -48,7 +48,11 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         help="the joints to solve for, as the tree names them, or one joint "
                         "group of a robot's SRDF (default: every robot joint between the tool "
                         "and the lowest common ancestor of the two frames); may name a "
-                        "positioner's joints to solve both together")
+                        "positioner's joints to solve both together; it replaces the default "
+                        "set (see --add-joints)")
+    parser.add_argument("--add-joints", nargs="+", metavar="J",
+                        help="joints solved for beside the default set (or beside --joints): "
+                        "a positioner's joints added to the robot's (default: none)")
     parser.add_argument("--flat", metavar="FRAME",
                         help="a frame the solved joints move (a seam on a positioner solved "
                         "with the robot): with the tool on its target, the joints left over "
@@ -100,17 +104,17 @@ def run(args: argparse.Namespace) -> int:
         args.frame, args.target, times=None if times is None else times.as_numpy(),
         time_ref=args.time_ref, joints=_joints_or_group(tree, args.joints),
         seed=_seed(tree, args.seed), free_axis=args.free_axis, flat=args.flat, up=args.up,
-        tilt=args.tilt, position_tolerance=args.position_tolerance,
+        tilt=args.tilt, add_joints=args.add_joints, position_tolerance=args.position_tolerance,
         orientation_tolerance=args.orientation_tolerance, strict=args.strict)
     if args.output is not None:
-        write_joint_trajectory(solution, args.output, tree=tree)
+        write_joint_trajectory(solution, args.output)
     else:  # timestamps when the solution has a reference time, else seconds
         moments: np.ndarray | None = solution.absolute_times
         if moments is None:
             moments = solution.seconds
         assert moments is not None  # a solution has a time per sample
         write_text(joint_trajectory_csv(moments, solution.positions,
-                                        urdf_joint_names(tree, solution.joint_names)), None)
+                                        solution.urdf_joint_names or solution.joint_names), None)
     print(f"pinframes: {summary(tree, solution)}", file=sys.stderr)
     return 0
 

@@ -11,6 +11,7 @@ all the work. :class:`~pinframes.FrameTree` is this class with the clearance
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
+from dataclasses import replace
 from functools import partial
 from typing import Any
 
@@ -48,6 +49,7 @@ from ..values.pose_stack import PoseStack
 from ..values.timeconv import TimeAxis
 from ._structure import EditableTree
 from .robot_semantics import group_joints, group_state_values
+from .urdf_names import urdf_joint_names
 
 __all__ = ["TreeQueries"]
 
@@ -301,6 +303,7 @@ class TreeQueries(EditableTree):
         free_axis: str | None = None, seed: Any = None, position_tolerance: float = 1e-6,
         orientation_tolerance: float = 1e-6, strict: bool = False, flat: str | None = None,
         up: Any = None, tilt: tuple[float, float] | None = None,
+        add_joints: Sequence[str] | None = None,
         path_tolerance: float | tuple[float, float] | None = DEFAULT_PATH_TOLERANCE,
         jump_threshold: float = DEFAULT_JUMP_FACTOR, flat_tolerance: float = FLAT_TOLERANCE,
     ) -> JointSolution:
@@ -331,6 +334,9 @@ class TreeQueries(EditableTree):
             target's side, e.g. a positioner attached as a URDF: then robot and positioner
             are solved together. Mimic joints follow their primaries; every other joint
             keeps its trajectory.
+        add_joints : sequence of str, optional
+            Joints solved for beside ``joints`` (or beside the default ones): a positioner's
+            joints added to the robot's, ``add_joints=["pos/tilt", "pos/turn"]``.
         free_axis : {"x", "y", "z"}, optional
             An axis of the tool about which its rotation is free (a welding torch): only
             the position and that axis's direction must match, and the solver takes the
@@ -430,13 +436,15 @@ class TreeQueries(EditableTree):
             seed = group_state_values(self, seed, near)
             if joints is not None:  # a state of a larger group seeds the joints solved for
                 seed = {name: value for name, value in seed.items() if name in joints}
-        return evaluate_solve_joints(
+        solution = evaluate_solve_joints(
             self._frozen(), frame, target, relative_to=relative_to, times=times,
             time_ref=time_ref, joints=joints, free_axis=free_axis, seed=seed,
             position_tolerance=position_tolerance,
             orientation_tolerance=orientation_tolerance, strict=strict, flat=flat, up=up,
-            tilt=tilt, path_tolerance=path_tolerance, jump_threshold=jump_threshold,
-            flat_tolerance=flat_tolerance)
+            tilt=tilt, add_joints=add_joints, path_tolerance=path_tolerance,
+            jump_threshold=jump_threshold, flat_tolerance=flat_tolerance)
+        named = urdf_joint_names(self, solution.joint_names)
+        return solution if named is None else replace(solution, urdf_joint_names=tuple(named))
 
     def sample_times(self, frame: str, relative_to: str | None = None) -> TimeAxis | None:
         """The times :meth:`pose` evaluates at when given none, without evaluating.

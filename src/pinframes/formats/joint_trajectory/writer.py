@@ -1,9 +1,10 @@
 """``write_joint_trajectory``: joint values over time to the files a scene robot reads
 (``.csv``, ``.npz``) or to a ROS bag (``.mcap``, ``.bag``, ``.db3``, a folder).
 
-What ``pinframes solve -o`` writes. Joint names: as given, or (a solution with ``tree=``)
-as the robot's URDF names them, the tree's prefix removed, when every joint belongs to the
-same robot (:func:`urdf_joint_names`).
+What ``pinframes solve -o`` writes. Joint names: a solution's as the robot's URDF names them
+(the tree's prefix removed, as a robot's controller knows them) when every joint belongs to
+one robot read from a URDF (:attr:`JointSolution.urdf_joint_names`), else the tree's; a
+``(times, positions, joint_names)`` tuple's as given.
 """
 
 from __future__ import annotations
@@ -26,15 +27,15 @@ from ...errors import (
 )
 from ...kinematics import JointSolution
 from ...tree import FrameTree
+from ...tree.urdf_names import urdf_joint_names
 from ...values.numbers import float_array
 from ...values.timeconv import parse_time_axis
 from .._paths import path_argument
 from ..atomic import atomic_write
 from ..rosbag import write_trajectory_bag
-from ..urdf import URDF_METADATA_KEY
 from ._files import joint_trajectory_csv
 
-__all__ = ["urdf_joint_names", "write_joint_trajectory"]
+__all__ = ["write_joint_trajectory"]
 
 BAG_SUFFIXES = (".mcap", ".bag", ".db3")
 Times = NDArray[np.datetime64] | NDArray[np.timedelta64]
@@ -61,8 +62,9 @@ def write_joint_trajectory(
         ``/joint_trajectory`` and ``sensor_msgs/JointState`` on ``/joint_states`` at the
         samples.
     tree : FrameTree or None
-        The tree a solution was solved in: its joints are then named as their URDF names
-        them (without the tree's prefix), when they belong to one robot.
+        The tree a solution was solved in, for a solution that does not carry its joints'
+        URDF names (:attr:`JointSolution.urdf_joint_names`, which ``solve_joints`` fills):
+        its joints are then named as their URDF names them, when they belong to one robot.
     """
     file = Path(path_argument(path))
     try:
@@ -87,22 +89,6 @@ def write_joint_trajectory(
                               "without a suffix)", file=file)
 
 
-def urdf_joint_names(tree: FrameTree, joint_names: Sequence[str]) -> list[str]:
-    """``joint_names`` (the tree's) as the robot's URDF names them, when every one belongs
-    to the same robot (as a scene's ``robots[].trajectory`` names them), else unchanged."""
-    frames = {joint.name: frame for frame in tree.frames
-              if (joint := tree.joint_of(frame)) is not None}
-    robots = tree.metadata.get(URDF_METADATA_KEY, {})
-    prefixes = set()
-    for name in joint_names:
-        kept = tree.frame_metadata(frames[name]).get(URDF_METADATA_KEY, {})
-        prefixes.add(robots.get(kept.get("robot"), {}).get("prefix"))
-    prefix = prefixes.pop() if len(prefixes) == 1 else None
-    if not isinstance(prefix, str) or not all(name.startswith(prefix) for name in joint_names):
-        return list(joint_names)
-    return [name[len(prefix):] for name in joint_names]
-
-
 def _samples(trajectory: Any, tree: FrameTree | None
              ) -> tuple[Times, NDArray[np.float64], list[str]]:
     """Times (``datetime64[ns]`` or ``timedelta64[ns]``), positions (T, n) and names."""
@@ -111,9 +97,10 @@ def _samples(trajectory: Any, tree: FrameTree | None
         times = absolute if absolute is not None else trajectory.times.astype(
             "timedelta64[ns]")
         names = list(trajectory.joint_names)
-        if tree is not None:
-            names = urdf_joint_names(tree, names)
-        return times, np.asarray(trajectory.positions, np.float64), names
+        named = (trajectory.urdf_joint_names if tree is None
+                 else urdf_joint_names(tree, names))
+        return (times, np.asarray(trajectory.positions, np.float64),
+                names if named is None else list(named))
     if not isinstance(trajectory, tuple) or len(trajectory) != 3:
         raise ArgumentTypeError("expected a JointSolution or a tuple (times, positions, "
                                 f"joint_names), got {type(trajectory).__name__}",

@@ -2,8 +2,9 @@
 URDF or xacro files with their SRDF, and the URDF format of the registry (a URDF with its
 joint values beside it)."""
 
+from ...tree.urdf_names import URDF_METADATA_KEY
 from ._format import URDF_FORMAT, read_urdf
-from ._mount import DRIVEN_JOINT_TYPES, URDF_METADATA_KEY, mount_robot, mount_urdf
+from ._mount import DRIVEN_JOINT_TYPES, mount_robot, mount_urdf
 from ._parse import is_urdf, parse_urdf
 from ._read_write import (
     joint_state_path,

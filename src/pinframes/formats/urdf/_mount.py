@@ -7,6 +7,7 @@ from collections.abc import Iterable, Mapping
 from typing import TYPE_CHECKING, Any
 
 from ...errors import ArgumentTypeError, FrameExistsError, FrameNotFoundError, near_misses
+from ...tree.urdf_names import URDF_METADATA_KEY
 from ...values.geometry import GEOMETRY_METADATA_KEY
 from ...values.joint import Joint, Mimic
 from ...values.pose import Pose
@@ -18,10 +19,7 @@ from ._robot_description import RobotDescription
 if TYPE_CHECKING:
     from ...tree import FrameTree
 
-__all__ = ["DRIVEN_JOINT_TYPES", "URDF_METADATA_KEY", "mount_robot", "mount_urdf"]
-
-URDF_METADATA_KEY = "urdf"
-"""Key of the per-frame (and per-tree) metadata that keeps URDF details for export."""
+__all__ = ["DRIVEN_JOINT_TYPES", "mount_robot", "mount_urdf"]
 
 DRIVEN_JOINT_TYPES = ("revolute", "continuous", "prismatic")
 """URDF joint types that stay joints (the others become frames at their origin)."""

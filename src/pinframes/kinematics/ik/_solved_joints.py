@@ -274,38 +274,43 @@ def _joints_moving_frame(model: CompiledModel, drives: Mapping[str, Drive], fram
 
 
 def solved_joints(path: PreparedPath, joints: Mapping[str, Joint],
-                  drives: Mapping[str, Drive], names: Sequence[str] | None) -> SolvedJoints:
+                  drives: Mapping[str, Drive], names: Sequence[str] | None,
+                  added: Sequence[str] = ()) -> SolvedJoints:
     """The joints to solve on the moving ``path`` (its tool ``frame``, its reference
     ``relative_to``): ``names`` (distinct actuated joints, checked by the caller), or every
     joint that moves the tool relative to the reference from the tool's side of the path;
-    ``drives`` as :attr:`~pinframes.kinematics._description.TreeDescription.drives`. Kept
-    with the path per request (so made once per tree version).
+    then those of ``added`` not among them; ``drives`` as
+    :attr:`~pinframes.kinematics._description.TreeDescription.drives`. Kept with the path per
+    request (so made once per tree version).
 
-    Raises :class:`~pinframes.errors.JointError` (field ``joints``) for a joint that moves
-    neither frame, or nothing to solve.
+    Raises :class:`~pinframes.errors.JointError` (field ``joints`` or ``add_joints``) for a
+    joint that moves neither frame, or nothing to solve.
     """
-    key = "solve_joints: " + ("every joint" if names is None else "named: " + "\0".join(names))
+    key = ("solve_joints: " + ("every joint" if names is None else "named: " + "\0".join(names))
+           + " added: " + "\0".join(added))
     cached = path.plans.get(key)
     if cached is None:
-        cached = path.plans[key] = _solved_joints(path, joints, drives, names)
+        cached = path.plans[key] = _solved_joints(path, joints, drives, names, added)
     assert isinstance(cached, SolvedJoints)
     return cached
 
 
 def _solved_joints(path: PreparedPath, joints: Mapping[str, Joint],
-                   drives: Mapping[str, Drive], names: Sequence[str] | None) -> SolvedJoints:
+                   drives: Mapping[str, Drive], names: Sequence[str] | None,
+                   added: Sequence[str]) -> SolvedJoints:
     """:func:`solved_joints`, made afresh."""
     model, frame, reference = path.model, path.frame, path.relative_to
     assert model is not None
     own = _joints_moving_frame(model, drives, frame)
-    if names is None:
-        if not own:
-            raise JointError(f"no robot joint moves {frame!r} relative to {reference!r}",
-                             frame=frame, field="joints")
-        return SolvedJoints(own, model, joints, drives, reference)
+    if names is None and not own:
+        raise JointError(f"no robot joint moves {frame!r} relative to {reference!r}",
+                         frame=frame, field="joints")
+    chosen = list(own if names is None else names)
+    chosen += [name for name in added if name not in chosen]
     movers = own + _joints_moving_frame(model, drives, reference)
-    for name in names:
+    for name in chosen:
         if name not in movers:
             raise JointError(f"joint {name!r} moves neither {frame!r} nor {reference!r}",
-                             frame=frame, field="joints")
-    return SolvedJoints(names, model, joints, drives, reference)
+                             frame=frame, field="joints" if name in (names or own)
+                             else "add_joints")
+    return SolvedJoints(chosen, model, joints, drives, reference)

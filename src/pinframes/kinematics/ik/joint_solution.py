@@ -73,6 +73,10 @@ class JointSolution(Timed):
         The samples whose step from the one before jumps: one joint changes by more than
         ``jump_threshold`` times the path's median step and more than 0.1 radian (or metre)
         (``pinframes.kinematics.ik.joint_jumps``). Empty when none does.
+    urdf_joint_names : tuple of str or None
+        :attr:`joint_names` as the robot's URDF names them (the tree's prefix removed: what
+        the robot's controller knows), when every solved joint belongs to one robot read
+        from a URDF; None otherwise. :func:`pinframes.write_joint_trajectory` writes these.
     """
 
     joint_names: tuple[str, ...]
@@ -89,6 +93,7 @@ class JointSolution(Timed):
     path_angle_deviation: FloatArray | None = None
     jumps: NDArray[np.intp] | None = None
     flat_error: FloatArray | None = None
+    urdf_joint_names: tuple[str, ...] | None = None
 
     @property
     def velocities(self) -> FloatArray:

@@ -60,7 +60,7 @@ def evaluate_solve_joints(
     tree: TreeDescription, frame: str, target: str | Pose, *, relative_to: str | None,
     times: Any, time_ref: Any, joints: Any, free_axis: str | None, seed: Any,
     position_tolerance: float, orientation_tolerance: float, strict: bool,
-    flat: str | None = None, up: Any = None, tilt: Any = None,
+    flat: str | None = None, up: Any = None, tilt: Any = None, add_joints: Any = None,
     path_tolerance: Any = DEFAULT_PATH_TOLERANCE, jump_threshold: Any = DEFAULT_JUMP_FACTOR,
     flat_tolerance: Any = FLAT_TOLERANCE,
 ) -> JointSolution:
@@ -75,6 +75,8 @@ def evaluate_solve_joints(
     tolerances = (_tolerance(position_tolerance, "position_tolerance", frame),
                   _tolerance(orientation_tolerance, "orientation_tolerance", frame))
     names = None if joints is None else _joint_names(joints, tree.joints_by_name, frame)
+    added = () if add_joints is None else _joint_names(add_joints, tree.joints_by_name, frame,
+                                                       "add_joints")
     # a time-dependent target's times are the solve's, beside those of what moves
     target_times = None if target_pose is None else target_pose.times
     extra = () if target_pose is None or target_times is None else (
@@ -83,7 +85,7 @@ def evaluate_solve_joints(
     if path.model is None:
         raise JointError(f"no robot joint moves {frame!r} relative to {reference!r}",
                          frame=frame, field="joints")
-    solved = solved_joints(path, tree.joints_by_name, tree.drives, names)
+    solved = solved_joints(path, tree.joints_by_name, tree.drives, names, added)
     # the solved joints' samples are what is solved for: not among the solve's times
     plan = plan_query(tree, frame, reference, times, time_ref, "clamp", held=solved.names,
                       extra=extra)
@@ -217,21 +219,22 @@ def _tolerance(value: Any, field: str, frame: str) -> float:
     return number
 
 
-def _joint_names(requested: object, joints: Mapping[str, Joint], frame: str) -> list[str]:
-    """``requested`` (the ``joints=`` argument) as a list of distinct names of actuated
-    joints, else an error naming ``frame`` and the field ``joints``."""
+def _joint_names(requested: object, joints: Mapping[str, Joint], frame: str,
+                 field: str = "joints") -> list[str]:
+    """``requested`` (the ``joints=`` or ``add_joints=`` argument) as a list of distinct
+    names of actuated joints, else an error naming ``frame`` and the ``field``."""
     if isinstance(requested, str) or not isinstance(requested, Sequence):
         raise ArgumentTypeError(f"expected a list of joint names, got {requested!r}",
-                                frame=frame, field="joints")
+                                frame=frame, field=field)
     if not requested:
-        raise JointError("no joints to solve for", frame=frame, field="joints")
+        raise JointError("no joints to solve for", frame=frame, field=field)
     for name in requested:
         if not isinstance(name, str) or name not in joints:
-            raise joint_not_found(name, joints, frame=frame, field="joints")
+            raise joint_not_found(name, joints, frame=frame, field=field)
         mimic = joints[name].mimic
         if mimic is not None:
             raise JointError(f"joint {name!r} mimics {mimic.joint!r} and follows it; solve "
-                             "for that joint", frame=frame, field="joints")
+                             "for that joint", frame=frame, field=field)
     if len(set(requested)) != len(requested):
-        raise JointError("joint names repeat", frame=frame, field="joints")
+        raise JointError("joint names repeat", frame=frame, field=field)
     return list(requested)
