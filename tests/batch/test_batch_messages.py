@@ -1,5 +1,5 @@
 """What a batch says: worker warnings as one ``pinframes: warning:`` line each, a summary
-whose counts add up, ids in the order of the runs, the extra that the README's example
+whose counts add up, ids in the order of the runs, the extra that the batch page's example
 needs."""
 
 from __future__ import annotations
@@ -73,11 +73,11 @@ def test_worker_warnings_are_one_pinframes_line_each(tmp_path, make_campaign):
     assert "UnitWarning" not in result.stderr and "warnings.warn" not in result.stderr
 
 
-def test_the_batch_extra_installs_what_the_readme_example_imports():
+def test_the_batch_extra_installs_what_the_batch_page_example_imports():
     project = (ROOT / "pyproject.toml").read_text(encoding="utf-8")  # Python 3.10: no tomllib
     batch = re.search(r"^batch = \[(.*?)\]$", project, re.M | re.S)
     assert batch is not None
-    readme = (ROOT / "README.md").read_text(encoding="utf-8")
-    example = readme[readme.index("from pinframes.batch import run_batch") - 40:]
+    page = (ROOT / "docs" / "batch.md").read_text(encoding="utf-8")
+    example = page[page.index("from pinframes.batch import run_batch") - 40:]
     assert "import pandas as pd" in example[:200]
     assert '"pandas' in batch.group(1)

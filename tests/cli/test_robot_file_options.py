@@ -67,6 +67,7 @@ def test_a_scene_robot_from_a_xacro_with_srdf_and_package_dirs(run_cli, tmp_path
         robots:
           - name: robot
             urdf: {MA2010_XACRO}
+            xacro: true
             prefix: "r/"
             srdf: {MOTOMAN / "motoman_ma2010_moveit_config/config/motoman_ma2010.srdf"}
             package_dirs: [{MOTOMAN}]

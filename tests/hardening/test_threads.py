@@ -14,7 +14,7 @@ from collections.abc import Callable, Iterator
 import numpy as np
 import pytest
 
-import pinframes.kinematics._description as description
+import pinframes.kinematics._memo as memo
 from pinframes import FrameTree, Pose, read_asdf, write_asdf
 
 THREADS = 8
@@ -49,7 +49,7 @@ def run_in_threads(work: Callable[[int], None]) -> list[BaseException]:
 
 def test_queries_from_eight_threads_while_the_cache_evicts(busy_switching, monkeypatch):
     # a cache of 4 entries for 400 pairs: nearly every query stores and evicts
-    monkeypatch.setattr(description, "_CACHE_LIMIT", 4)
+    monkeypatch.setattr(memo, "_LIMIT", 4)
     tree = FrameTree("w")
     for index in range(20):
         tree.add(f"f{index}", "w", Pose([float(index), 0.0, 0.0]))
@@ -67,7 +67,7 @@ def test_queries_from_eight_threads_while_the_cache_evicts(busy_switching, monke
 
     errors = run_in_threads(work)
     assert not errors, [repr(error) for error in errors[:3]]
-    assert len(tree._frozen()._evaluations) <= 4 + THREADS
+    assert len(tree._frozen().memo._entries) <= 4 + THREADS
 
 
 def test_concurrent_asdf_reads_and_writes_leave_the_recursion_limit_alone(

@@ -85,10 +85,14 @@ def test_link_poses_equal_pinocchio_on_the_expanded_urdf(path, arguments, refere
             np.testing.assert_allclose(pose.rotation[0], expected.rotation, atol=1e-12)
 
 
-def test_a_xacro_is_told_by_its_content_whatever_its_name(tmp_path):
+def test_a_xacro_is_told_by_its_content_and_expanded_with_the_opt_in_whatever_its_name(
+        tmp_path):
     renamed = tmp_path / "robot.urdf"
     shutil.copy(MA2010_XACRO, renamed)
-    tree = pinframes.read(renamed, package_dirs=[MOTOMAN])
+    with pytest.raises(FileFormatError, match="xacro=True") as caught:
+        pinframes.read(renamed, package_dirs=[MOTOMAN])
+    assert caught.value.file == str(renamed) and caught.value.field == "xacro"
+    tree = pinframes.read(renamed, package_dirs=[MOTOMAN], xacro=True)
     assert tree.name == "motoman_ma2010"
     assert len([joint for joint in tree.joints.values() if joint.is_actuated]) == 6
 

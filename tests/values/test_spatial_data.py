@@ -97,6 +97,21 @@ def test_time_dependent_points_with_their_own_reference_time():
     np.testing.assert_allclose(data.points, expected, atol=1e-14)
 
 
+def test_time_fields_of_data_read_as_a_poses_do():
+    """times, seconds and absolute_times of SpatialData, written out by hand."""
+    static = SpatialData(POINTS)
+    assert (static.times, static.seconds, static.absolute_times) == (None, None, None)
+    assert not static.is_time_dependent
+    data = SpatialData(np.stack([POINTS, POINTS]), times=[0.0, 1.5],
+                       reference_time="2024-01-01T00:00:01")
+    assert data.is_time_dependent
+    np.testing.assert_array_equal(data.times, np.array([0, 1_500_000_000], "timedelta64[ns]"))
+    np.testing.assert_array_equal(data.seconds, [0.0, 1.5])
+    np.testing.assert_array_equal(data.absolute_times, np.array(
+        ["2024-01-01T00:00:01", "2024-01-01T00:00:02.5"], "datetime64[ns]"))
+    assert data.reference_time == np.datetime64("2024-01-01T00:00:01", "ns")
+
+
 def test_pint_points_become_metres():
     pint = pytest.importorskip("pint")
     data = SpatialData(pint.UnitRegistry().Quantity(POINTS, "mm"))

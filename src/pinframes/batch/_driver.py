@@ -70,7 +70,8 @@ def run_batch(runs: Iterable[str | os.PathLike[str]], out: str | os.PathLike[str
               step: Any = None, time_ref: Any = None, velocity: bool = False,
               scheduler: str | None = None, workers: int | None = None,
               chunk_size: int = DEFAULT_CHUNK_SIZE, limits: Limits | None = None,
-              progress_bar: bool = False, log: TextIO | None = None) -> BatchSummary:
+              progress_bar: bool = False, log: TextIO | None = None,
+              xacro: bool = False) -> BatchSummary:
     """The pose of ``frame`` in ``relative_to`` at every sample of every run, on Dask.
 
     Parameters
@@ -104,6 +105,9 @@ def run_batch(runs: Iterable[str | os.PathLike[str]], out: str | os.PathLike[str
         :mod:`pinframes.batch._task`).
     progress_bar, log
         Show Dask's progress bar (on standard error); where to say where the dashboard is.
+    xacro : bool
+        Expand the xacro content of the runs' robot files and scene robots, which runs their
+        code on the workers (default: never; such a run is an ``error`` naming the file).
 
     Bad runs do not raise: they are in ``summary.bad`` and the manifest with their error.
     Only ``frame`` and ``relative_to`` are checked before the cluster starts, on the first
@@ -111,7 +115,7 @@ def run_batch(runs: Iterable[str | os.PathLike[str]], out: str | os.PathLike[str
     suggesting near names.
     """
     options = BatchOptions.create(frame, relative_to, times, step, time_ref, chunk_size,
-                                  velocity)
+                                  velocity, xacro)
     limits = checked_limits(limits)
     found = find_runs(runs)
     check_frame_names(found, options, limits)

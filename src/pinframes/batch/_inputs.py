@@ -19,15 +19,18 @@ import os
 import stat
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from .. import FrameTree, Limits, read
-from ..formats import InputFile, files_read
+from ..formats import InputFile, detect_format, files_read
 
 __all__ = ["IRREGULAR", "MISSING", "RunInputs", "checksums", "read_run", "run_inputs"]
 
 MISSING = "missing"
 IRREGULAR = "not a regular file"
 _BLOCK_BYTES = 1 << 20
+_ROBOT_FORMATS = ("urdf", "scene")
+"""Formats whose reader expands xacro files when asked (``xacro=``)."""
 
 
 @dataclass(frozen=True)
@@ -45,10 +48,14 @@ def run_inputs(path: Path) -> RunInputs:
     return RunInputs(files_read(source), source)
 
 
-def read_run(inputs: RunInputs, limits: Limits) -> FrameTree:
+def read_run(inputs: RunInputs, limits: Limits, xacro: bool = False) -> FrameTree:
     """The tree of the run whose inputs are ``inputs``, read under ``limits``: the one place
-    that knows how a run is read."""
-    tree: FrameTree = read(inputs.source, limits=limits)
+    that knows how a run is read. Without ``xacro`` no xacro file is expanded (that runs the
+    file's code, on every worker): a run's robot file or scene robot with xacro content is
+    refused, naming it; with it, the xacro content of both is expanded."""
+    expansion: dict[str, Any] = ({"xacro": xacro} if detect_format(inputs.source)
+                                 in _ROBOT_FORMATS else {})
+    tree: FrameTree = read(inputs.source, limits=limits, **expansion)
     return tree
 
 

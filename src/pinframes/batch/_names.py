@@ -28,7 +28,7 @@ def check_frame_names(runs: list[Run], options: BatchOptions, limits: Limits) ->
         try:  # its warnings come from its worker, once
             with using_limits(limits), warnings.catch_warnings():
                 warnings.simplefilter("ignore")
-                tree = read_run(run_inputs(run.path), limits)
+                tree = read_run(run_inputs(run.path), limits, options.xacro)
         except Exception:  # a bad run: its own record will say what is wrong
             continue
         for field, name in (("frame", options.frame), ("relative_to", options.relative_to)):

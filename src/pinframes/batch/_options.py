@@ -41,6 +41,9 @@ class BatchOptions:
         Samples per evaluation and per Parquet row group; does not change the results.
     velocity : bool
         Also the velocity of ``frame`` relative to ``relative_to``, in its axes.
+    xacro : bool
+        Expand the xacro content of the runs' robot files and scene robots (which runs
+        their code); by default none is expanded and such a run is an error naming it.
     """
 
     frame: str
@@ -50,12 +53,13 @@ class BatchOptions:
     time_ref: np.datetime64 | None
     chunk_size: int
     velocity: bool = False
+    xacro: bool = False
 
     @classmethod
     def create(cls, frame: str, relative_to: str | None = None, times: Any = None,
                step: Any = None, time_ref: Any = None,
-               chunk_size: int = DEFAULT_CHUNK_SIZE, velocity: bool = False
-               ) -> BatchOptions:
+               chunk_size: int = DEFAULT_CHUNK_SIZE, velocity: bool = False,
+               xacro: bool = False) -> BatchOptions:
         """Options from user input (times as pinframes reads them: seconds, durations,
         timestamps); a :class:`~pinframes.errors.PinframesError` names the bad field."""
         if not isinstance(frame, str) or (relative_to is not None
@@ -75,13 +79,13 @@ class BatchOptions:
         if isinstance(chunk_size, bool) or not isinstance(chunk_size, int) or chunk_size < 1:
             raise ArgumentTypeError(f"must be a positive integer, got {chunk_size!r}",
                                     field="chunk_size")
-        if not isinstance(velocity, bool):
-            raise ArgumentTypeError(f"must be True or False, got {velocity!r}",
-                                    field="velocity")
+        for name, flag in (("velocity", velocity), ("xacro", xacro)):
+            if not isinstance(flag, bool):
+                raise ArgumentTypeError(f"must be True or False, got {flag!r}", field=name)
         return cls(frame, relative_to,
                    None if times is None else parse_time_axis(times, field="times"), step_ns,
                    None if time_ref is None else parse_timestamp(time_ref, field="time_ref"),
-                   chunk_size, velocity)
+                   chunk_size, velocity, xacro)
 
     def digest(self) -> str:
         """SHA-256 (hex) of everything that changes the output rows, pinframes' version too."""
@@ -92,4 +96,6 @@ class BatchOptions:
                      "frame": self.frame, "relative_to": self.relative_to, "times": times,
                      "step_ns": self.step_ns, "velocity": self.velocity,
                      "time_ref": None if self.time_ref is None else str(self.time_ref)}
+        if self.xacro:  # only when asked: the digests of earlier batches stay valid
+            described["xacro"] = True
         return hashlib.sha256(json.dumps(described, sort_keys=True).encode()).hexdigest()

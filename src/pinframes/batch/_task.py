@@ -86,7 +86,7 @@ def process_run(task: RunTask) -> RunResult:
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         try:
-            tree = read_run(inputs, task.limits)
+            tree = read_run(inputs, task.limits, task.options.xacro)
             record["samples"] = _write_poses(tree, task)
         except PinframesError as exc:
             record.update(status="error", error=_located(exc, task.run.path))

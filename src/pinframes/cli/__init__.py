@@ -66,8 +66,9 @@ def _parser() -> argparse.ArgumentParser:
     for options, default in ((parser, None), (verbose, argparse.SUPPRESS)):
         _add_limit_options(options, default)
         options.add_argument("--robot-description", metavar="URDF", default=default,
-                             help="for a ROS bag: the robot's URDF file (default: the last "
-                             "message on the bag's /robot_description)")
+                             help="for a ROS bag: the robot's URDF or xacro file, read with "
+                             "--package-dir, --xacro-arg, --srdf and --xacro (default: the "
+                             "last message on the bag's /robot_description)")
         _add_robot_file_options(options, default)
     subparsers = parser.add_subparsers(title="subcommands", metavar="SUBCOMMAND", required=True)
     for module in _SUBCOMMANDS:
@@ -85,7 +86,8 @@ def _add_limit_options(parser: argparse.ArgumentParser, default: object) -> None
 
 
 def _add_robot_file_options(parser: argparse.ArgumentParser, default: object) -> None:
-    """``--package-dir``, ``--xacro-arg`` and ``--srdf``: robots as ROS packages hold them."""
+    """``--package-dir``, ``--xacro-arg``, ``--xacro`` and ``--srdf``: robots as ROS packages
+    hold them."""
     parser.add_argument("--package-dir", action="append", default=default, metavar="DIR",
                         help="folder of ROS packages or Gazebo models (or one of them) for "
                         "$(find PKG) in xacro files and package:// and model:// meshes "
@@ -94,6 +96,14 @@ def _add_robot_file_options(parser: argparse.ArgumentParser, default: object) ->
     parser.add_argument("--xacro-arg", action="append", default=default, type=xacro_argument,
                         metavar="NAME:=VALUE", help="an argument of a xacro robot file "
                         "(repeatable; default: the file's own defaults)")
+    parser.add_argument("--xacro", action="store_true", default=default,
+                        help="expand xacro content of the robot file, its SRDF and a scene's "
+                        "robots: expansion RUNS THE FILE'S CODE (xacro evaluates Python), so "
+                        "give it only for files you trust (default: only a file named "
+                        "*.xacro given on the command line is expanded; a scene's robot "
+                        "entry needs 'xacro: true'); it runs in a child process bounded by "
+                        "--max-xacro-seconds and --max-xacro-bytes, without environment "
+                        "variables")
     parser.add_argument("--srdf", metavar="SRDF", default=default,
                         help="the SRDF of a URDF or xacro robot file: its disabled collision "
                         "pairs are left out of clearance, its groups and group states name "

@@ -10,7 +10,7 @@ from typing import Any
 from ..errors import FileFormatError, FrameNotFoundError, near_misses
 from ..formats import detect_format, file_format, formats_taking, read, write
 from ..formats.rosbag import ROSBAG_METADATA_KEY
-from ..formats.urdf import URDF_METADATA_KEY
+from ..formats.urdf import URDF_METADATA_KEY, parse_urdf
 from ..tree import FrameTree
 
 __all__ = ["read_tree", "require_frames", "write_tree", "xacro_argument"]
@@ -18,29 +18,40 @@ __all__ = ["read_tree", "require_frames", "write_tree", "xacro_argument"]
 _ROBOT_FILE_FORMATS = ("urdf",)
 """Formats whose reader takes ``--srdf`` and ``--xacro-arg`` (a scene names them per robot)."""
 _PACKAGE_DIR_FORMATS = ("urdf", "scene")
-"""Formats whose reader takes ``--package-dir`` (and remembers it with the robots)."""
+"""Formats whose reader takes ``--package-dir`` and ``--xacro`` (and remembers the folders
+with the robots)."""
+_ROBOT_OPTIONS = ("package_dirs", "xacro_args", "srdf", "xacro")
+"""Options that go with ``--robot-description`` to the robot file it names."""
 
 
 def read_tree(path: str | Path, options: argparse.Namespace | None = None) -> FrameTree:
     """Read the tree in ``path``, in the format told from the file, with the command line's
-    reading options: ``--robot-description`` (the URDF of the robot in a ROS bag),
-    ``--package-dir``, ``--xacro-arg`` and ``--srdf`` (for URDF and xacro files)."""
+    reading options: ``--robot-description`` (the robot file of a ROS bag),
+    ``--package-dir``, ``--xacro-arg``, ``--srdf`` and ``--xacro`` (for URDF and xacro
+    files, the robot description, and ``--package-dir`` and ``--xacro`` for scenes)."""
     given: dict[str, Any] = {"robot_description": getattr(options, "robot_description", None),
              "package_dirs": getattr(options, "package_dir", None) or [],
              "xacro_args": dict(getattr(options, "xacro_arg", None) or []),
-             "srdf": getattr(options, "srdf", None)}
+             "srdf": getattr(options, "srdf", None),
+             "xacro": True if getattr(options, "xacro", None) else None}
     taken = {name: value for name, value in given.items() if value}
     if not taken:
         tree: FrameTree = read(path)
         return tree
     fmt = detect_format(path)
-    if "robot_description" in taken and fmt != "rosbag":
-        raise FileFormatError("--robot-description is for ROS bags", file=path)
-    for name in ("xacro_args", "srdf"):
-        if name in taken and fmt not in _ROBOT_FILE_FORMATS:
-            flag = "--xacro-arg" if name == "xacro_args" else "--srdf"
-            raise FileFormatError(f"{flag} is for URDF and xacro files (a scene names it in "
-                                  f"its robots' entries: {name})", file=path)
+    if "robot_description" in taken:
+        if fmt != "rosbag":
+            raise FileFormatError("--robot-description is for ROS bags", file=path)
+        robot = {name: taken.pop(name) for name in _ROBOT_OPTIONS if name in taken}
+        taken["robot_description"] = parse_urdf(taken["robot_description"], **robot)
+    for name in ("xacro_args", "srdf", "xacro"):
+        takers = _PACKAGE_DIR_FORMATS if name == "xacro" else _ROBOT_FILE_FORMATS
+        if name in taken and fmt not in takers:
+            flag = {"xacro_args": "--xacro-arg", "srdf": "--srdf", "xacro": "--xacro"}[name]
+            raise FileFormatError(f"{flag} is for URDF and xacro files and --robot-description"
+                                  + (", and scenes" if name == "xacro" else
+                                     f" (a scene names it in its robots' entries: {name})"),
+                                  file=path)
     if fmt not in _PACKAGE_DIR_FORMATS:
         taken.pop("package_dirs", None)
     tree = read(path, **taken)

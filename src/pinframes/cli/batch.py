@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 from ..errors import PinframesError, UnsupportedFeatureError
 from ..formats.limits import current_limits
 from ._evaluate import terminal_stderr
+from ._subcommand import Subparsers, subcommand_parser
 
 if TYPE_CHECKING:
     from ..batch import BatchSummary
@@ -16,10 +17,11 @@ if TYPE_CHECKING:
 __all__ = ["add_parser", "batch_summary", "run"]
 
 
-def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
+def add_parser(subparsers: Subparsers, parents: list[argparse.ArgumentParser]) -> None:
     """Register the ``batch`` subcommand."""
-    parser = subparsers.add_parser(
-        "batch", parents=parents, help="poses of a frame in many runs, on Dask, to Parquet",
+    parser = subcommand_parser(
+        subparsers, parents, "batch", run,
+        help="poses of a frame in many runs, on Dask, to Parquet",
         description="Compute the pose of --frame in --relative-to at every sample of every "
         "run and write OUT/poses/<run>.parquet (columns run, time_s, timestamp, x_m, y_m, "
         "z_m, qx, qy, qz, qw: seconds, metres, unit quaternion x y z w; with --velocity "
@@ -28,7 +30,8 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "input files and options did not change since an earlier batch into OUT are "
         "skipped. The workers read every run under the --max-... limits given before or "
         "after 'batch'; a run read under higher limits is skipped, one refused under other "
-        "limits is tried again. Needs pinframes[batch].")
+        "limits is tried again. No xacro file is expanded unless --xacro is given (it runs "
+        "the files' code on every worker). Needs pinframes[batch].", tree_file=None)
     parser.add_argument("runs", nargs="+", metavar="RUNS",
                         help="run files (scene, ASDF, ...), glob patterns (quote them), or "
                         "runs lists (.csv with header 'run,file')")
@@ -59,7 +62,6 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         help="worker processes of the local cluster (default: one per core)")
     parser.add_argument("--chunk-size", type=int, metavar="N", default=None,
                         help="samples evaluated and written at a time (default 100000)")
-    parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -78,7 +80,8 @@ def run(args: argparse.Namespace) -> int:
                         times=args.times, step=args.step, time_ref=args.time_ref,
                         velocity=args.velocity, scheduler=args.scheduler, workers=args.workers,
                         limits=current_limits(),  # --max-... (main() sets them), to the workers
-                        progress_bar=terminal_stderr() is not None, log=sys.stderr, **extra)
+                        progress_bar=terminal_stderr() is not None, log=sys.stderr,
+                        xacro=bool(getattr(args, "xacro", None)), **extra)
     print(f"pinframes: {batch_summary(summary)}", file=sys.stderr)
     if summary.bad:
         for record in summary.bad:

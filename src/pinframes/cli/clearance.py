@@ -20,6 +20,7 @@ from ._evaluate import add_time_arguments, in_chunks, terminal_stderr, times_fro
 from ._extrapolation import add_extrapolation_argument, check_query_extrapolation
 from ._files import read_tree
 from ._output import write_text
+from ._subcommand import Subparsers, subcommand_parser
 
 __all__ = ["add_parser", "clearance_summary", "frame_names", "run"]
 
@@ -28,10 +29,10 @@ CLEARANCE_CHUNK_SIZE = 2_000
 costs 0.05-1 ms)."""
 
 
-def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
+def add_parser(subparsers: Subparsers, parents: list[argparse.ArgumentParser]) -> None:
     """Register the ``clearance`` subcommand."""
-    parser = subparsers.add_parser(
-        "clearance", parents=parents,
+    parser = subcommand_parser(
+        subparsers, parents, "clearance", run,
         help="smallest distance between the geometry of two sets of links, per time",
         description="The smallest distance between the URDF collision geometry of the links "
         "A and those B at every time (coal, as Pinocchio's computeDistances), the pair "
@@ -40,7 +41,6 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "contact'), the table to standard output or -o: columns time_s, distance_m "
         "(negative: overlap), frame_a, frame_b, point_a_x_m .. point_b_z_m (metres in the "
         "root's axes).")
-    parser.add_argument("file", metavar="FILE", help="scene, frames.yaml, ASDF or URDF file")
     for name, side in (("a", "one side"), ("b", "the other side")):
         parser.add_argument(name, metavar=name.upper(),
                             help=f"{side}: a frame, a glob pattern over frames ('robot/*'), "
@@ -59,7 +59,6 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         help="table format (default: from the -o file name, else csv)")
     parser.add_argument("-o", "--output", metavar="OUT",
                         help="write the table to this file (default: standard output)")
-    parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:

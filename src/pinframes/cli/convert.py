@@ -9,14 +9,15 @@ import sys
 from ..formats import registered_formats
 from ._evaluate import add_time_arguments, times_from_options
 from ._files import read_tree, write_tree
+from ._subcommand import Subparsers, subcommand_parser
 
 __all__ = ["add_parser", "run"]
 
 
-def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
+def add_parser(subparsers: Subparsers, parents: list[argparse.ArgumentParser]) -> None:
     """Register the ``convert`` subcommand."""
-    parser = subparsers.add_parser(
-        "convert", parents=parents,
+    parser = subcommand_parser(
+        subparsers, parents, "convert", run,
         help="convert between scene, frames.yaml, ASDF and URDF; write ROS bags",
         description="Read IN and write its tree to OUT; formats are told by the file names: "
         ".asdf, .urdf, and .yaml, which is a scene (key 'pinframes_scene') or a frames.yaml "
@@ -24,7 +25,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "frames.yaml when its name starts with 'frames', else a scene. ROS bags: .mcap (one "
         "MCAP file, opens in Foxglove), .bag (ROS 1), .db3, or a name without a suffix (a "
         "ROS 2 bag folder): /tf_static, /tf at the times of the time options, and each "
-        "robot's description and joint states. OUT is replaced atomically.")
+        "robot's description and joint states. OUT is replaced atomically.", tree_file=None)
     parser.add_argument("input", metavar="IN", help="file to read")
     parser.add_argument("output", metavar="OUT", help="file to write")
     parser.add_argument("--to", choices=registered_formats(),
@@ -45,7 +46,6 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         "would put the frame under another one, e.g. _ (default: none, such "
                         "names are refused)")
     add_time_arguments(parser)
-    parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:

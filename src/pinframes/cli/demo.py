@@ -22,6 +22,7 @@ from ._demo_process import DEFAULT_SEAM, demo_process, plot_process, process_tab
 from ._evaluate import pose_in_chunks, pose_velocity, terminal_stderr
 from ._files import read_tree, require_frames
 from ._output import output_poses
+from ._subcommand import Subparsers, subcommand_parser
 
 __all__ = ["PathSummary", "add_parser", "bundled_scene", "run", "summarize"]
 
@@ -37,17 +38,18 @@ def bundled_scene() -> Path:
     return Path(str(resources.files("pinframes") / "models" / "welding_cell" / "scene.yaml"))
 
 
-def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
+def add_parser(subparsers: Subparsers, parents: list[argparse.ArgumentParser]) -> None:
     """Register the ``demo`` subcommand."""
-    parser = subparsers.add_parser(
-        "demo", parents=parents, help="torch path of the bundled welding cell",
+    parser = subcommand_parser(
+        subparsers, parents, "demo", run,
+        help="torch path of the bundled welding cell",
         description="Load the bundled welding cell (robot, positioner, workpiece), compute "
         "the pose of the torch tip relative to the workpiece at every sample of the motion, "
         "and the welding process along the seam (travel speed, torch angles, offset), "
         f"print a summary and write the poses ({POSES_FILE}), a plot ({PLOT_FILE}; needs "
         f"pinframes[plot]), an animated 3-D page of the whole run ({VIEW_FILE}; needs "
         f"pinframes[view]) and the run as a ROS recording ({BAG_FILE}, MCAP; needs "
-        "pinframes[ros]).")
+        "pinframes[ros]).", tree_file=None)
     parser.add_argument("--out", metavar="DIR", default=".",
                         help="folder for the CSV, PNG and HTML files (default: the current folder; "
                         "created if missing, but not its parent folders)")
@@ -61,7 +63,6 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     parser.add_argument("--seam", metavar="FRAME",
                         help=f"the seam frame of the welding process (default: {DEFAULT_SEAM} "
                         "when the scene has it, else no process)")
-    parser.set_defaults(run=run)
 
 
 @dataclass(frozen=True)

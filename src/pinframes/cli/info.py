@@ -17,26 +17,27 @@ from ..tree.robot_semantics import semantic_robots
 from ..values.timeconv import format_timestamp_iso
 from ..values.timeline import source_reference
 from ._files import read_tree
+from ._subcommand import Subparsers, subcommand_parser
 from ._terminal_text import printable
 
 __all__ = ["add_parser", "describe", "describe_json", "run"]
 
 
-def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
+def add_parser(subparsers: Subparsers, parents: list[argparse.ArgumentParser]) -> None:
     """Register the ``info`` subcommand."""
-    parser = subparsers.add_parser(
-        "info", parents=parents, help="show the tree of frames",
+    parser = subcommand_parser(
+        subparsers, parents, "info", run,
+        help="show the tree of frames",
         description="Print the tree of frames in FILE with each frame's kind (static, "
         "moving, robot joint), the time span of its keyframes or joint samples (seconds "
         "after its reference time) and that reference time, then the subsystems (weldx) "
         "merged into the tree, the joint groups and group states of robots read with an "
         "SRDF; for a ROS bag, its topics (used and ignored), the time span "
-        "of the stamps used and the joint states no joint took.")
+        "of the stamps used and the joint states no joint took.", tree_file=None)
     parser.add_argument("file", metavar="FILE", help="scene, frames.yaml, ASDF or URDF file, "
                         "or a ROS bag (.bag, .mcap, .db3 or a ROS 2 bag folder)")
     parser.add_argument("--format", "-f", choices=("text", "json"), default="text",
                         help="a table to read, or JSON for programs (default: text)")
-    parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -105,7 +106,7 @@ def _srdf_robots(tree: FrameTree) -> list[dict[str, Any]]:
                         for group, joints in robot.semantics.groups.items()},
              "group_states": {state: value.group
                               for state, value in robot.semantics.states.items()},
-             "disabled_pairs": len(robot.semantics.disabled_pairs)}
+             "disabled_pairs": robot.semantics.disabled_pair_count()}
             for robot in semantic_robots(tree)]
 
 

@@ -8,18 +8,19 @@ from pathlib import Path
 
 from ..plotting import figure_format, new_figure, plot_frames, save_figure
 from ._files import read_tree, require_frames
+from ._subcommand import Subparsers, subcommand_parser
 
 __all__ = ["add_parser", "run"]
 
 
-def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
+def add_parser(subparsers: Subparsers, parents: list[argparse.ArgumentParser]) -> None:
     """Register the ``plot`` subcommand."""
-    parser = subparsers.add_parser(
-        "plot", parents=parents, help="3-D plot of the frames (PNG, JPEG, SVG, PDF...)",
+    parser = subcommand_parser(
+        subparsers, parents, "plot", run,
+        help="3-D plot of the frames (PNG, JPEG, SVG, PDF...)",
         description="Draw the frames of FILE in 3-D: each frame's x, y, z axes (red, green, "
         "blue) at the first time, and the path of every frame that moves relative to "
         "--relative-to. Needs matplotlib: pip install \"pinframes[plot]\".")
-    parser.add_argument("file", metavar="FILE", help="scene, frames.yaml, ASDF or URDF file")
     parser.add_argument("--frames", nargs="+", metavar="FRAME",
                         help="frames to draw (default: all)")
     parser.add_argument("--relative-to", "-r", metavar="FRAME",
@@ -30,7 +31,6 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     parser.add_argument("-o", "--output", metavar="OUT", required=True,
                         help="image file to write, in the format its suffix names (.png, .jpg, "
                         ".svg, .pdf, ...)")
-    parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -15,20 +15,21 @@ from ._evaluate import (
 from ._extrapolation import add_extrapolation_argument, check_extrapolation
 from ._files import read_tree, require_frames
 from ._output import OUTPUT_FORMATS, output_format, output_poses
+from ._subcommand import Subparsers, subcommand_parser
 
 __all__ = ["add_parser", "run"]
 
 
-def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
+def add_parser(subparsers: Subparsers, parents: list[argparse.ArgumentParser]) -> None:
     """Register the ``pose`` subcommand."""
-    parser = subparsers.add_parser(
-        "pose", parents=parents, help="poses of a frame relative to another, per time",
+    parser = subcommand_parser(
+        subparsers, parents, "pose", run,
+        help="poses of a frame relative to another, per time",
         description="Print the pose of FRAME in --relative-to per time: columns time_s, x, "
         "y, z, qx, qy, qz, qw (seconds after the reference time, metres, unit quaternion "
         "x y z w). The pose maps coordinates in FRAME to coordinates in the other frame. "
         "--velocity adds the exact velocity of FRAME's origin and its angular velocity, "
         "relative to the other frame, in its axes (or those of --expressed-in).")
-    parser.add_argument("file", metavar="FILE", help="scene, frames.yaml, ASDF or URDF file")
     parser.add_argument("frame", metavar="FRAME", help="the frame whose pose is wanted")
     parser.add_argument("--relative-to", "-r", metavar="OTHER",
                         help="the frame the pose is expressed in (default: FRAME's parent)")
@@ -45,7 +46,6 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         help="output format (default: from the -o file name, else csv)")
     parser.add_argument("-o", "--output", metavar="OUT",
                         help="write to this file (default: standard output)")
-    parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:

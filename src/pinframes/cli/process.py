@@ -21,6 +21,7 @@ from ._evaluate import add_time_arguments, in_chunks, terminal_stderr, times_fro
 from ._extrapolation import add_extrapolation_argument, check_query_extrapolation
 from ._files import read_tree, require_frames
 from ._output import write_text
+from ._subcommand import Subparsers, subcommand_parser
 
 __all__ = ["COLUMNS", "add_parser", "process_summary", "process_text", "run"]
 
@@ -30,10 +31,11 @@ COLUMNS = ("time_s", "travel_speed_m_s", "travel_angle_deg", "work_angle_deg",
 """The columns of the output; ``ctwd_m`` follows with a contact tip."""
 
 
-def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
+def add_parser(subparsers: Subparsers, parents: list[argparse.ArgumentParser]) -> None:
     """Register the ``process`` subcommand."""
-    parser = subparsers.add_parser(
-        "process", parents=parents, help="welding process along a seam, per time",
+    parser = subcommand_parser(
+        subparsers, parents, "process", run,
+        help="welding process along a seam, per time",
         description="Print the welding process that the torch produces along the seam, per "
         "time: travel speed relative to the workpiece (m/s, along the seam's x axis), travel "
         "angle (degrees, positive push, negative drag) and work angle (degrees, 90 = square "
@@ -42,8 +44,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "distance (metres), the seam's slope and face rotation against --up (degrees) and "
         "its ISO 6947 welding position (PA flat .. PG vertical down). The seam frame has x "
         "along the travel direction and z out of the material. One summary line on "
-        "standard error gives the range of each and the positions met.")
-    parser.add_argument("file", metavar="SCENE", help="scene, frames.yaml, ASDF or URDF file")
+        "standard error gives the range of each and the positions met.", tree_file="SCENE")
     parser.add_argument("--torch", required=True, metavar="FRAME",
                         help="the torch's tool centre point; its z axis is the wire axis")
     parser.add_argument("--seam", required=True, metavar="FRAME",
@@ -60,7 +61,6 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     add_extrapolation_argument(parser)
     parser.add_argument("-o", "--output", metavar="OUT",
                         help="write the CSV to this file (default: standard output)")
-    parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:

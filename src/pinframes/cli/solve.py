@@ -19,14 +19,16 @@ from ._evaluate import add_time_arguments, requested_times
 from ._extrapolation import add_extrapolation_argument, check_extrapolation
 from ._files import read_tree, require_frames
 from ._output import write_text
+from ._subcommand import Subparsers, subcommand_parser
 
 __all__ = ["add_parser", "run", "summary"]
 
 
-def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
+def add_parser(subparsers: Subparsers, parents: list[argparse.ArgumentParser]) -> None:
     """Register the ``solve`` subcommand."""
-    parser = subparsers.add_parser(
-        "solve", parents=parents, help="joint values that put a tool frame on a target frame",
+    parser = subcommand_parser(
+        subparsers, parents, "solve", run,
+        help="joint values that put a tool frame on a target frame",
         description="Solve for the robot joints that put --frame (a tool) on --target (a frame "
         "of the tree, which may move) at each time, each sample starting from the one before, "
         "within the URDF position limits. Writes a joint trajectory CSV (time_s, then one "
@@ -34,8 +36,7 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "pinframes.read_joint_trajectory read: when the joints belong to one robot, columns "
         "carry its URDF joint names (without the scene's prefix). Prints one summary line on "
         "standard error. Exit status 0 even when samples are out of reach (the summary says "
-        "how many were reached); with --strict, 1 at the first one.")
-    parser.add_argument("file", metavar="SCENE", help="scene, frames.yaml, ASDF or URDF file")
+        "how many were reached); with --strict, 1 at the first one.", tree_file="SCENE")
     parser.add_argument("--frame", required=True, metavar="F",
                         help="the tool frame, e.g. torch_tcp")
     parser.add_argument("--target", required=True, metavar="T",
@@ -86,7 +87,6 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
                         help="write to this file: .csv, .npz, or a ROS bag (.mcap, .bag, "
                         ".db3, or a folder): a trajectory_msgs/JointTrajectory and the joint "
                         "states (default: CSV on standard output)")
-    parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -26,16 +26,18 @@ from ._evaluate import add_time_arguments, requested_times
 from ._extrapolation import add_extrapolation_argument, check_extrapolation
 from ._files import read_tree, require_frames
 from ._output import require_suffix, write_text
+from ._subcommand import Subparsers, subcommand_parser
 
 __all__ = ["add_parser", "run"]
 
 TIME_COLUMN = "time_s"
 
 
-def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
+def add_parser(subparsers: Subparsers, parents: list[argparse.ArgumentParser]) -> None:
     """Register the ``transform`` subcommand."""
-    parser = subparsers.add_parser(
-        "transform", parents=parents, help="points or vectors measured in one frame, in another",
+    parser = subcommand_parser(
+        subparsers, parents, "transform", run,
+        help="points or vectors measured in one frame, in another",
         description="Read points (or, with --vectors, directions) given in FRAME from the CSV "
         "file DATA and write them in --relative-to. DATA has a header row naming three data "
         "columns in one unit, LABEL_UNIT (points: "
@@ -44,7 +46,6 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
         "row is one point at its own time (seconds after the reference time). Without it "
         "every point is written at every time of the time options, with columns time_s, "
         "point (its row number) and the data columns.")
-    parser.add_argument("file", metavar="FILE", help="scene, frames.yaml, ASDF or URDF file")
     parser.add_argument("data", metavar="DATA", help="CSV file of points or vectors")
     parser.add_argument("frame", metavar="FRAME", help="the frame the data are given in")
     parser.add_argument("--relative-to", "-r", metavar="OTHER", required=True,
@@ -56,7 +57,6 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     add_extrapolation_argument(parser)
     parser.add_argument("-o", "--output", metavar="OUT",
                         help="write to this CSV file (default: standard output)")
-    parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -9,21 +9,22 @@ from ..view import write_view
 from ._evaluate import add_time_arguments, requested_times
 from ._files import read_tree, require_frames
 from ._output import require_suffix
+from ._subcommand import Subparsers, subcommand_parser
 from .clearance import frame_names
 
 __all__ = ["add_parser", "run"]
 
 
-def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
+def add_parser(subparsers: Subparsers, parents: list[argparse.ArgumentParser]) -> None:
     """Register the ``view`` subcommand."""
-    parser = subparsers.add_parser(
-        "view", parents=parents, help="animated 3-D page of the tree (HTML, no server)",
+    parser = subcommand_parser(
+        subparsers, parents, "view", run,
+        help="animated 3-D page of the tree (HTML, no server)",
         description="Write one self-contained HTML page that shows FILE in 3-D over time: "
         "the robots' URDF geometry moving with their joint samples, every frame's axes and "
         "name, the paths of moving frames, a time slider with play/pause. It opens from "
         "disk in a browser, without a server or network. Needs meshcat: "
         "pip install \"pinframes[view]\".")
-    parser.add_argument("file", metavar="FILE", help="scene, frames.yaml, ASDF or URDF file")
     parser.add_argument("--frames", nargs="+", metavar="FRAME",
                         help="frames drawn with axes and names (default: all)")
     parser.add_argument("--relative-to", "-r", metavar="FRAME",
@@ -45,7 +46,6 @@ def add_parser(subparsers: argparse._SubParsersAction, parents: list) -> None:
     add_time_arguments(parser)
     parser.add_argument("-o", "--output", metavar="OUT.html", required=True,
                         help="HTML file to write")
-    parser.set_defaults(run=run)
 
 
 def run(args: argparse.Namespace) -> int:

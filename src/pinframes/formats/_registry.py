@@ -11,12 +11,13 @@ format brings. A file is read once: detection reads it into an
 from __future__ import annotations
 
 import os
+import stat
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..errors import FileFormatError, PinframesError, ReadError
+from ..errors import FileFormatError, PinframesError, ReadError, WriteError
 from ._content import is_text, other_content, other_document
 from ._paths import check_regular_file, path_argument
 from .limits import using_limits
@@ -150,11 +151,12 @@ def detect_format(
     suffix = source.path.suffix.lower()
     allowed = [entry for entry in _FORMATS.values() if entry.kind == kind
                and (among is None or entry.name in among)]
-    if kind == TREE and not writing and source.path.is_dir():
+    folder = kind == TREE and _is_folder(source.path, writing)
+    if kind == TREE and not writing and folder:
         return _folder_format(source.path, allowed)
     if kind == TREE and not writing and source.path.is_file():
         return _format_by_content(source, allowed)
-    if kind == TREE and writing and (not suffix or source.path.is_dir()):
+    if kind == TREE and writing and (not suffix or folder):
         folder_writers = [entry.name for entry in allowed
                           if entry.folder_test is not None and entry.write is not None]
         if folder_writers:  # a folder to be written (a ROS 2 bag)
@@ -319,6 +321,19 @@ def is_tree_folder(path: str | os.PathLike[str]) -> bool:
     folder = Path(path)
     return folder.is_dir() and any(entry.folder_test(folder) for entry in _FORMATS.values()
                                    if entry.folder_test is not None and entry.kind == TREE)
+
+
+def _is_folder(path: Path, writing: bool) -> bool:
+    """Whether ``path`` is a folder; a path the system cannot look at (a name too long, a
+    path through a file) is a :class:`WriteError` or :class:`ReadError` naming it."""
+    try:
+        return stat.S_ISDIR(os.stat(path).st_mode)
+    except (FileNotFoundError, NotADirectoryError):
+        return False
+    except OSError as exc:
+        error = WriteError if writing else ReadError
+        raise error(f"cannot {'write' if writing else 'read'}: {exc.strerror or exc}",
+                    file=path) from None
 
 
 def _check_path(path: object) -> None:

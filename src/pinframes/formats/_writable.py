@@ -6,15 +6,19 @@ other and most from Python strings: XML 1.0 cannot hold most control characters,
 ``\\x85`` (NEL) and other line breaks inside a plain scalar as a space, and none of the files
 can encode a lone surrogate (``\\ud800``). So names with control characters (Unicode
 category ``Cc``) or surrogates are refused by every writer; the tree itself accepts any
-non-empty string.
+non-empty string. A CSV header is read back with its cells stripped, and a spreadsheet runs a
+cell that starts with ``=``, ``+``, ``-`` or ``@`` as a formula: joint names written as a
+CSV header may neither start nor end with a space nor start with one of those.
 """
 
 from __future__ import annotations
 
 import unicodedata
+from collections.abc import Sequence
 
 from ..errors import (
     ArgumentTypeError,
+    InvalidDataError,
     PinframesError,
     TreeStructureError,
     UnsupportedFeatureError,
@@ -22,7 +26,10 @@ from ..errors import (
 from ..tree import FrameTree
 from ._paths import path_argument
 
-__all__ = ["check_writable_tree", "refuse_attached_data"]
+__all__ = ["check_joint_names", "check_writable_tree", "refuse_attached_data"]
+
+FORMULA_STARTS = ("=", "+", "-", "@")
+"""First characters that make a spreadsheet read a CSV cell as a formula."""
 
 
 def check_writable_tree(tree: FrameTree, path: object) -> None:
@@ -59,6 +66,28 @@ def refuse_attached_data(tree: FrameTree, path: object, what: str, field: str = 
         field=field)
 
 
+def check_joint_names(names: Sequence[str], *, csv_header: bool) -> None:
+    """Refuse joint names a joint trajectory file would not read back unchanged: none at
+    all (an :class:`InvalidDataError`), a control character or a lone surrogate (every
+    file), and in a CSV header a space at either end or a formula's first character (an
+    :class:`UnsupportedFeatureError` naming the joint)."""
+    if not names:
+        raise InvalidDataError("no joints: a joint trajectory holds at least one",
+                               field="joint_names")
+    for name in names:
+        _check_name(name, None, "joint_names", joint=_printable(name))
+        if csv_header and name != name.strip():
+            problem = "starts or ends with a space, which a CSV reader strips"
+        elif csv_header and name.startswith(FORMULA_STARTS):
+            problem = (f"starts with {name[0]!r}, which spreadsheets run as a formula when "
+                       "they open a CSV file")
+        else:
+            continue
+        raise UnsupportedFeatureError(f"the joint name {problem}: rename it, or write .npz "
+                                      "or a ROS bag", joint=_printable(name),
+                                      field="joint_names")
+
+
 def _check_tree(tree: FrameTree) -> None:
     if tree.name is not None:
         _check_name(tree.name, None, "name")
@@ -76,14 +105,14 @@ def _check_tree(tree: FrameTree) -> None:
                 f"{', '.join(map(repr, missing))}", frame=missing[0], field="subsystems")
 
 
-def _check_name(name: str, frame: str | None, field: str) -> None:
+def _check_name(name: str, frame: str | None, field: str, joint: str | None = None) -> None:
     for character in name:
         kind = unicodedata.category(character)
         if kind in ("Cc", "Cs"):
             what = "a control character" if kind == "Cc" else "a lone surrogate"
             raise UnsupportedFeatureError(
                 f"the name holds {what} ({character!r}), which files cannot hold unchanged: "
-                "rename it", frame=_printable(frame), field=field)
+                "rename it", frame=_printable(frame), field=field, joint=joint)
 
 
 def _printable(name: str | None) -> str | None:

@@ -7,7 +7,7 @@ import os
 import secrets
 import shutil
 import stat
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import IO
 
@@ -59,21 +59,25 @@ def atomic_write(path: str | os.PathLike[str], mode: str = "wb") -> Iterator[IO]
 
 
 @contextlib.contextmanager
-def atomic_path(path: str | os.PathLike[str], *, folder: bool = False) -> Iterator[Path]:
+def atomic_path(path: str | os.PathLike[str], *, folder: bool = False,
+                replaceable: Callable[[Path], str | None] | None = None) -> Iterator[Path]:
     """A fresh temporary name beside ``path``, for writers that create their file (with
     ``folder``: their folder) themselves, such as rosbags' bag writers; on success it is
     renamed onto ``path``.
 
     Nothing exists at the temporary name when the body starts. If the body raises, whatever
     it made there is removed and ``path`` is left untouched. A folder replaces an existing
-    one only when that is empty or a ROS 2 bag (it holds a ``metadata.yaml``): the old
-    folder is moved aside, the new one renamed in and the old one deleted.
+    one only when that is empty, or when ``replaceable`` (the writer's own test, such as
+    "a ROS 2 bag and nothing else") finds nothing in it that is not the writer's: it returns
+    None, else the reason, which the :class:`~pinframes.errors.WriteError` gives. The old
+    folder is moved aside, the new one renamed in and the old one deleted. A symbolic link
+    to a folder that is not empty is refused: what it points to is never emptied.
     """
     file = path_argument(path)
     target = Path(os.path.realpath(file)) if os.path.islink(file) else Path(file)
     parent = target.parent if str(target.parent) else Path(".")
     if folder:
-        _check_folder_target(target, parent, file)
+        _check_folder_target(target, parent, file, os.path.islink(file), replaceable)
     else:
         _check_target(target, parent, file)
     remove_stale_temporaries(parent)
@@ -111,13 +115,32 @@ def _remove(path: Path) -> None:
             os.unlink(path)
 
 
-def _check_folder_target(target: Path, parent: Path, file: str) -> None:
-    """Refuse to replace a file, or a folder that is neither empty nor a ROS 2 bag."""
-    if target.exists() and not target.is_dir():
-        raise WriteError("exists and is not a folder", file=file)
-    if target.is_dir() and any(target.iterdir()) and not (target / "metadata.yaml").is_file():
-        raise WriteError("a folder that is not a ROS 2 bag (no metadata.yaml) and not empty: "
-                         "pinframes replaces only bag folders", file=file)
+def _check_folder_target(target: Path, parent: Path, file: str, linked: bool,
+                         replaceable: Callable[[Path], str | None] | None) -> None:
+    """Refuse to replace a file, a folder that is not empty behind a symbolic link, or one
+    that ``replaceable`` does not accept."""
+    if os.path.basename(os.path.normpath(file)) in (".", "..", "", os.sep):
+        raise WriteError("names the current folder, its parent or the root, not a bag "
+                         "folder of its own: give it a name (such as run)", file=file)
+    try:
+        if target.exists() and not target.is_dir():
+            raise WriteError("exists and is not a folder", file=file)
+        empty = not target.is_dir() or not any(target.iterdir())
+    except OSError as exc:
+        if isinstance(exc, PinframesError):
+            raise
+        raise WriteError(f"cannot write: {exc.strerror or exc}", file=file) from None
+    if not empty and linked:
+        raise WriteError(f"is a symbolic link to a folder that is not empty "
+                         f"({os.fspath(target)}): pinframes never replaces a folder through "
+                         "a link; write to the folder's own path or to a new name", file=file)
+    if not empty:
+        problem = "it is no output of this writer" if replaceable is None else replaceable(
+            target)
+        if problem is not None:
+            raise WriteError(f"a folder that is not empty and not a ROS 2 bag: {problem}; "
+                             "pinframes replaces only a bag folder holding nothing else "
+                             "(write to a new name)", file=file)
     if not parent.is_dir():
         raise WriteError(f"the folder does not exist: {os.fspath(parent)}", file=file)
 

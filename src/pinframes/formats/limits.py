@@ -55,12 +55,21 @@ class Limits:
         segments of a frames.yaml key (``a/b/c`` has 3), and nesting depth of the XML
         elements of a URDF (``<robot><link><visual>`` has 3).
     max_xml_elements : int
-        XML elements of a URDF file (every start tag counts one; the largest robot of
-        example-robot-data has 3,851).
+        XML elements of a URDF or SRDF file (every start tag counts one; the largest robot
+        of example-robot-data has 3,851), and the joints of an SRDF's groups once expanded
+        (each group counts its joints).
     max_triangles : int
         Triangles of one mesh file after instancing (a COLLADA node instanced twice counts
-        its triangles twice), counted before any is built: past it the clearance is an
-        error naming the frame, the 3-D page leaves the mesh out with a warning.
+        its triangles twice), counted before any is built, and of all the meshes of one
+        clearance or 3-D page (a mesh counts once per link that uses it): past it the
+        clearance is an error naming the frame, the 3-D page leaves the mesh out with a
+        warning.
+    max_xacro_seconds : int
+        Seconds of processor time one xacro expansion may take (it runs in a child
+        process, stopped after twice as many seconds of clock time); the largest xacro
+        robot of the tests expands in 0.3 s.
+    max_xacro_bytes : int
+        Bytes of memory (address space) of the child process that expands a xacro file.
     """
 
     max_samples: int = 2_000_000
@@ -69,6 +78,8 @@ class Limits:
     max_depth: int = 1_000
     max_xml_elements: int = 1_000_000
     max_triangles: int = MAX_TRIANGLES
+    max_xacro_seconds: int = 20
+    max_xacro_bytes: int = 1024**3
 
     def __post_init__(self) -> None:
         for item in fields(self):

@@ -4,18 +4,17 @@ and what that version's shape says about a query path (its :class:`ModelLayout`)
 ``FrameTree`` builds one when a query needs it and keeps it until the tree changes; the
 evaluator reads nothing else of the tree. Besides the frames, it holds what the tree's
 version has learnt: the anchor of each frame (its nearest joint frame and its static
-placement there) and the prepared query paths, so a cache dies with the version it
+placement there) and what queries worked out once (its :class:`~._memo.Memo`: the
+prepared query paths, the clearance's shape loaders), so a cache dies with the version it
 belongs to.
 """
 
 from __future__ import annotations
 
-import contextlib
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 from types import MappingProxyType
-from typing import Any
 
 import numpy as np
 
@@ -24,11 +23,9 @@ from ..values.joint_trajectory import JointTrajectory
 from ..values.pose import Pose
 from ..values.se3 import IDENTITY, Transform, compose, inverse
 from ..values.timeline import source_reference
+from ._memo import Memo
 
 __all__ = ["ModelJoint", "ModelLayout", "TreeDescription", "paths_to_common_ancestor"]
-
-_CACHE_LIMIT = 8192
-"""Prepared query paths kept per tree version (oldest dropped first)."""
 
 
 @dataclass(frozen=True)
@@ -96,6 +93,9 @@ class TreeDescription:
         counted from the same reference time: joints driven together (one
         ``set_joint_trajectory`` call, a robot's trajectory file) hold equal times arrays,
         and a query searches their segments once per group.
+    memo : Memo
+        What queries work out once for this version, each kind under its type: the
+        prepared query paths (``_plan``), the clearance's shape loaders.
     """
 
     root: str
@@ -110,8 +110,7 @@ class TreeDescription:
     time_groups: Mapping[str, str]
     _anchors: dict[str, tuple[str, Transform]] = field(
         default_factory=dict, init=False, repr=False, compare=False)
-    _evaluations: dict[tuple[str, ...], Any] = field(
-        default_factory=dict, init=False, repr=False, compare=False)
+    memo: Memo = field(default_factory=Memo, init=False, repr=False, compare=False)
     # the warnings this version has given (each is given once per version)
     _warned: set[str] = field(default_factory=set, init=False, repr=False, compare=False)
 
@@ -227,20 +226,6 @@ class TreeDescription:
             return False
         self._warned.add(kind)
         return True
-
-    def cached(self, key: tuple[str, ...]) -> Any:
-        """A prepared query path stored with :meth:`store`, or None."""
-        return self._evaluations.get(key)
-
-    def store(self, key: tuple[str, ...], prepared: Any) -> None:
-        """Keep a prepared query path for this version of the tree."""
-        # Queries may run in several threads at once: two of them may pick the same oldest
-        # entry, or one may insert while another iterates, so eviction tolerates both races
-        # (the cache may then exceed its limit by a few entries) instead of taking a lock.
-        if len(self._evaluations) >= _CACHE_LIMIT:
-            with contextlib.suppress(KeyError, RuntimeError, StopIteration):
-                self._evaluations.pop(next(iter(self._evaluations)))
-        self._evaluations[key] = prepared
 
 
 def _time_groups(trajectories: Mapping[str, JointTrajectory],

@@ -163,8 +163,7 @@ class OneTimePlan:
 
 def one_time_plan(path: PreparedPath) -> OneTimePlan:
     """The :class:`OneTimePlan` of a moving ``path``, made once and kept with the path."""
-    plan = path.plans.get("one time")
+    plan = path.plans.get(OneTimePlan, "one time")
     if plan is None:
-        plan = path.plans["one time"] = OneTimePlan(path)
-    assert isinstance(plan, OneTimePlan)
+        plan = path.plans.keep(OneTimePlan, "one time", OneTimePlan(path))
     return plan

@@ -27,6 +27,7 @@ from ..values.se3 import Transform
 from ..values.timeconv import parse_time_axis
 from ..values.timeline import QueryTimeline, TimedSource, plan_query_timeline
 from ._description import ModelLayout, TreeDescription
+from ._memo import Memo
 from ._model import CompiledModel
 from ._sampling import (
     JointSampler,
@@ -64,7 +65,7 @@ class PreparedPath:
     samplers: tuple[JointSampler, ...] = ()
     sources: tuple[TimedSource, ...] = ()
     resting: frozenset[str] = frozenset()
-    plans: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
+    plans: Memo = field(default_factory=Memo, compare=False, repr=False)
 
 
 def prepare_path(tree: TreeDescription, frame: str, relative_to: str,
@@ -75,7 +76,7 @@ def prepare_path(tree: TreeDescription, frame: str, relative_to: str,
     them all and holding them all: one sampling of it serves every pair of its frames.
     """
     key = (frame, relative_to, *also)
-    cached = tree.cached(key)
+    cached = tree.memo.get(PreparedPath, key)
     if cached is not None:
         return cached
     layout = tree.path_layout(frame, relative_to, also)
@@ -85,8 +86,7 @@ def prepare_path(tree: TreeDescription, frame: str, relative_to: str,
     else:
         model = CompiledModel(layout)
         path = PreparedPath(frame, relative_to, None, model, *path_samplers(tree, model))
-    tree.store(key, path)
-    return path
+    return tree.memo.keep(PreparedPath, key, path)
 
 
 @dataclass(slots=True)
@@ -196,7 +196,7 @@ def plan_query(
     own_sources = sources is None and not held and not extra
     without_times = times is None and own_sources
     if without_times:  # the same plan every time: kept with the path
-        kept = path.plans.get(_WITHOUT_TIMES[extrapolation])
+        kept = path.plans.get(QueryPlan, _WITHOUT_TIMES[extrapolation])
         if kept is not None:
             return kept
     if path.resting:
@@ -218,7 +218,7 @@ def plan_query(
         timeline.require_within(path.sources, evaluated)
     plan = QueryPlan(path, timeline, shifts, extrapolation, evaluated, timeline.result_offsets)
     if without_times:
-        path.plans[_WITHOUT_TIMES[extrapolation]] = plan
+        path.plans.keep(QueryPlan, _WITHOUT_TIMES[extrapolation], plan)
     return plan
 
 

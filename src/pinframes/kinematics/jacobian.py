@@ -20,10 +20,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ArgumentTypeError, JointError, joint_not_found
 from ..values.se3 import IDENTITY
 from ..values.timed import Timed
 from ._description import TreeDescription
+from ._joint_argument import named_joints
 from ._plan import plan_query
 from ._sampled_path import SampledPath, sampled_parts
 from ._sampling import DrivenJoint
@@ -62,7 +62,8 @@ def evaluate_jacobian(tree: TreeDescription, frame: str, relative_to: str, times
                       time_ref: Any, extrapolation: str, joints: Sequence[str] | None
                       ) -> FrameJacobian:
     """``tree.jacobian(...)``; frame names already checked."""
-    names = _joint_names(tree, joints, frame)
+    names = ([name for name, joint in tree.joints_by_name.items() if joint.is_actuated]
+             if joints is None else named_joints(joints, tree.joints_by_name, frame))
     column_of = {name: column for column, name in enumerate(names)}
     plan = plan_query(tree, frame, relative_to, times, time_ref, extrapolation)
     matrix = np.zeros((plan.count, 6, len(names)))
@@ -107,24 +108,3 @@ def _columns_in_reference(path: SampledPath, signs: dict[int, float], frame: str
                                         + weights[:, 1, row] * block[:, 1]
                                         + weights[:, 2, row] * block[:, 2])
     return out
-
-
-def _joint_names(tree: TreeDescription, joints: Sequence[str] | None, frame: str) -> list[str]:
-    """The columns: the named joints, or every actuated joint in the tree's order."""
-    if joints is None:
-        return [name for name, joint in tree.joints_by_name.items() if joint.is_actuated]
-    if isinstance(joints, str) or not isinstance(joints, Sequence):
-        raise ArgumentTypeError(f"expected a list of joint names, got {joints!r}",
-                                frame=frame, field="joints")
-    names = list(joints)
-    known = tree.joints_by_name
-    for name in names:
-        if name not in known:
-            raise joint_not_found(name, known, frame=frame, field="joints")
-        mimic = known[name].mimic
-        if mimic is not None:
-            raise JointError(f"joint {name!r} mimics {mimic.joint!r}; its motion is in that "
-                             "joint's column", frame=frame, field="joints")
-    if len(set(names)) != len(names):
-        raise JointError("joint names repeat", frame=frame, field="joints")
-    return names

@@ -28,8 +28,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import InvalidDataError
-from ..values.numbers import float_array, require_finite_pose
+from ..values.numbers import require_finite_pose, unit_direction
 from ..values.timed import Timed
 from ._description import TreeDescription
 from ._plan import QueryPlan, plan_query, prepare_path
@@ -276,10 +275,4 @@ def _unit_up(up: Any) -> FloatArray:
     """``up`` (a 3-vector in the root's axes, default +z) as a unit vector."""
     if up is None:
         return np.array([0.0, 0.0, 1.0])
-    vector = float_array(up, "up", InvalidDataError)
-    largest = float(np.max(np.abs(vector))) if vector.shape == (3,) else 0.0
-    if largest == 0.0:
-        raise InvalidDataError(f"expected a non-zero 3-vector in the root's axes, got "
-                               f"{vector.tolist()}", field="up")
-    scaled = vector / largest
-    return scaled / np.linalg.norm(scaled)
+    return unit_direction(up, "up")

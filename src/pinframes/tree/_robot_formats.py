@@ -15,7 +15,7 @@ __all__ = ["RobotMounter", "register_robot_format", "robot_mounter"]
 
 RobotMounter = Callable[..., list[str]]
 """``mount(tree, source, parent, pose, prefix, *, strict, limits, package_dirs, xacro_args,
-srdf) -> new frame names``: parses ``source`` (a path or the file's text) and adds the
+srdf, xacro) -> new frame names``: parses ``source`` (a path or the file's text) and adds the
 robot's links below ``parent``, all or nothing; ``strict`` refuses what is otherwise loaded
 with a warning; ``limits`` (a ``pinframes.Limits`` or None) bounds the parse; the others as
 ``FrameTree.attach_urdf`` says."""

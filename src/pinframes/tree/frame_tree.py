@@ -1,10 +1,10 @@
 """`FrameTree`: a tree of named coordinate frames whose poses may move in time.
 
-The class is built in three steps, one idea a module: :mod:`._structure` holds the frames,
-the data attached to them and every edit, :mod:`._queries` the pose, velocity and Jacobian
-queries handed to the kinematics; here come attached data in any frame, robots mounted
-from files and the whole-tree operations, whose work is done in :mod:`.grafting` and
-:mod:`.tree_times`.
+The class is built in four steps, one idea a module: :mod:`._structure` holds the frames,
+the data attached to them and every edit, :mod:`._queries` the pose, velocity, Jacobian and
+inverse kinematics queries handed to the kinematics, :mod:`._collision_queries` the
+clearance; here come attached data in any frame, robots mounted from files and the
+whole-tree operations, whose work is done in :mod:`.grafting` and :mod:`.tree_times`.
 """
 
 from __future__ import annotations
@@ -53,15 +53,14 @@ class FrameTree(CollisionQueries):
         prefix: str = "", *, strict: bool = False, limits: Any = None,
         package_dirs: Iterable[str | os.PathLike[str]] = (),
         xacro_args: Mapping[str, Any] | None = None,
-        srdf: str | os.PathLike[str] | None = None,
+        srdf: str | os.PathLike[str] | None = None, xacro: bool | None = None,
     ) -> list[str]:
         """Mount a robot: its root link at ``parent`` (at ``pose``), every link a frame.
 
         Parameters
         ----------
         urdf : path or str
-            A URDF or xacro file, or URDF XML text. Meshes are never needed. A xacro file
-            (told by its content) is expanded with the ``xacro`` package.
+            A URDF or xacro file, or URDF XML text. Meshes are never needed.
         parent : str
             The frame the robot's root link is placed on.
         pose : Pose or None
@@ -83,6 +82,11 @@ class FrameTree(CollisionQueries):
         srdf : path, optional
             The robot's SRDF: its joint groups and group states for :meth:`solve_joints`,
             its disabled collision pairs for :meth:`clearance`.
+        xacro : bool or None
+            Whether a xacro file (and a xacro SRDF) is expanded with the ``xacro`` package,
+            which runs the file's code: None (the default) expands a file whose name ends
+            in ``.xacro``, True any file with xacro content, False none; xacro content that
+            is not expanded is a ``FileFormatError``.
 
         Returns
         -------
@@ -95,7 +99,7 @@ class FrameTree(CollisionQueries):
         """
         return robot_mounter("urdf")(self, urdf, parent, pose, prefix, strict=strict,
                                      limits=limits, package_dirs=package_dirs,
-                                     xacro_args=xacro_args, srdf=srdf)
+                                     xacro_args=xacro_args, srdf=srdf, xacro=xacro)
 
     def add_geometry(self, frame: str, shape: ShapeLike, *, origin: Pose | None = None,
                      kind: str = "both",

@@ -42,11 +42,12 @@ class SemanticRobot:
 def semantic_robots(tree: EditableTree) -> list[SemanticRobot]:
     """Every robot of ``tree`` that was read with an SRDF."""
     found: dict[str, tuple[RobotSemantics, dict[str, str]]] = {}
+    tops: dict[str, str] = {}
     for frame in tree.frames:
         own = _semantics(tree, frame)
         if own is None:
             continue
-        top = _robot_top(tree, frame, own)
+        top = tops[frame] = _robot_top(tree, frame, own, tops)
         found.setdefault(top, (own.robot, {}))[1][own.link] = frame
     for top, (semantics, frames) in found.items():
         root = semantics.root_link
@@ -56,14 +57,17 @@ def semantic_robots(tree: EditableTree) -> list[SemanticRobot]:
             for top, (semantics, frames) in found.items()]
 
 
-def _robot_top(tree: EditableTree, frame: str, own: LinkSemantics) -> str:
+def _robot_top(tree: EditableTree, frame: str, own: LinkSemantics,
+               tops: dict[str, str]) -> str:
     """The highest frame of ``frame``'s robot: up through the URDF parent links that carry
     the same SRDF, then one frame more when the last is a child of the robot's root link and
     its parent carries nothing (the root link's frame of a grafted tree, which keeps no
-    record)."""
+    record). ``tops``: the frames whose top is known, where the walk up stops."""
     top, link = frame, own
     while (parent := tree.parent(top)) is not None:
         above = _parent_link(tree, parent, link)
+        if above is not None and parent in tops:
+            return tops[parent]
         if above is None:
             if (link.robot.link_parents.get(link.link) == link.robot.root_link
                     and _semantics(tree, parent) is None):
@@ -75,17 +79,22 @@ def _robot_top(tree: EditableTree, frame: str, own: LinkSemantics) -> str:
 
 def disabled_frame_pairs(tree: EditableTree, frames: Iterable[str]
                          ) -> list[tuple[str, str]]:
-    """The pairs among ``frames`` whose links' SRDF disables their collisions."""
+    """The pairs among ``frames`` whose links' SRDF disables their collisions (a disabled
+    link pairs with every other link of its robot among ``frames``)."""
     wanted = set(frames)
-    pairs = []
+    pairs: dict[frozenset[str], tuple[str, str]] = {}
     for robot in semantic_robots(tree):
-        for pair in robot.semantics.disabled_pairs:
-            first, second = sorted(pair)
-            frame_a, frame_b = robot.frames.get(first), robot.frames.get(second)
-            if frame_a in wanted and frame_b in wanted:
-                assert frame_a is not None and frame_b is not None
-                pairs.append((frame_a, frame_b))
-    return pairs
+        semantics = robot.semantics
+        here = {link: frame for link, frame in robot.frames.items() if frame in wanted}
+        named = [sorted(pair) for pair in semantics.disabled_pairs]
+        by_link = [(link, other) for link in sorted(semantics.disabled_links & here.keys())
+                   for other in here if other != link]
+        for link_a, link_b in [*named, *by_link]:
+            first, second = sorted((link_a, link_b))
+            if first in here and second in here and semantics.disables(first, second):
+                frame_pair = here[first], here[second]
+                pairs.setdefault(frozenset(frame_pair), frame_pair)
+    return list(pairs.values())
 
 
 def group_joints(tree: EditableTree, group: str, near: Iterable[str]) -> list[str]:
@@ -148,6 +157,6 @@ def _parent_link(tree: EditableTree, frame: str, link: LinkSemantics
     ``link`` in the same robot, else None."""
     other = _semantics(tree, frame)
     if (other is not None and other.link == link.robot.link_parents.get(link.link)
-            and other.robot == link.robot):
+            and (other.robot is link.robot or other.robot == link.robot)):
         return other
     return None

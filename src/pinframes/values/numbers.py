@@ -11,9 +11,9 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..errors import InvalidPoseError, PinframesError
+from ..errors import InvalidDataError, InvalidPoseError, PinframesError
 
-__all__ = ["float_array", "require_finite_pose", "require_finite_result"]
+__all__ = ["float_array", "require_finite_pose", "require_finite_result", "unit_direction"]
 
 
 def float_array(values: ArrayLike, field: str, error: type[PinframesError], *,
@@ -38,6 +38,27 @@ def float_array(values: ArrayLike, field: str, error: type[PinframesError], *,
         where = tuple(int(i) for i in np.argwhere(~np.isfinite(array))[0])
         raise error(f"non-finite value (NaN or infinity) at index {where}", field=field)
     return array
+
+
+def unit_direction(values: ArrayLike, field: str, *, frame: str | None = None
+                   ) -> NDArray[np.float64]:
+    """``values``, three real numbers, as a unit vector; an :class:`InvalidDataError` at
+    ``field`` (and ``frame``) for anything else: not three finite numbers, or a vector whose
+    squared length is zero or overflows (coordinates below about 1e-162 or above 1e154),
+    which no computation keeps as a direction."""
+    try:
+        vector = float_array(values, field, InvalidDataError)
+    except PinframesError as exc:
+        raise exc.located(frame=frame) from None
+    with np.errstate(over="ignore"):  # an overflow is refused below
+        squared = float(vector @ vector) if vector.shape == (3,) else math.nan
+    if not 0.0 < squared < math.inf:
+        shown = vector.tolist() if vector.size <= 6 else f"an array of shape {vector.shape}"
+        raise InvalidDataError(
+            f"expected a direction: 3 numbers whose squared length is a finite, non-zero "
+            f"number (coordinates between about 1e-162 and 1e154), got {shown}",
+            frame=frame, field=field)
+    return vector / math.sqrt(squared)
 
 
 def require_finite_result(array: NDArray[np.float64], what: str,

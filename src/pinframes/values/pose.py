@@ -40,7 +40,7 @@ from .timeconv import (
     shift_ns,
     timestamp_ns,
 )
-from .timed import Timed
+from .timed import SampledInTime
 from .timeline import QueryTimeline, TimedSource, plan_query_timeline
 from .weave import Weave
 
@@ -50,7 +50,7 @@ FloatArray = NDArray[np.float64]
 _QUATERNION_NORM_TOLERANCE = 1e-3
 
 
-class Pose(Timed):
+class Pose(SampledInTime):
     """A rigid transform, static or sampled at strictly increasing times.
 
     Parameters
@@ -72,7 +72,7 @@ class Pose(Timed):
     raises numpy's ``ValueError``; copy them (``np.array(pose.translation)``) to edit.
     """
 
-    __slots__ = ("_keyframes", "_reference", "_rotation", "_times", "_translation", "_weave")
+    __slots__ = ("_keyframes", "_rotation", "_translation", "_weave")
 
     def __init__(
         self,
@@ -277,7 +277,9 @@ class Pose(Timed):
         writes it as a ``weave`` entry).
 
         Raises :class:`~pinframes.errors.InvalidPoseError` naming the field (``amplitude``,
-        ``frequency``, ``pattern``, ``dwell``, ``times``).
+        ``frequency``, ``pattern``, ``dwell``, ``times``); ``times`` that all fall on whole
+        half periods (a step of the period or half of it) sample a straight line, and are
+        refused too.
         """
         pattern_spec = Weave(metres(amplitude, "amplitude"),
                              magnitude_in(frequency, "hertz", "frequency"), pattern, dwell)
@@ -285,6 +287,7 @@ class Pose(Timed):
         if axis is None or axis.offsets.shape[0] < 2:
             raise InvalidPoseError("a weave needs at least two times", field="times")
         seconds = (axis.offsets - axis.offsets[0]) / 1e9
+        pattern_spec.check_sample_times(seconds)
         count = axis.offsets.shape[0]
         pose = cls._trusted(np.broadcast_to(np.eye(3), (count, 3, 3)).copy(),
                             pattern_spec.offsets(seconds), axis.offsets, axis.reference)
@@ -327,21 +330,6 @@ class Pose(Timed):
         out[..., :3, 3] = self._translation
         out[..., 3, 3] = 1.0
         return out
-
-    @property
-    def times(self) -> NDArray[np.timedelta64] | None:
-        """Keyframe times after :attr:`reference_time`, ``timedelta64[ns]``; None if static."""
-        return None if self._times is None else self._times.astype("timedelta64[ns]")
-
-    @property
-    def reference_time(self) -> np.datetime64 | None:
-        """The timestamp :attr:`times` count from, ``datetime64[ns]``, or None."""
-        return self._reference
-
-    @property
-    def is_time_dependent(self) -> bool:
-        """True when the pose is sampled in time."""
-        return self._times is not None
 
     def __len__(self) -> int:
         """Number of samples (1 for a static pose)."""

@@ -20,13 +20,14 @@ from ._readonly import readonly, readonly_copy
 from .numbers import float_array
 from .pose import Pose, _time_axis
 from .quantities import metres
+from .timed import SampledInTime
 
 __all__ = ["SpatialData", "apply_pose"]
 
 FloatArray = NDArray[np.float64]
 
 
-class SpatialData:
+class SpatialData(SampledInTime):
     """Points in a frame, with optional triangles and per-point attributes.
 
     Parameters
@@ -45,7 +46,7 @@ class SpatialData:
     SpatialData is immutable.
     """
 
-    __slots__ = ("_attributes", "_points", "_reference", "_times", "_triangles")
+    __slots__ = ("_attributes", "_points", "_triangles")
 
     def __init__(self, points: ArrayLike, triangles: ArrayLike | None = None,
                  attributes: Mapping[str, ArrayLike] | None = None, times: Any = None,
@@ -95,21 +96,6 @@ class SpatialData:
     def attributes(self) -> dict[str, np.ndarray]:
         """Per-point arrays by name (a copy of the mapping; the arrays are shared)."""
         return dict(self._attributes)
-
-    @property
-    def times(self) -> NDArray[np.timedelta64] | None:
-        """Times of the point sets after :attr:`reference_time`, ``timedelta64[ns]``, or None."""
-        return None if self._times is None else self._times.astype("timedelta64[ns]")
-
-    @property
-    def reference_time(self) -> np.datetime64 | None:
-        """The timestamp :attr:`times` count from, or None."""
-        return self._reference
-
-    @property
-    def is_time_dependent(self) -> bool:
-        """True for one point set per time, ``(T, M, 3)``."""
-        return self._times is not None
 
     def __repr__(self) -> str:
         mesh = "" if self._triangles is None else f", {len(self._triangles)} triangles"

@@ -4,6 +4,8 @@ A pose, a stack of poses, a velocity, a Jacobian, a welding process, a clearance
 solution each carry ``times`` (``timedelta64[ns]`` after ``reference_time``; None for a
 static result) and ``reference_time`` (a ``datetime64[ns]``, or None: plain offsets), and
 offer the same two views of them, :attr:`~Timed.seconds` and :attr:`~Timed.absolute_times`.
+A value that holds its own samples (a pose, data attached to a frame) keeps its times as
+:class:`SampledInTime` does.
 """
 
 from __future__ import annotations
@@ -13,7 +15,7 @@ from typing import Protocol
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["Timed"]
+__all__ = ["SampledInTime", "Timed"]
 
 
 class _HasTimes(Protocol):
@@ -44,3 +46,29 @@ class Timed:
         if times is None or reference is None:
             return None
         return (reference + times).astype("datetime64[ns]")
+
+
+class SampledInTime(Timed):
+    """Mixin of a value that holds its own samples: ``_times`` (int64 nanoseconds after
+    ``_reference``; None when static) and ``_reference`` (``datetime64[ns]`` or None), and
+    the properties that read them."""
+
+    __slots__ = ("_reference", "_times")
+
+    _times: NDArray[np.int64] | None
+    _reference: np.datetime64 | None
+
+    @property
+    def times(self) -> NDArray[np.timedelta64] | None:
+        """Sample times after :attr:`reference_time`, ``timedelta64[ns]``; None if static."""
+        return None if self._times is None else self._times.astype("timedelta64[ns]")
+
+    @property
+    def reference_time(self) -> np.datetime64 | None:
+        """The timestamp :attr:`times` count from, ``datetime64[ns]``, or None."""
+        return self._reference
+
+    @property
+    def is_time_dependent(self) -> bool:
+        """True when sampled in time (a pose per time, a point set per time)."""
+        return self._times is not None

@@ -31,6 +31,10 @@ FloatArray = NDArray[np.float64]
 WEAVE_PATTERNS = ("triangle", "sine", "trapezoid", "circle")
 """The weave patterns :class:`Weave` knows."""
 
+_ON_A_HALF_PERIOD = 1e-6
+"""How close to a whole number of half periods (in half periods) a sample time counts as
+on one: times are whole nanoseconds, a period is far longer."""
+
 
 @dataclass(frozen=True)
 class Weave:
@@ -72,6 +76,22 @@ class Weave:
               or not 0.0 < self.dwell < 1.0):
             raise InvalidPoseError("a trapezoid weave needs a dwell fraction in (0, 1), got "
                                    f"{self.dwell!r}", field="dwell")
+
+    def check_sample_times(self, seconds: FloatArray) -> None:
+        """Refuse sample times (``seconds`` after the start) that all fall on whole half
+        periods: there every pattern is on its centre line (the circle at the two ends of
+        its x diameter), so the samples draw a straight line, not the weave. Two samples
+        are a line whatever their times, and are let be."""
+        half_periods = 2.0 * self.frequency * seconds
+        off = np.abs(half_periods - np.round(half_periods))
+        if seconds.shape[0] > 2 and np.all(off <= _ON_A_HALF_PERIOD):
+            step = float(np.min(np.diff(seconds)))
+            raise InvalidPoseError(
+                f"the weave of {self.frequency:g} Hz is sampled only at whole half periods "
+                f"({1 / (2 * self.frequency):g} s; every {step:g} s here), where it crosses "
+                "its centre line: the samples draw a straight line. Sample it at least four "
+                f"times per period (a step of {1 / (4 * self.frequency):g} s or less)",
+                field="times")
 
     def offsets(self, seconds: ArrayLike) -> FloatArray:
         """Offsets (T, 3) in metres from the centre point, in the parent's axes, at

@@ -27,8 +27,9 @@ from ..kinematics.collision.mesh_files import (
     MeshFiles,
     mesh_file_problem,
     mesh_files_of,
+    outside_its_package,
 )
-from ..kinematics.collision.mesh_reader import TriangleMesh, read_mesh
+from ..kinematics.collision.mesh_reader import TriangleBudget, TriangleMesh, read_mesh
 from ..tree import FrameTree
 from ..values.geometry import GEOMETRY_METADATA_KEY, FrameGeometry, Shape
 
@@ -87,12 +88,14 @@ def load_geometry(
     and up to ``limits.max_decompressed_bytes`` each (None: the limits in effect, see
     :class:`pinframes.Limits`); others are skipped with a :class:`GeometryWarning` too, and
     so is a mesh of points without triangles and one of more than ``limits.max_triangles``
-    triangles after instancing. Needs trimesh for the primitives (``pip install
-    "pinframes[view]"``).
+    triangles after instancing, or one that would bring all the page's meshes (each counted
+    once per link that uses it) past ``limits.max_triangles``. Needs trimesh for the
+    primitives (``pip install "pinframes[view]"``).
     """
     kind = "collision" if collision else "visual"
     # mesh file -> its triangles, None: unreadable or not found (key: name and places searched)
     meshes: dict[str, TriangleMesh | None] = {}
+    budget = TriangleBudget(current_limits().max_triangles)  # every link's meshes together
     pieces: list[LinkGeometry] = []
     for frame in tree.frames:
         recorded = tree.frame_metadata(frame).get(GEOMETRY_METADATA_KEY)
@@ -103,7 +106,7 @@ def load_geometry(
         mesh_files = mesh_files_of(recorded, package_dirs)
         for shape in recorded.shapes(kind):
             with np.errstate(over="ignore", invalid="ignore"):  # 1e308 m: left out on the page
-                parts = _triangles(shape, recorded, mesh_files, meshes)
+                parts = _triangles(shape, recorded, mesh_files, meshes, budget)
             for vertices, faces, rgba in parts:
                 if len(faces) == 0:  # a primitive of a size that is zero or not finite
                     _warn(recorded, f"{shape.describe()} has no triangles", "geometry")
@@ -120,9 +123,9 @@ Part = tuple[np.ndarray, np.ndarray, "tuple[float, float, float, float] | None"]
 
 
 def _triangles(shape: Shape, recorded: FrameGeometry, mesh_files: MeshFiles,
-               meshes: dict[str, TriangleMesh | None]) -> list[Part]:
+               meshes: dict[str, TriangleMesh | None], budget: TriangleBudget) -> list[Part]:
     """``(vertices (n, 3) m, faces (m, 3), rgba or None)`` of each part of ``shape``, in the
-    shape's coordinates."""
+    shape's coordinates; a mesh past the page's ``budget`` of triangles is left out."""
     if shape.kind != "mesh":
         trimesh = _trimesh()
         if shape.kind == "box":
@@ -136,6 +139,9 @@ def _triangles(shape: Shape, recorded: FrameGeometry, mesh_files: MeshFiles,
         return [(np.asarray(mesh.vertices, dtype=float), np.asarray(mesh.faces, dtype=np.int64),
                  None)]
     assert shape.mesh is not None  # a mesh always names its file
+    if (refused := outside_its_package(shape.mesh)) is not None:
+        _warn(recorded, f"mesh {shape.mesh!r} {refused}")
+        return []
     path = mesh_files.find(shape.mesh)
     if path is None:
         missing = f"not found: {shape.mesh} in {mesh_files.candidates(shape.mesh)}"
@@ -159,6 +165,9 @@ def _triangles(shape: Shape, recorded: FrameGeometry, mesh_files: MeshFiles,
                 meshes[key] = None
     mesh = meshes[key]
     if mesh is None:
+        return []
+    if (problem := budget.problem(mesh.triangle_count)) is not None:
+        _warn(recorded, f"mesh {shape.mesh!r} ({path}): {problem}")
         return []
     scale = np.array(shape.scale)
     return [(part.vertices * scale, part.triangles, part.rgba) for part in mesh.parts]

@@ -1,4 +1,5 @@
-"""The YAML of an ASDF file checked against :mod:`pinframes.limits` before asdf reads it.
+"""The YAML of an ASDF file checked against the reader limits
+(:mod:`pinframes.formats.limits`) before asdf reads it.
 
 asdf builds, walks and validates the whole YAML tree, expanding every alias as it goes:
 a YAML alias bomb of a few hundred bytes, or a node that contains itself, would cost it

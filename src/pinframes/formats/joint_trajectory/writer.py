@@ -31,6 +31,7 @@ from ...tree.urdf_names import urdf_joint_names
 from ...values.numbers import float_array
 from ...values.timeconv import parse_time_axis
 from .._paths import path_argument
+from .._writable import check_joint_names
 from ..atomic import atomic_write
 from ..rosbag import write_trajectory_bag
 from ._files import joint_trajectory_csv
@@ -65,13 +66,19 @@ def write_joint_trajectory(
         The tree a solution was solved in, for a solution that does not carry its joints'
         URDF names (:attr:`JointSolution.urdf_joint_names`, which ``solve_joints`` fills):
         its joints are then named as their URDF names them, when they belong to one robot.
+
+    Joint names follow the tree writers' rules: at least one, no control character or lone
+    surrogate, and in a CSV header no space at either end and no first ``=``, ``+``, ``-``
+    or ``@`` (a spreadsheet formula); an :class:`~pinframes.errors.UnsupportedFeatureError`
+    names the joint and the file.
     """
     file = Path(path_argument(path))
+    suffix = file.suffix.lower()
     try:
         times, positions, names = _samples(trajectory, tree)
+        check_joint_names(names, csv_header=suffix == ".csv")
     except PinframesError as exc:
         raise exc.located(file=file) from None
-    suffix = file.suffix.lower()
     if suffix == ".csv":
         seconds = times if times.dtype.kind == "M" else times.astype(np.int64) / 1e9
         with atomic_write(file, "w") as handle:

@@ -23,10 +23,10 @@ from pathlib import Path
 from types import TracebackType
 from typing import Any, Literal
 
-from ...errors import InvalidTimeError, UnsupportedFeatureError
+from ...errors import InvalidTimeError, PinframesError, UnsupportedFeatureError, WriteError
 from .._paths import path_argument
 from ..atomic import atomic_path, temporary_name
-from ._storage import FOLDER, MCAP, ROS1, SQLITE3
+from ._storage import FOLDER, MCAP, ROS1, SQLITE3, not_a_bag_folder
 
 __all__ = ["BagWriter", "check_stamps", "output_kind", "typestore"]
 
@@ -74,7 +74,8 @@ class BagWriter:
         from rosbags.rosbag2 import StoragePlugin
         from rosbags.rosbag2 import Writer as Ros2Writer
 
-        self._atomic = atomic_path(self.path, folder=self.kind == FOLDER)
+        self._atomic = atomic_path(self.path, folder=self.kind == FOLDER,
+                                   replaceable=not_a_bag_folder)
         temporary: Path = self._atomic.__enter__()
         self._temporary = temporary
         try:
@@ -89,8 +90,9 @@ class BagWriter:
                                           storage_plugin=plugin)
             self._writer.open()
         except BaseException as exc:
-            self._finish(exc)
-            raise
+            failure = self._write_error(exc)
+            self._finish(failure)
+            raise failure from (None if failure is exc else exc)
         return self
 
     def topic(self, name: str, message_type: str, *, latched: bool = False) -> None:
@@ -117,7 +119,22 @@ class BagWriter:
 
     def write_raw(self, topic: str, stamp_ns: int, data: bytes) -> None:
         """Store serialised ``data`` on ``topic`` at the receive time ``stamp_ns``."""
-        self._writer.write(self._connections[topic], stamp_ns, data)
+        try:
+            self._writer.write(self._connections[topic], stamp_ns, data)
+        except Exception as exc:
+            failure = self._write_error(exc)
+            if failure is exc:
+                raise
+            raise failure from exc
+
+    def _write_error(self, error: BaseException) -> BaseException:
+        """``error`` as the :class:`~pinframes.errors.WriteError` naming the bag when the
+        file system, SQLite or rosbags' writer refused to write (a full disk, a name too
+        long); any other error unchanged."""
+        if isinstance(error, PinframesError) or not isinstance(error, _storage_errors()):
+            return error
+        reason = error.strerror if isinstance(error, OSError) and error.strerror else error
+        return WriteError(f"cannot write the {self.kind}: {reason}", file=self.path)
 
     def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
                  traceback: TracebackType | None) -> None:
@@ -146,8 +163,10 @@ class BagWriter:
                 with contextlib.suppress(Exception):
                     writer.abort()
         except BaseException as failure:
-            error = failure
-            raise
+            error = self._write_error(failure)
+            if error is failure:
+                raise
+            raise error from failure
         finally:
             if scratch is not None:
                 shutil.rmtree(scratch, ignore_errors=True)
@@ -184,6 +203,18 @@ def typestore(ros_version: int) -> Any:
     store = get_typestore(Stores.ROS1_NOETIC)
     store.register(get_types_from_msg("geometry_msgs/TransformStamped[] transforms", TF_TYPE))
     return store
+
+
+@cache
+def _storage_errors() -> tuple[type[BaseException], ...]:
+    """What writing a bag raises when its storage refuses: the file system's errors,
+    SQLite's and rosbags' writer errors."""
+    import sqlite3
+
+    from rosbags.rosbag1 import WriterError as Ros1WriterError
+    from rosbags.rosbag2 import WriterError as Ros2WriterError
+
+    return OSError, sqlite3.Error, Ros1WriterError, Ros2WriterError
 
 
 def _latched_qos() -> Any:

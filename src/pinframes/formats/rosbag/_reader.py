@@ -26,7 +26,8 @@ ROSBAG_METADATA_KEY = "rosbag"
 
 
 def read_rosbag(
-    path: str | os.PathLike[str], *, robot_description: str | os.PathLike[str] | None = None,
+    path: str | os.PathLike[str], *,
+    robot_description: str | os.PathLike[str] | RobotDescription | None = None,
     tf_topics: Sequence[str] = ("/tf", "/tf_static"),
     joint_states_topic: str | None = "/joint_states",
     description_topic: str | None = "/robot_description", limits: Limits | None = None,
@@ -38,8 +39,10 @@ def read_rosbag(
     path : path
         A ROS 1 ``.bag``, an MCAP file, a ROS 2 bag folder (with ``metadata.yaml``) or its
         ``.db3`` file; told by content, not by name.
-    robot_description : path or str or None
-        A URDF file or its XML text; None: the last message on ``description_topic``.
+    robot_description : path or str or RobotDescription or None
+        A URDF file or its XML text (a ``*.xacro`` file is expanded, which runs its code),
+        or a robot already read (:func:`pinframes.formats.urdf.parse_urdf`, for a xacro
+        file with its arguments); None: the last message on ``description_topic``.
     tf_topics : sequence of str
         Topics of ``tf2_msgs/TFMessage``; those whose names end in ``_static`` hold static
         transforms (they hold for all time), the others keyframes at ``header.stamp``. Of
@@ -85,7 +88,7 @@ def read_rosbag(
                          description_topic)
 
 
-def _read(bag: OpenBag, robot_description: str | os.PathLike[str] | None,
+def _read(bag: OpenBag, robot_description: str | os.PathLike[str] | RobotDescription | None,
           tf_topics: tuple[str, ...], joint_states_topic: str | None,
           description_topic: str | None) -> FrameTree:
     uses: dict[str, str] = {}
@@ -190,9 +193,11 @@ def _deserialised(bag: OpenBag, topic: str, received: int, data: bytes) -> Any:
                               file=bag.path, field=topic) from None
 
 
-def _robot(bag: OpenBag, given: str | os.PathLike[str] | None,
+def _robot(bag: OpenBag, given: str | os.PathLike[str] | RobotDescription | None,
            recorded: list[tuple[str, int, bytes]]) -> RobotDescription | None:
     """The robot description given, or the last one recorded (None without either)."""
+    if isinstance(given, RobotDescription):
+        return given
     if given is not None:
         return parse_urdf(given)
     if not recorded:

@@ -32,7 +32,7 @@ from ._inflation import InflationBudget, bound_rosbags_chunks
 from ._sqlite_schema import check_stored_values
 
 __all__ = ["BAG_KINDS", "BagTopic", "OpenBag", "bag_files", "bag_kind", "bag_kind_of_head",
-           "rosbags_missing"]
+           "not_a_bag_folder", "rosbags_missing"]
 
 ROS1 = "ROS 1 bag"
 MCAP = "MCAP"
@@ -93,6 +93,26 @@ def bag_files(path: str | os.PathLike[str]) -> list[Path]:
         return [file]
     metadata = _folder_metadata(file)
     return [file / METADATA_FILE] + [file / name for name in _storage_names(file, metadata)]
+
+
+def not_a_bag_folder(folder: Path) -> str | None:
+    """Why the existing folder ``folder`` is not a ROS 2 bag that a writer may replace whole
+    (None when it is one): its ``metadata.yaml`` must be a regular file that parses as
+    rosbag2 metadata, and every other entry a regular file that metadata lists as storage.
+    The reason names the first entry that is not the bag's."""
+    metadata = folder / METADATA_FILE
+    if metadata.is_symlink() or not metadata.is_file():
+        return f"it holds no regular file {METADATA_FILE}"
+    try:
+        storage = set(_storage_names(folder, _folder_metadata(folder)))
+    except PinframesError as exc:
+        return f"its {METADATA_FILE} is not rosbag2 metadata ({exc.message})"
+    for entry in sorted(os.scandir(folder), key=lambda entry: entry.name):
+        if entry.name == METADATA_FILE:
+            continue
+        if entry.name not in storage or not entry.is_file(follow_symlinks=False):
+            return f"{entry.name!r} is not one of the storage files its {METADATA_FILE} lists"
+    return None
 
 
 def rosbags_missing() -> UnsupportedFeatureError:

@@ -5,6 +5,7 @@ Lengths in metres, angles in radians, times in seconds.
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 from typing import Any
 
@@ -13,6 +14,19 @@ import numpy as np
 from ...errors import FileFormatError, PinframesError
 from ...values.timeconv import parse_timestamp
 from .._paths import regular_file_problem
+
+_NUMBER_AS_TEXT = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)[eE][-+]?\d+")
+"""A number with an exponent, which YAML 1.1 reads as text unless it has a dot and the
+exponent a sign (``1e3`` and ``1.0e3`` are text, ``1.0e+3`` a number)."""
+
+
+def _got(value: Any) -> str:
+    """``value`` as an error message shows it, with why YAML read it as text when it looks
+    like a number with an exponent."""
+    if isinstance(value, str) and _NUMBER_AS_TEXT.fullmatch(value.strip()):
+        return (f"the text {value!r} (YAML reads a number with an exponent as text unless "
+                "it has a dot and a signed exponent: write 1.0e+3, not 1e3 or 1.0e3)")
+    return repr(value)
 
 
 class SceneFields:
@@ -74,6 +88,14 @@ class SceneFields:
             folders.append(str(folder))
         return folders
 
+    def flag(self, item: dict, key: str, frame: str | None, field: str) -> bool:
+        """A ``true``/``false`` entry (False when absent)."""
+        value = item.get(key, False)
+        if not isinstance(value, bool):
+            raise FileFormatError(f"expected true or false, got {value!r}", file=self.path,
+                                  frame=frame, field=f"{field}.{key}")
+        return value
+
     def xacro_args(self, item: dict, frame: str | None, field: str) -> dict[str, str] | None:
         """A robot's ``xacro_args``: names to text, numbers or booleans."""
         value = item.get("xacro_args")
@@ -94,7 +116,9 @@ class SceneFields:
         if (not isinstance(values, (list, tuple)) or len(values) != count
                 or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
                            for v in values)):
-            raise FileFormatError(f"expected a list of {count} numbers, got {value!r}",
+            shown = next((_got(v) for v in values if isinstance(v, str)), repr(value)) if (
+                isinstance(values, (list, tuple))) else _got(value)
+            raise FileFormatError(f"expected a list of {count} numbers, got {shown}",
                                   file=self.path, frame=frame, field=field)
         try:
             array = np.array(values, dtype=float)
@@ -116,7 +140,7 @@ class SceneFields:
     def number(self, value: Any, frame: str | None, field: str) -> float:
         """One finite number."""
         if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise FileFormatError(f"expected a number, got {value!r}", file=self.path,
+            raise FileFormatError(f"expected a number, got {_got(value)}", file=self.path,
                                   frame=frame, field=field)
         try:
             number = float(value)

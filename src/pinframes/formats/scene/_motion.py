@@ -154,6 +154,8 @@ class SceneMotion:
                               pattern=weave.get("pattern", "triangle"),
                               dwell=weave.get("dwell"), reference_time=reference)
         except PinframesError as exc:
+            if exc.field == "times" and "step" in weave:  # the times came from the step
+                exc = type(exc)(exc.message, field="step")
             raise self._inside(exc, frame, where) from None
 
     def _reference_time(self, item: dict, frame: str, field: str) -> np.datetime64 | None:

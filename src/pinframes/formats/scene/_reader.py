@@ -9,8 +9,9 @@ The format is described in ``docs/scene-format.md``; in short::
     layers:  [{file: cell.frames.yaml, mount: world}]
     frames:  [{name: table, parent: world, xyz: [1, 0, 0.8], rpy: [0, 0, 0],
                geometry: [{box: {size: [1.2, 0.8, 0.05]}}]}]
-    robots:  [{urdf: robot.urdf, parent: table, prefix: "robot/", trajectory: motion.csv,
-               srdf: robot.srdf, package_dirs: [meshes], xacro_args: {ur_type: ur5e}}]
+    robots:  [{urdf: ur.urdf.xacro, parent: table, prefix: "robot/", trajectory: motion.csv,
+               srdf: robot.srdf, package_dirs: [meshes], xacro: true,
+               xacro_args: {ur_type: ur5e}}]
     tools:   [{name: tcp, parent: robot/flange, xyz: [0, 0, 0.2]}]
 
 Paths inside a scene are relative to the scene file. Lengths in metres, angles in radians.
@@ -47,7 +48,7 @@ _ENTRY_KEYS = {
     "frames": {"name", "parent", "keyframes", "curve", "weave", "reference_time",
                "geometry"} | POSE_KEYS,
     "robots": {"name", "urdf", "parent", "prefix", "trajectory", "srdf", "package_dirs",
-               "xacro_args"} | POSE_KEYS,
+               "xacro_args", "xacro"} | POSE_KEYS,
     "tools": {"name", "parent", "geometry"} | POSE_KEYS,
 }
 
@@ -65,12 +66,18 @@ class _Entry:
 
 @reader_with_limits
 def read_scene(path: str | os.PathLike[str], *, limits: Limits | None = None,
-               package_dirs: Iterable[str | os.PathLike[str]] = ()) -> FrameTree:
+               package_dirs: Iterable[str | os.PathLike[str]] = (),
+               xacro: bool | None = None) -> FrameTree:
     """Read a scene file into a new :class:`FrameTree`.
 
     ``limits`` (:class:`pinframes.Limits`) bounds the scene file and every file it names.
     ``package_dirs`` are searched for every robot's ``$(find PKG)``, ``package://`` and
     ``model://`` names, after the folders its entry names (``package_dirs:``).
+
+    A robot's xacro file (and xacro SRDF) is expanded, which runs the file's code, only when
+    its entry says ``xacro: true`` or ``xacro=True`` is given here (``--xacro``); with
+    ``xacro=False`` no entry is expanded, whatever it says. Xacro content not expanded is a
+    ``FileFormatError`` naming the entry.
 
     Entries are added as soon as the frame they hang from exists, so their order in the
     file does not matter (a tool may name a robot link, a robot a frame of a layer).
@@ -85,7 +92,8 @@ def read_scene(path: str | os.PathLike[str], *, limits: Limits | None = None,
     ReadError
         The scene file (or a file it names) is missing, a folder, unreadable or not text.
     """
-    scene = _Scene(InputFile.of(path), tuple(os.fspath(folder) for folder in package_dirs))
+    scene = _Scene(InputFile.of(path), tuple(os.fspath(folder) for folder in package_dirs),
+                   xacro)
     return scene.build()
 
 
@@ -96,10 +104,12 @@ class _Scene:
     aliases, say): a trajectory, a URDF, a layer (with its key).
     """
 
-    def __init__(self, source: InputFile, package_dirs: tuple[str, ...] = ()) -> None:
+    def __init__(self, source: InputFile, package_dirs: tuple[str, ...] = (),
+                 xacro: bool | None = None) -> None:
         path = source.path
         self.path = path
         self.package_dirs = package_dirs
+        self.xacro = xacro
         self._read: dict[tuple[str, Path, str], Any] = {}
         # trajectory columns no robot took: (name, prefix, file, field), checked at the end
         self._left: list[tuple[str, str, Path, str]] = []
@@ -263,6 +273,8 @@ class _Scene:
         srdf = self.fields.file(item, "srdf", label, field) if "srdf" in item else None
         package_dirs = [*self.fields.folders(item, label, field), *self.package_dirs]
         xacro_args = self.fields.xacro_args(item, label, field)
+        xacro = self.xacro if self.xacro is not None else self.fields.flag(item, "xacro",
+                                                                           label, field)
         trajectory, path = None, urdf
         if "trajectory" in item:
             path = self.fields.file(item, "trajectory", label, field)
@@ -275,9 +287,9 @@ class _Scene:
         def attach(tree: FrameTree) -> None:
             try:
                 robot: RobotDescription = self._once(
-                    "urdf", urdf, (srdf, package_dirs, xacro_args),
+                    "urdf", urdf, (srdf, package_dirs, xacro_args, xacro),
                     lambda: parse_urdf(str(urdf), package_dirs=package_dirs,
-                                       xacro_args=xacro_args, srdf=srdf))
+                                       xacro_args=xacro_args, srdf=srdf, xacro=xacro))
                 mount_robot(tree, robot, parent, pose, prefix)  # FrameTree.attach_urdf
             except PinframesError as exc:
                 if exc.file is None:

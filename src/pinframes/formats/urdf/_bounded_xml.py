@@ -1,4 +1,5 @@
-"""URDF text to an XML element tree, refused as soon as it exceeds :mod:`pinframes.limits`.
+"""URDF text to an XML element tree, refused as soon as it exceeds the reader limits
+(:mod:`pinframes.formats.limits`).
 
 ElementTree parses with expat, which expands entities declared in a document's DTD: a
 400-byte file of nested entity definitions (the "billion laughs") describes gigabytes of

@@ -29,20 +29,27 @@ def read_urdf(path: str | os.PathLike[str], *, strict: bool = False,
               limits: Limits | None = None, joint_state: bool = True,
               package_dirs: Iterable[str | os.PathLike[str]] = (),
               xacro_args: Mapping[str, Any] | None = None,
-              srdf: str | os.PathLike[str] | None = None) -> FrameTree:
+              srdf: str | os.PathLike[str] | None = None,
+              xacro: bool | None = None) -> FrameTree:
     """A robot file as a tree: its root is the robot's root link, named after the robot.
 
-    A xacro file (told by its content, whatever its name) is expanded with the ``xacro``
-    package (``pip install "pinframes[ros]"``): ``xacro_args`` give its ``$(arg NAME)``
-    values, and ``$(find PKG)`` is looked for in ``package_dirs``, then
-    ``ROS_PACKAGE_PATH``, then the file's ancestor folders. ``package_dirs`` are remembered
+    A xacro file is expanded with the ``xacro`` package (``pip install "pinframes[ros]"``)
+    only when asked, since the expansion runs the file's code: ``xacro=True``, or
+    (``xacro=None``, the default) a file whose name ends in ``.xacro``; other xacro content
+    is a ``FileFormatError`` saying how to opt in, ``xacro=False`` never expands. The
+    expansion runs in a child process bounded by ``max_xacro_seconds`` and
+    ``max_xacro_bytes`` (:class:`pinframes.Limits`), without environment variables.
+    ``xacro_args`` give its ``$(arg NAME)`` values, and ``$(find PKG)`` is the package whose
+    ``package.xml`` names it in ``package_dirs`` (crawled), then ``ROS_PACKAGE_PATH`` and
+    ``AMENT_PREFIX_PATH``, then the file's ancestor folders. ``package_dirs`` are remembered
     with the robot: clearance and the 3-D page look for its ``package://`` and ``model://``
     meshes there without being told again. ``srdf``, the robot's SRDF file, names its joint
     groups and group states (``solve_joints(joints="arm", seed="home")``) and the link pairs
-    that :meth:`~pinframes.FrameTree.clearance` leaves out.
+    that :meth:`~pinframes.FrameTree.clearance` leaves out; an SRDF shipped as xacro
+    (``*.srdf.xacro``) is expanded as the robot file is, with the same ``xacro_args``.
 
     ``strict`` refuses a mimic of a joint the file does not have (by default such a joint
-    stays independent, with a :class:`~pinframes.urdf.BrokenMimicWarning`). ``limits``
+    stays independent, with a :class:`~pinframes.BrokenMimicWarning`). ``limits``
     (:class:`pinframes.Limits`; None: the defaults) bounds the XML elements
     (``max_xml_elements``) and their nesting (``max_depth``); a ``<!DOCTYPE>`` is refused.
 
@@ -52,7 +59,7 @@ def read_urdf(path: str | os.PathLike[str], *, strict: bool = False,
     ``joint_state=False`` leaves every joint at its rest value.
     """
     tree = read_robot(path, strict=strict, limits=limits, package_dirs=package_dirs,
-                      xacro_args=xacro_args, srdf=srdf)
+                      xacro_args=xacro_args, srdf=srdf, xacro=xacro)
     beside = _joint_state_file(path)
     if joint_state and beside is not None and beside.is_file():
         times, positions, names = read_joint_trajectory(beside, limits=limits)

@@ -30,10 +30,11 @@ def mount_urdf(
     *, strict: bool = False, limits: Limits | None = None,
     package_dirs: Iterable[str | os.PathLike[str]] = (),
     xacro_args: Mapping[str, Any] | None = None, srdf: str | os.PathLike[str] | None = None,
+    xacro: bool | None = None,
 ) -> list[str]:
     """Parse ``urdf`` (a path or the XML text) and mount it: ``FrameTree.attach_urdf``."""
     robot = parse_urdf(urdf, strict=strict, limits=limits, package_dirs=package_dirs,
-                       xacro_args=xacro_args, srdf=srdf)
+                       xacro_args=xacro_args, srdf=srdf, xacro=xacro)
     return mount_robot(tree, robot, parent, pose, prefix)
 
 

@@ -21,7 +21,7 @@ from ._geometry import link_geometry, named_colours, stray_geometry_origins
 from ._numbers import numbers
 from ._robot_description import JointDescription, RobotDescription
 from ._srdf import looks_like_srdf, read_srdf
-from ._xacro import expand_xacro, is_xacro
+from ._xacro import expand_xacro, is_xacro, wants_expansion
 
 __all__ = ["URDF_JOINT_TYPES", "is_urdf", "parse_urdf"]
 
@@ -41,14 +41,19 @@ def parse_urdf(urdf: str | os.PathLike[str], *, strict: bool = False,
                limits: Limits | None = None,
                package_dirs: Iterable[str | os.PathLike[str]] = (),
                xacro_args: Mapping[str, Any] | None = None,
-               srdf: str | os.PathLike[str] | None = None) -> RobotDescription:
+               srdf: str | os.PathLike[str] | None = None,
+               xacro: bool | None = None) -> RobotDescription:
     """Parse a URDF file path or XML string and check that it describes one tree of links.
 
-    A xacro file (told by :func:`~pinframes.formats.urdf.is_xacro`, whatever its name) is
-    expanded first (:func:`~pinframes.formats.urdf.expand_xacro`, with ``xacro_args`` and
-    ``$(find PKG)`` looked up in ``package_dirs``); ``package_dirs`` are also kept with
+    A xacro file is expanded first (:func:`~pinframes.formats.urdf.expand_xacro`, with
+    ``xacro_args`` and ``$(find PKG)`` looked up in ``package_dirs``) only when the caller
+    asks, since the expansion runs the file's code: ``xacro=True``, or (``xacro=None``) a
+    file whose name ends in ``.xacro``; other xacro content is a ``FileFormatError`` saying
+    how to opt in (``xacro=False`` never expands). ``package_dirs`` are also kept with
     every link's geometry (absolute), for its meshes. ``srdf`` (a file) is read against the
-    robot into :attr:`RobotDescription.semantics`.
+    robot into :attr:`RobotDescription.semantics`; an SRDF shipped as xacro
+    (``*.srdf.xacro``) is expanded as the URDF is, with the same ``xacro`` choice and
+    ``xacro_args``.
 
     Raises :class:`~pinframes.errors.FileFormatError` naming the file (or ``<urdf string>``),
     the link or joint and the field for malformed XML, missing or duplicate names, unknown
@@ -62,13 +67,16 @@ def parse_urdf(urdf: str | os.PathLike[str], *, strict: bool = False,
     text, source = _read_source(urdf)
     folders = tuple(os.path.abspath(os.fspath(folder)) for folder in package_dirs)
     macros_only = False
-    if is_xacro(text):
+    if source == "<urdf string>" and is_xacro(text):
+        raise FileFormatError("xacro text: give the xacro file's path, whose folder its "
+                              "includes are relative to", file=source, field="xacro")
+    srdf_text = None if srdf is None else read_text(srdf)
+    srdf_expanded = srdf is not None and srdf_text is not None and wants_expansion(
+        os.fspath(srdf), srdf_text, xacro)
+    if wants_expansion(source, text, xacro):
         macros_only = "xacro:macro" in text
-        if source == "<urdf string>":
-            raise FileFormatError("xacro text: give the xacro file's path, whose folder its "
-                                  "includes are relative to", file=source, field="xacro")
         text = expand_xacro(source, args=xacro_args, package_dirs=folders)
-    elif xacro_args:
+    elif xacro_args and not srdf_expanded:
         raise FileFormatError("xacro_args were given, but this is no xacro file",
                               file=source, field="xacro_args")
     root = parse_bounded_xml(text, source)
@@ -108,7 +116,9 @@ def parse_urdf(urdf: str | os.PathLike[str], *, strict: bool = False,
                              geometry)
     if srdf is None:
         return robot
-    return replace(robot, semantics=read_srdf(srdf, robot))
+    if srdf_expanded:
+        srdf_text = expand_xacro(srdf, args=xacro_args, package_dirs=folders)
+    return replace(robot, semantics=read_srdf(srdf, robot, text=srdf_text))
 
 
 def _link_elements(root: ET.Element) -> list[tuple[str, ET.Element]]:

@@ -10,14 +10,14 @@ from typing import Any
 
 import numpy as np
 
-from ...errors import UnsupportedFeatureError
+from ...errors import PinframesError, UnsupportedFeatureError
 from ...kinematics import Snapshot
 from ...tree import FrameTree
 from ...values.geometry import GEOMETRY_METADATA_KEY, FrameGeometry
 from ...values.joint import Joint, mimic_drive
 from ...values.rotations import rpy_from_matrix
 from .._snapshot import moving_parts, one_instant
-from .._writable import check_writable_tree, refuse_attached_data
+from .._writable import check_joint_names, check_writable_tree, refuse_attached_data
 from ..atomic import atomic_write
 from ..joint_trajectory import joint_trajectory_csv
 from ..limits import Limits
@@ -33,19 +33,20 @@ def read_robot(path: str | os.PathLike[str], *, strict: bool = False,
                limits: Limits | None = None,
                package_dirs: Iterable[str | os.PathLike[str]] = (),
                xacro_args: Mapping[str, Any] | None = None,
-               srdf: str | os.PathLike[str] | None = None) -> FrameTree:
+               srdf: str | os.PathLike[str] | None = None,
+               xacro: bool | None = None) -> FrameTree:
     """A robot file alone: the tree's root is the robot's root link, named after the robot,
     every joint at its rest value (:func:`pinframes.read_urdf` adds the joint values written
     beside the file).
 
     ``strict`` refuses a mimic of a joint the file does not have (by default such a joint
-    stays independent, with a :class:`~pinframes.urdf.BrokenMimicWarning`). ``limits``
+    stays independent, with a :class:`~pinframes.BrokenMimicWarning`). ``limits``
     (:class:`pinframes.Limits`; None: the defaults) bounds the XML elements
     (``max_xml_elements``) and their nesting (``max_depth``); a ``<!DOCTYPE>`` is refused.
-    ``package_dirs``, ``xacro_args`` and ``srdf`` as for :func:`parse_urdf`.
+    ``package_dirs``, ``xacro_args``, ``srdf`` and ``xacro`` as for :func:`parse_urdf`.
     """
     robot = parse_urdf(path, strict=strict, limits=limits, package_dirs=package_dirs,
-                       xacro_args=xacro_args, srdf=srdf)
+                       xacro_args=xacro_args, srdf=srdf, xacro=xacro)
     tree = FrameTree(root=robot.root_link, name=robot.name)
     mount_robot(tree, robot, None, None, "")
     return tree
@@ -165,6 +166,11 @@ def _write_joint_state(tree: FrameTree, instant: Snapshot, urdf_path: str | os.P
                        ) -> None:
     """The actuated joints' values at the URDF's instant (mimic joints follow the URDF)."""
     names = [name for name, joint in tree.joints.items() if joint.is_actuated]
+    try:  # a CSV header: names that read back unchanged and run nothing in a spreadsheet
+        if names:
+            check_joint_names(names, csv_header=True)
+    except PinframesError as exc:
+        raise exc.located(file=joint_state_path(urdf_path)) from None
     when = instant.time
     time = (np.array([when], "datetime64[ns]") if isinstance(when, np.datetime64)
             else np.array([0.0 if when is None else when / np.timedelta64(1, "s")]))

@@ -31,7 +31,7 @@ from .._description import TreeDescription
 from .._plan import QueryPlan, plan_query, prepare_path
 from ..poses import planned_poses
 from .coal_objects import LARGEST_COORDINATE, CollisionShape, ShapeLoader
-from .mesh_reader import DEFAULT_BOUNDS, MeshBounds
+from .mesh_reader import DEFAULT_BOUNDS, MeshBounds, TriangleBudget
 
 __all__ = ["Clearance", "clearance_times", "evaluate_clearance"]
 
@@ -126,12 +126,14 @@ def evaluate_clearance(
     ``geometry`` holds the recorded geometry of every frame of ``frames_a`` and
     ``frames_b``; ``excluded`` the frame pairs (either order) not to check, and
     ``fixed_together`` those left out because nothing moves between them;
-    ``bounds`` what reading each mesh file may cost.
+    ``bounds`` what reading each mesh file, and all the request's meshes, may cost.
     """
     excluded, fixed_together = list(excluded), list(fixed_together)
     loader = _loader(tree, kind, package_dirs, bounds)
     frames = list(dict.fromkeys([*frames_a, *frames_b]))
-    shapes = [shape for frame in frames for shape in loader.shapes(frame, geometry[frame])]
+    budget = TriangleBudget(bounds.max_triangles)  # the whole request's meshes
+    shapes = [shape for frame in frames
+              for shape in loader.shapes(frame, geometry[frame], budget)]
     skipped = {frozenset(pair) for pair in [*excluded, *fixed_together]}
     pairs = _shape_pairs(shapes, set(frames_a), set(frames_b), skipped)
     if not len(pairs):
@@ -175,10 +177,9 @@ def _loader(tree: TreeDescription, kind: str,
     folders = tuple(os.fspath(folder) for folder in package_dirs)
     key = ("clearance shapes", kind, repr(bounds), os.environ.get("ROS_PACKAGE_PATH", ""),
            *folders)
-    loader = tree.cached(key)
+    loader = tree.memo.get(ShapeLoader, key)
     if loader is None:
-        loader = ShapeLoader(kind, folders, bounds)
-        tree.store(key, loader)
+        loader = tree.memo.keep(ShapeLoader, key, ShapeLoader(kind, folders, bounds))
     return loader
 
 

@@ -27,8 +27,8 @@ from numpy.typing import NDArray
 
 from ...errors import GeometryError
 from ...values.geometry import GEOMETRY_KINDS, FrameGeometry, Shape
-from .mesh_files import HOW_TO_SEARCH, mesh_file_problem, mesh_files_of
-from .mesh_reader import DEFAULT_BOUNDS, MeshBounds, read_mesh
+from .mesh_files import HOW_TO_SEARCH, mesh_file_problem, mesh_files_of, outside_its_package
+from .mesh_reader import DEFAULT_BOUNDS, MeshBounds, TriangleBudget, read_mesh
 from .solid_meshes import SolidMesh, solid_mesh
 
 __all__ = ["LARGEST_COORDINATE", "CollisionShape", "ShapeLoader"]
@@ -104,10 +104,15 @@ class ShapeLoader:
         self.kind = kind
         self.bounds = bounds
         self._package_dirs = tuple(package_dirs)
+        self._files: dict[str, tuple[NDArray[np.float64], NDArray[np.int64]]] = {}
         self._meshes: dict[tuple[str, tuple[float, ...]], _Mesh] = {}
 
-    def shapes(self, frame: str, geometry: FrameGeometry | None) -> list[CollisionShape]:
-        """The coal shapes of ``frame``, whose recorded geometry is ``geometry``."""
+    def shapes(self, frame: str, geometry: FrameGeometry | None,
+               budget: TriangleBudget | None = None) -> list[CollisionShape]:
+        """The coal shapes of ``frame``, whose recorded geometry is ``geometry``; their
+        meshes' triangles are taken from ``budget``, the request's (None: a budget of
+        their own)."""
+        budget = TriangleBudget(self.bounds.max_triangles) if budget is None else budget
         kind = self.kind
         if geometry is None:
             raise GeometryError(
@@ -120,17 +125,17 @@ class ShapeLoader:
         if not geometry.shapes(kind):
             raise GeometryError(f"link {geometry.link!r} has no <{kind}> geometry",
                                 file=geometry.urdf, frame=frame, field=kind)
-        return [self._shape(frame, f"{kind}[{index}]", shape, geometry)
+        return [self._shape(frame, f"{kind}[{index}]", shape, geometry, budget)
                 for index, shape in enumerate(geometry.shapes(kind))]
 
-    def _shape(self, frame: str, field: str, shape: Shape,
-               geometry: FrameGeometry) -> CollisionShape:
+    def _shape(self, frame: str, field: str, shape: Shape, geometry: FrameGeometry,
+               budget: TriangleBudget) -> CollisionShape:
         _check_sizes(frame, field, shape, geometry)
         mesh_path, solid, probes = None, None, np.zeros((1, 3))
         if shape.kind == "mesh":
             assert shape.mesh is not None  # a mesh always names its file
             mesh_path = self._find(frame, field, shape.mesh, geometry)
-            mesh = self._mesh(frame, field, mesh_path, shape.scale)
+            mesh = self._mesh(frame, field, mesh_path, shape.scale, budget)
             made, solid, probes = mesh.model, mesh.solid, mesh.probes
         elif shape.kind == "box":
             made = coal.Box(*shape.dimensions)
@@ -148,6 +153,9 @@ class ShapeLoader:
                               centre, radius, mesh_path, solid, probes)
 
     def _find(self, frame: str, field: str, name: str, geometry: FrameGeometry) -> str:
+        if (refused := outside_its_package(name)) is not None:
+            raise GeometryError(f"link {geometry.link!r}: mesh {name!r} {refused}",
+                                file=geometry.urdf, frame=frame, field=f"{field}.mesh")
         mesh_files = mesh_files_of(geometry, self._package_dirs)
         found = mesh_files.find(name)
         if found is None:
@@ -157,18 +165,15 @@ class ShapeLoader:
                                 frame=frame, field=f"{field}.mesh")
         return str(found)
 
-    def _mesh(self, frame: str, field: str, path: str, scale: tuple[float, ...]) -> _Mesh:
+    def _mesh(self, frame: str, field: str, path: str, scale: tuple[float, ...],
+              budget: TriangleBudget) -> _Mesh:
+        where = {"file": path, "frame": frame, "field": f"{field}.mesh"}
+        vertices, triangles = self._file(path, where)
+        if (problem := budget.problem(triangles.shape[0])) is not None:
+            raise GeometryError(f"mesh: {problem}", **where)
         key = (path, scale)
         mesh = self._meshes.get(key)
         if mesh is None:
-            where = {"file": path, "frame": frame, "field": f"{field}.mesh"}
-            if (problem := mesh_file_problem(Path(path), self.bounds.max_bytes)) is not None:
-                raise GeometryError(f"mesh {problem}", **where)
-            try:
-                vertices, triangles = read_mesh(
-                    Path(path), max_triangles=self.bounds.max_triangles).merged()
-            except GeometryError as exc:
-                raise GeometryError(f"mesh {exc.message}", **where) from None
             with np.errstate(over="ignore", invalid="ignore"):
                 vertices = vertices * np.array(scale)
             if not np.all(np.abs(vertices) <= LARGEST_COORDINATE):
@@ -191,6 +196,20 @@ class ShapeLoader:
             mesh = _Mesh(model, *solid_mesh(vertices, triangles))
             self._meshes[key] = mesh
         return mesh
+
+    def _file(self, path: str, where: dict[str, str]
+              ) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+        """The vertices (metres, unscaled) and triangles of the mesh file ``path``, read
+        once whatever the scales it is used at."""
+        if path not in self._files:
+            if (problem := mesh_file_problem(Path(path), self.bounds.max_bytes)) is not None:
+                raise GeometryError(f"mesh {problem}", **where)
+            try:
+                self._files[path] = read_mesh(
+                    Path(path), max_triangles=self.bounds.max_triangles).merged()
+            except GeometryError as exc:
+                raise GeometryError(f"mesh {exc.message}", **where) from None
+        return self._files[path]
 
 
 @dataclass(frozen=True)

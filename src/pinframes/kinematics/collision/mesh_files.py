@@ -11,10 +11,15 @@ against, in this order,
    and for ``model://`` those in ``GAZEBO_MODEL_PATH``,
 3. the URDF's own folder and its ancestors.
 
-A search folder may be a package itself (its name is ``PKG``) or hold packages as its
-sub-folders (``folder/PKG``), as ``ROS_PACKAGE_PATH`` entries do. The clearance query and
-the 3-D page find their meshes here, and xacro's ``$(find PKG)`` its packages
-(:func:`find_package`).
+A ``package://`` name is found as ROS finds the package: by the ``<name>`` in its
+``package.xml``, crawling the search folders (and ``AMENT_PREFIX_PATH``'s share folders),
+then among the URDF's ancestors, the folder's name as a fallback
+(:mod:`~pinframes.kinematics.collision.ros_packages`). A ``model://`` name is a model folder
+of that name in a search folder or beside an ancestor. The clearance query and the 3-D page
+find their meshes here, and xacro's ``$(find PKG)`` its packages (:func:`find_package`). A
+``package://`` or ``model://`` name that leaves its folder (``package://PKG/../../x.stl``)
+is refused (:func:`outside_its_package`): a downloaded URDF must not reach a user's other
+files through it (an absolute path names what it names).
 
 :func:`mesh_file_problem` tells why a found mesh file must not be opened: mesh readers inflate
 compressed files and archives without bound (trimesh opens ``.zip``, ``.tar.gz``, ``.bz2`` by
@@ -26,17 +31,16 @@ live in a higher layer) are read.
 from __future__ import annotations
 
 import os
+import posixpath
 import stat
 from collections.abc import Iterable
 from pathlib import Path
 
 from ...values.geometry import FrameGeometry
+from .ros_packages import PACKAGE_PATH_VARIABLE, package_folders, package_search_dirs
 
 __all__ = ["MODEL_PATH_VARIABLE", "PACKAGE_PATH_VARIABLE", "MeshFiles", "find_package",
-           "mesh_file_problem", "mesh_files_of", "package_search_dirs"]
-
-PACKAGE_PATH_VARIABLE = "ROS_PACKAGE_PATH"
-"""Environment variable with extra search folders, as ROS users set it."""
+           "mesh_file_problem", "mesh_files_of", "outside_its_package", "package_search_dirs"]
 
 MODEL_PATH_VARIABLE = "GAZEBO_MODEL_PATH"
 """Environment variable with folders of Gazebo models, searched for ``model://`` names."""
@@ -88,12 +92,6 @@ def _open_without_waiting(file: str, flags: int) -> int:
     return os.open(file, flags | getattr(os, "O_NONBLOCK", 0))
 
 
-def package_search_dirs(package_dirs: Iterable[str | os.PathLike[str]] = ()) -> list[Path]:
-    """The caller's folders, then those of ``ROS_PACKAGE_PATH`` (empty entries ignored)."""
-    from_environment = os.environ.get(PACKAGE_PATH_VARIABLE, "").split(os.pathsep)
-    return [Path(folder) for folder in [*package_dirs, *from_environment] if str(folder)]
-
-
 def _model_dirs() -> list[Path]:
     """The folders of ``GAZEBO_MODEL_PATH``."""
     return [Path(folder) for folder in os.environ.get(MODEL_PATH_VARIABLE, "").split(os.pathsep)
@@ -101,19 +99,33 @@ def _model_dirs() -> list[Path]:
 
 
 def find_package(name: str, search_dirs: list[Path], start: Path | None) -> Path | None:
-    """The folder of package ``name`` (what ``$(find name)`` gives): the first of
-    ``search_dirs`` named ``name`` or holding a folder ``name``, else the first such among
-    ``start``'s ancestors (``start``: the file that asks); None if there is none."""
-    ancestors = [] if start is None else list(start.resolve().parents)
-    for folder in _package_candidates(name, [*search_dirs, *ancestors]):
-        if folder.is_dir():
-            return folder
+    """The folder of package ``name`` (what ``$(find name)`` gives), found in
+    ``search_dirs`` and among ``start``'s ancestors (``start``: the file that asks) as
+    :func:`~pinframes.kinematics.collision.ros_packages.package_folders` says; None if
+    there is none."""
+    places = package_folders(search_dirs, start).get(name)
+    return None if not places else places[0]
+
+
+def outside_its_package(fname: str) -> str | None:
+    """Why the ``package://`` or ``model://`` name ``fname`` is refused (it leaves its
+    package or model folder, or names none), or None for any other name."""
+    scheme = next((scheme for scheme in _SCHEMES if fname.startswith(scheme)), None)
+    if scheme is None:
+        return None
+    package, _, inside = fname[len(scheme):].partition("/")
+    if package in ("", ".", "..") or "\\" in package:
+        return f"names no {scheme[:-3]} folder ({package!r} is no {scheme[:-3]} name)"
+    if "\\" in inside or posixpath.isabs(inside) or posixpath.normpath(
+            inside or ".").split("/")[0] == "..":
+        return (f"leaves its {scheme[:-3]} {package!r} (a '..' past its folder): refused; "
+                "name a file inside it, or give an absolute path")
     return None
 
 
-def _package_candidates(name: str, folders: list[Path]) -> list[Path]:
-    """Where package (or model) ``name`` may be: each folder itself when it bears the name,
-    then its sub-folder of that name."""
+def _model_candidates(name: str, folders: list[Path]) -> list[Path]:
+    """Where model ``name`` may be: each folder itself when it bears the name, then its
+    sub-folder of that name."""
     found = []
     for folder in folders:
         if folder.name == name:
@@ -135,8 +147,16 @@ class MeshFiles:
 
     def __init__(self, urdf_path: Path | None, search_dirs: list[Path]) -> None:
         ancestors = [] if urdf_path is None else list(urdf_path.resolve().parents)
+        self._urdf_path = urdf_path
         self._search_dirs = list(search_dirs)
         self._urdf_dirs = ancestors
+        self._packages: dict[str, list[Path]] | None = None
+
+    def _package(self, name: str) -> list[Path]:
+        """The folders that may be package ``name`` (the packages are looked for once)."""
+        if self._packages is None:
+            self._packages = package_folders(self._search_dirs, self._urdf_path)
+        return self._packages.get(name, [])
 
     def find(self, fname: str) -> Path | None:
         """The existing file that ``fname`` names, or None."""
@@ -149,6 +169,12 @@ class MeshFiles:
         """Where ``fname`` was looked for, for a message: ``looked in A, B, C`` (the first
         four places), or that there was no folder to look in."""
         places = self.candidates(fname)
+        folders = [*self._search_dirs, *self._urdf_dirs]
+        if fname.startswith("package://") and not places and folders:
+            return (f"no package {fname[len('package://'):].partition('/')[0]!r} (no "
+                    "package.xml of that name, nor a folder of that name in a search "
+                    "folder) in " + ", ".join(map(str, folders[:4]))
+                    + (" ..." if len(folders) > 4 else ""))
         if not places:
             return ("no folder to look in: the robot description has no file of its own (a "
                     "URDF string, or one read from a bag)")
@@ -158,10 +184,13 @@ class MeshFiles:
         """Every path where ``fname`` is looked for, in order."""
         scheme = next((scheme for scheme in _SCHEMES if fname.startswith(scheme)), None)
         if scheme is not None:
+            if outside_its_package(fname) is not None:
+                return []
             package, _, inside = fname[len(scheme):].partition("/")
-            models = _model_dirs() if scheme == "model://" else []
-            folders = [*self._search_dirs, *models, *self._urdf_dirs]
-            return [folder / inside for folder in _package_candidates(package, folders)]
+            if scheme == "package://":
+                return [folder / inside for folder in self._package(package)]
+            folders = [*self._search_dirs, *_model_dirs(), *self._urdf_dirs]
+            return [folder / inside for folder in _model_candidates(package, folders)]
         if fname.startswith("file://"):
             return [Path(fname[len("file://"):])]
         if os.path.isabs(fname):

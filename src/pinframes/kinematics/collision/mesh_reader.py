@@ -27,7 +27,6 @@ from __future__ import annotations
 
 import io
 import re
-from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -37,13 +36,29 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ...errors import GeometryError
+from .mesh_counts import polygon_triangles
 
-__all__ = ["ASSIMP_SUFFIXES", "DEFAULT_BOUNDS", "MAX_NODE_DEPTH", "MAX_TRIANGLES", "MeshBounds",
-           "MeshPart", "TriangleMesh", "read_mesh"]
+__all__ = [
+    "ASSIMP_SUFFIXES",
+    "DEFAULT_BOUNDS",
+    "MAX_NODE_DEPTH",
+    "MAX_TRIANGLES",
+    "NODE_INSTANCES_PER_TRIANGLE",
+    "MeshBounds",
+    "MeshPart",
+    "TriangleBudget",
+    "TriangleMesh",
+    "read_mesh",
+]
 
 MAX_TRIANGLES = 1_000_000
 """Default bound on the triangles of one mesh file after instancing (the largest of the 173
 mesh files of ROS-Industrial's kuka_experimental has 70,010)."""
+
+NODE_INSTANCES_PER_TRIANGLE = 4
+"""COLLADA node instances (of nodes that hold triangles) allowed per triangle of
+``max_triangles``: the nodes of a tree of instances are fewer than twice its leaves, and a
+few nodes above place the whole."""
 
 MAX_NODE_DEPTH = 256
 """COLLADA nodes nested deeper than this (through ``<node>`` and ``<instance_node>``) are
@@ -70,6 +85,26 @@ class MeshBounds:
 
 DEFAULT_BOUNDS = MeshBounds()
 """1,000,000 triangles, files of any size."""
+
+
+class TriangleBudget:
+    """The triangles one request (a clearance, a 3-D page) may build from mesh files: each
+    mesh counted once per shape that uses it, since each use is built apart (scaled and
+    placed for its link), against ``max_triangles`` for the whole request."""
+
+    def __init__(self, max_triangles: int = MAX_TRIANGLES) -> None:
+        self.max_triangles = max_triangles
+        self.spent = 0
+
+    def problem(self, triangles: int) -> str | None:
+        """Take ``triangles`` more from the budget, or say why not (then nothing is taken)."""
+        if self.spent + triangles > self.max_triangles:
+            return (f"its {triangles:,} triangles would bring the meshes of this request to "
+                    f"{self.spent + triangles:,} (each use by a link counts), over the limit "
+                    f"max_triangles={self.max_triangles:,}; raise it for trusted files "
+                    "(limits=pinframes.Limits(max_triangles=...) or --max-triangles)")
+        self.spent += triangles
+        return None
 
 
 @dataclass(frozen=True)
@@ -138,7 +173,12 @@ def _too_many(found: str, max_triangles: int, path: Path) -> GeometryError:
 
 
 def _read_with_assimp(path: Path, max_triangles: int) -> TriangleMesh:
-    """An STL, OBJ, PLY or OFF file through coal's loader (assimp), as Pinocchio reads it."""
+    """An STL, OBJ, PLY or OFF file through coal's loader (assimp), as Pinocchio reads it,
+    once its triangles are counted from its bytes (:mod:`.mesh_counts`)."""
+    counted = polygon_triangles(path)
+    if counted > max_triangles:
+        raise _too_many(f"holds {counted:,} triangles (counted before loading)",
+                        max_triangles, path)
     try:
         model = coal.MeshLoader().load(str(path), np.ones(3))
     except (ValueError, RuntimeError) as exc:
@@ -185,18 +225,41 @@ def _read_collada(data: bytes, max_triangles: int, path: Path) -> TriangleMesh:
     scene = scene_file.scene
     if scene is None:
         raise GeometryError("cannot be read: COLLADA without a <scene>", file=str(path))
-    counted = _count_triangles(scene.nodes, {}, (), path)
-    if counted > max_triangles:
-        raise _too_many(f"describes {counted:,} triangles after instancing", max_triangles,
+    counted: dict[int, tuple[int, int]] = {}
+    triangles, instances = _count(scene.nodes, counted, (), path)
+    if triangles > max_triangles:
+        raise _too_many(f"describes {triangles:,} triangles after instancing", max_triangles,
                         path)
-    unit = float(scene_file.assetInfo.unitmeter or 1.0)
-    if not np.isfinite(unit) or unit <= 0:
-        raise GeometryError(f"cannot be read: <unit meter> must be a positive number, got "
-                            f"{unit!r}",
-                            file=str(path))
-    parts = [_placed_part(placement, primitive, rgba, unit, path)
-             for placement, primitive, rgba in _primitives(scene.nodes, np.eye(4))]
+    if instances > NODE_INSTANCES_PER_TRIANGLE * max_triangles:
+        raise _too_many(f"describes {instances:,} node instances after instancing (more "
+                        f"than {NODE_INSTANCES_PER_TRIANGLE} per triangle allowed)",
+                        max_triangles, path)
+    unit = _unit(scene_file, path)
+    found: dict[tuple[int, Any], tuple[Any, list[FloatArray]]] = {}
+    for primitive, rgba, placements in _placed_primitives(scene.nodes, counted):
+        found.setdefault((id(primitive), rgba), (primitive, []))[1].append(placements)
+    parts = [_placed_parts(np.concatenate(stacks), primitive, rgba, unit, path)
+             for (_, rgba), (primitive, stacks) in found.items()]
     return TriangleMesh(tuple(part for part in parts if part.triangles.shape[0]))
+
+
+def _unit(scene_file: Any, path: Path) -> float:
+    """The document's ``<unit meter>``: 1 when absent, a positive finite number else."""
+    asset = getattr(scene_file, "xmlnode", None)
+    written = None
+    if asset is not None:
+        unit = asset.find(".//{*}asset/{*}unit")
+        written = None if unit is None else unit.get("meter")
+    if written is None:
+        return 1.0
+    try:
+        value = float(written)
+    except ValueError:
+        value = float("nan")
+    if not np.isfinite(value) or value <= 0:
+        raise GeometryError(f"cannot be read: <unit meter> must be a positive number of "
+                            f"metres, got {written!r}", file=str(path))
+    return value
 
 
 def _triangles_in(primitive: Any) -> int:
@@ -209,11 +272,12 @@ def _triangles_in(primitive: Any) -> int:
     return 0
 
 
-def _count_triangles(nodes: Any, counted: dict[int, int], path_ids: tuple[int, ...],
-                     path: Path) -> int:
-    """Triangles under ``nodes`` with every instance counted, each node's own count
-    computed once (``counted``); a node that instances itself is an error."""
-    total = 0
+def _count(nodes: Any, counted: dict[int, tuple[int, int]], path_ids: tuple[int, ...],
+           path: Path) -> tuple[int, int]:
+    """Triangles under ``nodes`` with every instance counted, and the instances of nodes
+    that hold triangles (those the placement walk visits); each node's own counts computed
+    once (``counted``); a node that instances itself is an error."""
+    triangles = instances = 0
     for node in nodes:
         target = getattr(node, "node", node)  # an <instance_node> counts as its node
         key = id(target)
@@ -226,29 +290,54 @@ def _count_triangles(nodes: Any, counted: dict[int, int], path_ids: tuple[int, .
         if key not in counted:
             own = sum(_triangles_in(primitive) for primitive in
                       getattr(getattr(target, "geometry", None), "primitives", ()))
-            counted[key] = own + _count_triangles(getattr(target, "children", ()), counted,
-                                                  (*path_ids, key), path)
-        total += counted[key]
-    return total
+            below, visits = _count(getattr(target, "children", ()), counted,
+                                   (*path_ids, key), path)
+            counted[key] = own + below, (1 + visits) if own + below else 0
+        triangles += counted[key][0]
+        instances += counted[key][1]
+    return triangles, instances
 
 
-def _primitives(nodes: Any, placement: FloatArray
-                ) -> Iterator[tuple[FloatArray, Any, tuple[float, float, float, float] | None]]:
-    """``(placement in the file, triangle set, rgba)`` of every primitive under ``nodes``."""
-    for node in nodes:
+def _placed_primitives(nodes: Any, counted: dict[int, tuple[int, int]]
+                       ) -> list[tuple[Any, Any, FloatArray]]:
+    """``(triangle primitive, rgba, its placements (k, 4, 4) in the file)`` of every
+    primitive under ``nodes``. Each node that holds triangles is visited once, parents
+    first, with the stack of all its instances' placements, which numpy composes with its
+    matrix and hands to its children; nodes without triangles are left out."""
+    order: list[Any] = []
+    seen: set[int] = set()
+
+    def visit(node: Any) -> None:  # depth-first, children before their parents
         target = getattr(node, "node", node)
+        if id(target) in seen or not counted.get(id(target), (0, 0))[0]:
+            return
+        seen.add(id(target))
+        for child in getattr(target, "children", ()):
+            visit(child)
+        order.append(target)
+
+    for node in nodes:
+        visit(node)
+    incoming: dict[int, list[FloatArray]] = {}
+    for node in nodes:
+        incoming.setdefault(id(getattr(node, "node", node)), []).append(np.eye(4)[None])
+    placed = []
+    for target in reversed(order):  # every parent before its children
+        stack = np.concatenate(incoming.pop(id(target)))
         matrix = getattr(target, "matrix", None)
-        here = placement if matrix is None else placement @ np.asarray(matrix, dtype=float)
+        if matrix is not None:
+            stack = np.einsum("kij,jl->kil", stack, np.asarray(matrix, dtype=float))
         geometry = getattr(target, "geometry", None)
         if geometry is not None:
             colours = {material.symbol: _diffuse(material.target)
                        for material in getattr(target, "materials", ())}
-            for primitive in geometry.primitives:
-                if _triangles_in(primitive):
-                    triangles = (primitive.triangleset() if hasattr(primitive, "vcounts")
-                                 else primitive)
-                    yield here, triangles, colours.get(primitive.material)
-        yield from _primitives(getattr(target, "children", ()), here)
+            placed += [(primitive, colours.get(primitive.material), stack)
+                       for primitive in geometry.primitives if _triangles_in(primitive)]
+        for child in getattr(target, "children", ()):
+            key = id(getattr(child, "node", child))
+            if counted.get(key, (0, 0))[0]:
+                incoming.setdefault(key, []).append(stack)
+    return placed
 
 
 def _diffuse(material: Any) -> tuple[float, float, float, float] | None:
@@ -262,16 +351,23 @@ def _diffuse(material: Any) -> tuple[float, float, float, float] | None:
     return None
 
 
-def _placed_part(placement: FloatArray, triangle_set: Any,
-                 rgba: tuple[float, float, float, float] | None, unit: float,
-                 path: Path) -> MeshPart:
-    """A triangle set's vertices placed in the file's coordinates and scaled to metres."""
+def _placed_parts(placements: FloatArray, primitive: Any,
+                  rgba: tuple[float, float, float, float] | None, unit: float,
+                  path: Path) -> MeshPart:
+    """A primitive's triangles at each of its ``placements`` ``(k, 4, 4)`` in the file's
+    coordinates, scaled to metres, as one part (its vertices computed once, placed with
+    numpy)."""
+    triangle_set = primitive.triangleset() if hasattr(primitive, "vcounts") else primitive
     vertices = np.asarray(triangle_set.vertex, dtype=float).reshape(-1, 3)
     triangles = np.asarray(triangle_set.vertex_index, dtype=np.int64).reshape(-1, 3)
     if triangles.size and (triangles.min() < 0 or triangles.max() >= vertices.shape[0]):
         raise GeometryError("cannot be read: COLLADA triangle indices outside the vertices",
                             file=str(path))
     used, triangles = np.unique(triangles, return_inverse=True)  # unused vertices left out
-    with np.errstate(over="ignore", invalid="ignore"):
-        placed = (vertices[used] @ placement[:3, :3].T + placement[:3, 3]) * unit
-    return MeshPart(placed, triangles.reshape(-1, 3).astype(np.int64), rgba)
+    triangles = triangles.reshape(-1, 3).astype(np.int64)
+    count = placements.shape[0]
+    with np.errstate(over="ignore", invalid="ignore"):  # one product for every placement
+        turned = (placements[:, :3, :3].reshape(-1, 3) @ vertices[used].T).reshape(count, 3, -1)
+        placed = (turned.transpose(0, 2, 1) + placements[:, None, :3, 3]) * unit
+    offsets = np.arange(count, dtype=np.int64)[:, None, None] * used.shape[0]
+    return MeshPart(placed.reshape(-1, 3), (triangles[None] + offsets).reshape(-1, 3), rgba)

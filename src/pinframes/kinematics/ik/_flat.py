@@ -33,7 +33,8 @@ import numpy as np
 import pinocchio as pin
 from numpy.typing import NDArray
 
-from ...errors import ArgumentTypeError, InvalidDataError, JointError
+from ...errors import JointError
+from ...values.numbers import unit_direction
 from .._description import TreeDescription
 from .._model import CompiledModel
 from ._bounded_step import LeastSquares
@@ -300,13 +301,4 @@ def _unit_vector(up: Any, frame: str) -> FloatArray:
     """``up`` as a unit 3-vector (None: +z)."""
     if up is None:
         return np.array([0.0, 0.0, 1.0])
-    try:
-        vector = np.asarray(up, dtype=float)
-    except (TypeError, ValueError):
-        raise ArgumentTypeError(f"expected 3 numbers, got {up!r}", frame=frame,
-                                field="up") from None
-    length = float(np.linalg.norm(vector)) if vector.shape == (3,) else math.nan
-    if not (0.0 < length < math.inf):
-        raise InvalidDataError(f"expected a finite, non-zero 3-vector, got {up!r}", frame=frame,
-                               field="up")
-    return vector / length
+    return unit_direction(up, "up", frame=frame)

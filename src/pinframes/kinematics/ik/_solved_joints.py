@@ -288,10 +288,10 @@ def solved_joints(path: PreparedPath, joints: Mapping[str, Joint],
     """
     key = ("solve_joints: " + ("every joint" if names is None else "named: " + "\0".join(names))
            + " added: " + "\0".join(added))
-    cached = path.plans.get(key)
+    cached = path.plans.get(SolvedJoints, key)
     if cached is None:
-        cached = path.plans[key] = _solved_joints(path, joints, drives, names, added)
-    assert isinstance(cached, SolvedJoints)
+        cached = path.plans.keep(SolvedJoints, key,
+                                 _solved_joints(path, joints, drives, names, added))
     return cached
 
 

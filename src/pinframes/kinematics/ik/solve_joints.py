@@ -13,23 +13,18 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from ...errors import (
-    ArgumentTypeError,
-    InvalidDataError,
-    JointError,
-    TargetNotReachedError,
-    joint_not_found,
-)
+from ...errors import ArgumentTypeError, InvalidDataError, JointError, TargetNotReachedError
 from ...values.joint import Joint
 from ...values.pose import Pose
 from ...values.timeline import TimedSource
 from .._description import TreeDescription
+from .._joint_argument import named_joints
 from .._plan import plan_query, prepare_path
 from ._batch_check import flat_errors
 from ._between_samples import DEFAULT_PATH_TOLERANCE, densely_tracked
@@ -74,9 +69,9 @@ def evaluate_solve_joints(
                                 "too", frame=frame, field="up")
     tolerances = (_tolerance(position_tolerance, "position_tolerance", frame),
                   _tolerance(orientation_tolerance, "orientation_tolerance", frame))
-    names = None if joints is None else _joint_names(joints, tree.joints_by_name, frame)
-    added = () if add_joints is None else _joint_names(add_joints, tree.joints_by_name, frame,
-                                                       "add_joints")
+    names = None if joints is None else _to_solve(joints, tree.joints_by_name, frame, "joints")
+    added = () if add_joints is None else _to_solve(add_joints, tree.joints_by_name, frame,
+                                                    "add_joints")
     # a time-dependent target's times are the solve's, beside those of what moves
     target_times = None if target_pose is None else target_pose.times
     extra = () if target_pose is None or target_times is None else (
@@ -219,22 +214,11 @@ def _tolerance(value: Any, field: str, frame: str) -> float:
     return number
 
 
-def _joint_names(requested: object, joints: Mapping[str, Joint], frame: str,
-                 field: str = "joints") -> list[str]:
-    """``requested`` (the ``joints=`` or ``add_joints=`` argument) as a list of distinct
-    names of actuated joints, else an error naming ``frame`` and the ``field``."""
-    if isinstance(requested, str) or not isinstance(requested, Sequence):
-        raise ArgumentTypeError(f"expected a list of joint names, got {requested!r}",
-                                frame=frame, field=field)
-    if not requested:
+def _to_solve(requested: object, joints: Mapping[str, Joint], frame: str,
+              field: str) -> list[str]:
+    """``requested`` (the ``joints=`` or ``add_joints=`` argument) as :func:`named_joints`
+    checks it, and not empty."""
+    names = named_joints(requested, joints, frame, field)
+    if not names:
         raise JointError("no joints to solve for", frame=frame, field=field)
-    for name in requested:
-        if not isinstance(name, str) or name not in joints:
-            raise joint_not_found(name, joints, frame=frame, field=field)
-        mimic = joints[name].mimic
-        if mimic is not None:
-            raise JointError(f"joint {name!r} mimics {mimic.joint!r} and follows it; solve "
-                             "for that joint", frame=frame, field=field)
-    if len(set(requested)) != len(requested):
-        raise JointError("joint names repeat", frame=frame, field=field)
-    return list(requested)
+    return names

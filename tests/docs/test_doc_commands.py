@@ -1,9 +1,10 @@
-"""The shell commands of README.md and docs/ run as written.
+"""The shell commands of README.md and of every docs/*.md page run as written.
 
-Every ``pinframes`` line of a ``bash`` block runs, in order, in a scratch folder that sees the
-repository's ``models/`` (so the paths are the README's), with ``pinframes`` being this
-checkout's command line. The other lines install pinframes or run its development tools; they
-are listed below, and CI (``.ci/run``) runs the install and test commands itself.
+Every ``pinframes`` line of a ``bash`` block runs, page by page and in order, in a scratch
+folder that sees the repository's ``models/`` and ``tests/data/`` (so the paths are the
+pages'), with ``pinframes`` being this checkout's command line. The other lines install
+pinframes or run its development tools; they are listed below, and CI (``.ci/run``) runs
+the install and test commands itself.
 """
 
 import os
@@ -49,6 +50,8 @@ def test_every_documented_command_is_run_here_or_by_ci():
 @pytest.mark.slow
 def test_documented_pinframes_commands_run_as_written(tmp_path):
     (tmp_path / "models").symlink_to(ROOT / "models")
+    (tmp_path / "tests").mkdir()
+    (tmp_path / "tests" / "data").symlink_to(ROOT / "tests" / "data")
     bin_folder = tmp_path / "bin"
     bin_folder.mkdir()
     shim = bin_folder / "pinframes"
@@ -58,7 +61,7 @@ def test_documented_pinframes_commands_run_as_written(tmp_path):
     env["PATH"] = f"{bin_folder}{os.pathsep}{env['PATH']}"
     env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(ROOT / "src"),
                                                       env.get("PYTHONPATH")]))
-    readme = (ROOT / "README.md").read_text()
+    command_line = (ROOT / "docs" / "command-line.md").read_text()
     for path in DOCUMENTS:
         for line in shell_commands(path):
             if not line.startswith("pinframes ") or line.startswith(NEEDS_DATA):
@@ -69,6 +72,6 @@ def test_documented_pinframes_commands_run_as_written(tmp_path):
             for sign_of_failure in ("error:", "Traceback"):
                 assert sign_of_failure not in result.stderr, f"{path.name}: {line}\n{result.stderr}"
             if line.startswith("pinframes demo"):
-                # the summary the README prints is the one the demo prints
-                assert result.stdout in readme, result.stdout
+                # the summary docs/command-line.md shows is the one the demo prints
+                assert result.stdout in command_line, result.stdout
     assert (tmp_path / "frames.png").read_bytes()[:4] == b"\x89PNG"
