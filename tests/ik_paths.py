@@ -4,6 +4,7 @@ pinframes' own kinematics."""
 
 from __future__ import annotations
 
+import textwrap
 from dataclasses import dataclass
 from importlib import metadata
 from pathlib import Path
@@ -142,3 +143,65 @@ def serial_urdf(name: str, joints: list[tuple[str, str, str, str, float, float]]
 
 POSITIONER = serial_urdf("positioner", [("turn", "revolute", "faceplate", "0 0 0.4", -3.0, 3.0)])
 """A one-axis positioner: its faceplate 0.4 m above its base, turning about z."""
+
+
+TILT_TURN = serial_urdf("positioner", [
+    ("tilt_x", "revolute", "cradle", "0 0 0.3", -2.0, 2.0),
+    ("turn", "revolute", "faceplate", "0 0 0", -6.0, 6.0)])
+"""A two-axis positioner: tilt about x 0.3 m above its base, then turn about z."""
+
+GIRTH_RADIUS = 0.1  # m, the pipe of girth_seam
+GIRTH_HEIGHT = 0.05  # m, the seam's height on the faceplate
+
+
+def girth_seam(count: int) -> tuple[np.ndarray, np.ndarray]:
+    """Half a turn along the pipe's girth on the faceplate: origins (T, 3) and axes (T, 3, 3),
+    x along the travel, z out of the pipe (the weld's face)."""
+    around = np.linspace(0.0, np.pi, count)
+    zeros = np.zeros(count)
+    origins = np.stack([GIRTH_RADIUS * np.cos(around), GIRTH_RADIUS * np.sin(around),
+                        zeros + GIRTH_HEIGHT], 1)
+    outward = np.stack([np.cos(around), np.sin(around), zeros], 1)
+    travel = np.stack([-np.sin(around), np.cos(around), zeros], 1)
+    return origins, np.stack([travel, np.cross(outward, travel), outward], axis=2)
+
+
+def faceplates(urdf: Path, base: pin.SE3, positioner: np.ndarray) -> list[pin.SE3]:
+    """The frame ``faceplate`` of the positioner ``urdf`` mounted at ``base``, per row of
+    its joint values ``positioner``, by Pinocchio."""
+    model = pin.buildModelFromUrdf(str(urdf))
+    data = model.createData()
+    frame = model.getFrameId("faceplate")
+    placements = []
+    for q in positioner:
+        pin.framesForwardKinematics(model, data, q)
+        placements.append(base * data.oMf[frame])
+    return placements
+
+
+def pipe_scene(positioner: Path, trajectories: tuple[str, str] | None = None) -> str:
+    """A scene: the UR5 (prefix ur/) and the positioner ``positioner`` (prefix pos/, its
+    base at x 0.55 m) with a seam on its faceplate whose face turns a quarter turn about the
+    faceplate's y over 1 s, the torch target 0.1 m above it; each robot's ``trajectory``
+    the file named in ``trajectories``."""
+    sine, cosine = float(np.sin(np.pi / 8)), float(np.cos(np.pi / 8))
+    ur_motion, pos_motion = ("", "") if trajectories is None else (
+        f", trajectory: {trajectories[0]}", f", trajectory: {trajectories[1]}")
+    return textwrap.dedent(f"""\
+        pinframes_scene: 1
+        name: pipe
+        frames:
+          - {{name: positioner_base, parent: world, xyz: [0.55, 0, 0]}}
+          - name: seam
+            parent: pos/faceplate
+            xyz: [0, 0, 0.05]
+            keyframes:
+              - {{time: 0, quaternion: [0.5, 0.5, 0.5, 0.5]}}
+              - {{time: 1, quaternion: [0, {sine!r}, 0, {cosine!r}]}}
+          - {{name: torch_target, parent: seam, xyz: [0, 0, 0.1], quaternion: [1, 0, 0, 0]}}
+        robots:
+          - {{name: ur5, urdf: {example_robot("ur5_robot.urdf")}, parent: world,
+              prefix: ur/{ur_motion}}}
+          - {{name: positioner, urdf: {positioner}, parent: positioner_base,
+              prefix: pos/{pos_motion}}}
+        """)

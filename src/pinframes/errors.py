@@ -37,6 +37,7 @@ __all__ = [
     "InvalidPoseError",
     "InvalidTimeError",
     "JointError",
+    "JointJumpError",
     "JointLimitWarning",
     "JointNotFoundError",
     "JointSpeedError",
@@ -168,6 +169,11 @@ class JointNotFoundError(NameNotFoundError, JointError):
     """A robot joint name that the tree does not hold: a :class:`NameNotFoundError` (a
     ``KeyError``) like every missed lookup, and still a :class:`JointError` (a
     ``ValueError``), which unknown joint names raised before."""
+
+
+class JointJumpError(JointError):
+    """A step between two samples of ``solve_joints(..., strict=True)`` that jumps (the
+    message names the time, the joint and the step against the path's usual step)."""
 
 
 class JointSpeedError(JointError):

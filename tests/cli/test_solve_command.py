@@ -164,29 +164,14 @@ def test_solve_keeps_a_seam_flat_with_a_positioner(run_cli, tmp_path, add):
     the faceplate's z so that the face looks up; the CSV checked with Pinocchio on the
     positioner's URDF. The positioner's joints named with the arm's (--joints), or added to
     the default set, the arm's (--add-joints)."""
-    from ik_paths import example_robot, serial_urdf
+    from ik_paths import pipe_scene, serial_urdf
     positioner = tmp_path / "positioner.urdf"
     positioner.write_text(serial_urdf("positioner", [
         ("tilt_x", "revolute", "cradle", "0 0 0.3", -2.0, 2.0),
         ("turn", "revolute", "faceplate", "0 0 0", -6.0, 6.0)]))
     half = np.pi / 8  # half the quarter turn
     scene = tmp_path / "pipe.yaml"
-    scene.write_text(textwrap.dedent(f"""\
-        pinframes_scene: 1
-        name: pipe
-        frames:
-          - {{name: positioner_base, parent: world, xyz: [0.55, 0, 0]}}
-          - name: seam
-            parent: pos/faceplate
-            xyz: [0, 0, 0.05]
-            keyframes:
-              - {{time: 0, quaternion: [0.5, 0.5, 0.5, 0.5]}}
-              - {{time: 1, quaternion: [0, {float(np.sin(half))!r}, 0, {float(np.cos(half))!r}]}}
-          - {{name: torch_target, parent: seam, xyz: [0, 0, 0.1], quaternion: [1, 0, 0, 0]}}
-        robots:
-          - {{name: ur5, urdf: {example_robot("ur5_robot.urdf")}, parent: world, prefix: ur/}}
-          - {{name: positioner, urdf: {positioner}, parent: positioner_base, prefix: pos/}}
-        """))
+    scene.write_text(pipe_scene(positioner))
     arm = [f"ur/{name}" for name in ("shoulder_pan_joint", "shoulder_lift_joint",
                                      "elbow_joint", "wrist_1_joint", "wrist_2_joint",
                                      "wrist_3_joint")]

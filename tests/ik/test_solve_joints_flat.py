@@ -10,7 +10,7 @@ import numpy as np
 import pinocchio as pin
 import pytest
 
-from ik_paths import TOLERANCE, example_robot, serial_urdf
+from ik_paths import TILT_TURN, TOLERANCE, example_robot, faceplates, girth_seam
 from pinframes import FrameTree, Pose
 from pinframes.errors import (
     ArgumentTypeError,
@@ -19,29 +19,12 @@ from pinframes.errors import (
     JointWithoutSamplesWarning,
 )
 
-RADIUS = 0.1  # m, the pipe's
-ALONG = 0.05  # m, the seam's height on the faceplate
 BASE = np.array([0.55, 0.0, 0.0])  # the positioner's base in the floor
-TILT_TURN = serial_urdf("positioner", [
-    ("tilt_x", "revolute", "cradle", "0 0 0.3", -2.0, 2.0),
-    ("turn", "revolute", "faceplate", "0 0 0", -6.0, 6.0)])
-"""A two-axis positioner: tilt about x 0.3 m above its base, then turn about z."""
 
 
 def rotation_x(angle: float) -> np.ndarray:
     cosine, sine = np.cos(angle), np.sin(angle)
     return np.array([[1.0, 0.0, 0.0], [0.0, cosine, -sine], [0.0, sine, cosine]])
-
-
-def girth_seam(count: int) -> tuple[np.ndarray, np.ndarray]:
-    """Half a turn along the pipe's girth on the faceplate: origins (T, 3) and axes (T, 3, 3),
-    x along the travel, z out of the pipe (the weld's face)."""
-    around = np.linspace(0.0, np.pi, count)
-    zeros = np.zeros(count)
-    origins = np.stack([RADIUS * np.cos(around), RADIUS * np.sin(around), zeros + ALONG], 1)
-    outward = np.stack([np.cos(around), np.sin(around), zeros], 1)
-    travel = np.stack([-np.sin(around), np.cos(around), zeros], 1)
-    return origins, np.stack([travel, np.cross(outward, travel), outward], axis=2)
 
 
 @pytest.fixture(scope="module")
@@ -72,14 +55,7 @@ def solved_joints(tree: FrameTree) -> list[str]:
 
 def faceplate_in_floor(urdf: Path, positioner: np.ndarray) -> list[pin.SE3]:
     """The faceplate in the floor per sample, by Pinocchio on the positioner's URDF."""
-    model = pin.buildModelFromUrdf(str(urdf))
-    data = model.createData()
-    frame = model.getFrameId("faceplate")
-    placements = []
-    for q in positioner:
-        pin.framesForwardKinematics(model, data, q)
-        placements.append(pin.SE3(np.eye(3), BASE) * data.oMf[frame])
-    return placements
+    return faceplates(urdf, pin.SE3(np.eye(3), BASE), positioner)
 
 
 def face_angles(urdf: Path, positioner: np.ndarray) -> np.ndarray:

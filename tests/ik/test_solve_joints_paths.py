@@ -178,7 +178,7 @@ def test_a_ur5_resting_in_its_wrist_singularity_is_tracked_through_and_out():
     trajectory = (np.array([0.3, -1.2, 1.5, -1.8, 0.0, 0.2])
                   + np.outer(progress, [0.3, 0.2, -0.2, 0.3, 0.5, 0.4]))
     targets = frame_poses(model, robot.tool, trajectory)
-    solution = robot.tree().solve_joints(robot.tool, as_pose(targets, times),
+    solution = robot.tree().solve_joints(robot.tool, as_pose(targets, times), times=times,
                                          seed=trajectory[0])
     assert on_target(model, robot.tool, solution.positions, targets).all()
     assert largest_step(solution.positions) <= 2 * largest_step(trajectory)
@@ -206,7 +206,7 @@ def test_a_ur5_crossing_its_shoulder_singularity_stays_on_its_branch():
     trajectory = crossing + np.outer(times - 2.0, [0.2, 0.15, 0.1, -0.1, 0.1, 0.3])
     trajectory[100] = crossing
     targets = frame_poses(model, robot.tool, trajectory)
-    solution = robot.tree().solve_joints(robot.tool, as_pose(targets, times),
+    solution = robot.tree().solve_joints(robot.tool, as_pose(targets, times), times=times,
                                          seed=trajectory[0])
     assert on_target(model, robot.tool, solution.positions, targets).all()
     assert largest_step(solution.positions) <= 2 * largest_step(trajectory)
@@ -223,7 +223,7 @@ def test_a_long_gap_between_samples_keeps_the_branch():
     times = np.append(np.arange(20) * 0.21, 19 * 0.21 + 7.4)
     trajectory = swinging(np.asarray(robot.home), np.asarray(robot.swing), times)
     targets = frame_poses(model, robot.tool, trajectory)
-    solution = robot.tree().solve_joints(robot.tool, as_pose(targets, times),
+    solution = robot.tree().solve_joints(robot.tool, as_pose(targets, times), times=times,
                                          seed=trajectory[0])
     assert on_target(model, robot.tool, solution.positions, targets).all()
     np.testing.assert_allclose(solution.positions, trajectory, atol=1e-5)

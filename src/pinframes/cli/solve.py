@@ -5,10 +5,11 @@ from __future__ import annotations
 
 import argparse
 import sys
+import warnings
 
 import numpy as np
 
-from ..errors import JointError, joint_not_found
+from ..errors import JointError, JointWithoutSamplesWarning, joint_not_found
 from ..formats.joint_trajectory import joint_trajectory_csv
 from ..formats.joint_trajectory.writer import write_joint_trajectory
 from ..kinematics import JointSolution
@@ -97,9 +98,13 @@ def run(args: argparse.Namespace) -> int:
     """Solve, write the CSV, print the summary."""
     tree = read_tree(args.file, args)
     require_frames(tree, args.file, args.frame, args.target, args.flat)
-    times = requested_times(args, tree, args.frame, args.target)
-    if args.target != tree.root:  # the target's own motion (the solved joints have none)
-        check_extrapolation(args, tree, [(args.target, tree.root)], times, args.time_ref)
+    with warnings.catch_warnings():
+        # the joints being solved have no samples, nor need any: the solve itself warns
+        # of every other joint that has none
+        warnings.simplefilter("ignore", JointWithoutSamplesWarning)
+        times = requested_times(args, tree, args.frame, args.target)
+        if args.target != tree.root:  # the target's own motion (the solved joints have none)
+            check_extrapolation(args, tree, [(args.target, tree.root)], times, args.time_ref)
     solution = tree.solve_joints(
         args.frame, args.target, times=None if times is None else times.as_numpy(),
         time_ref=args.time_ref, joints=_joints_or_group(tree, args.joints),
@@ -158,9 +163,10 @@ def _seed(tree: FrameTree, given: list[tuple[str, float]] | None) -> dict[str, f
 
 
 def summary(tree: FrameTree, solution: JointSolution) -> str:
-    """One line: samples, reached, the largest errors, the largest tilt (with process
-    windows), the smallest distance to a position limit, the fastest joint against its
-    velocity limit."""
+    """One line: samples, reached, the largest errors, how far the joint-interpolated tool
+    strays between samples, the flat frame's largest angle from up (with --flat), the
+    largest tilt (with process windows), the smallest distance
+    to a position limit, the fastest joint against its velocity limit."""
     count, reached = len(solution), int(solution.reached.sum())
     line = (f"{count} samples, {reached} reached; largest errors "
             f"{solution.position_error.max():.2g} m, {solution.orientation_error.max():.2g} "
@@ -174,6 +180,12 @@ def summary(tree: FrameTree, solution: JointSolution) -> str:
             margins.append((float(np.min(values - joint.lower)), name))
         if joint.kind != "continuous" and joint.upper is not None:
             margins.append((float(np.min(joint.upper - values)), name))
+    if solution.path_deviation is not None and count > 1:
+        assert solution.path_angle_deviation is not None  # set with path_deviation
+        line += (f"; between samples within {solution.path_deviation.max():.2g} m, "
+                 f"{solution.path_angle_deviation.max():.2g} rad")
+    if solution.flat_error is not None and count:
+        line += f"; --flat frame at most {solution.flat_error.max():.2g} rad from up"
     if solution.tilt is not None and count:
         largest = np.abs(solution.tilt).max(axis=0)
         line += f"; largest tilt {largest[0]:.3g} rad about x, {largest[1]:.3g} rad about y"

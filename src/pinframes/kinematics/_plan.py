@@ -152,6 +152,12 @@ class QueryPlan:
         return QueryPlan(path, timeline, timeline.shifts(path.sources), policy, times,
                          self.offsets)
 
+    def at(self, rows: NDArray[np.intp] | NDArray[np.bool_] | slice) -> QueryPlan:
+        """This plan at some of its samples (indices in any order, a mask or a slice)."""
+        assert self.times is not None and self.offsets is not None
+        return QueryPlan(self.path, self.timeline, self.shifts, self.extrapolation,
+                         self.times[rows], self.offsets[rows])
+
     def parts(self, size: int) -> Iterator[tuple[slice, QueryPlan]]:
         """The plan in slices of at most ``size`` samples, with where each goes in the
         result."""

@@ -42,6 +42,8 @@ from ..kinematics import (
     paths_to_common_ancestor,
     snapshot,
 )
+from ..kinematics.ik.joint_jumps import DEFAULT_JUMP_FACTOR
+from ..kinematics.ik.solve_joints import DEFAULT_PATH_TOLERANCE, FLAT_TOLERANCE
 from ..values.geometry import GEOMETRY_METADATA_KEY, FrameGeometry
 from ..values.numbers import require_finite_result
 from ..values.pose import Pose
@@ -304,6 +306,8 @@ class TreeQueries(EditableTree):
         orientation_tolerance: float = 1e-6, strict: bool = False, flat: str | None = None,
         up: Any = None, tilt: tuple[float, float] | None = None,
         add_joints: Sequence[str] | None = None, configuration: Any = None,
+        path_tolerance: float | tuple[float, float] | None = DEFAULT_PATH_TOLERANCE,
+        jump_threshold: float = DEFAULT_JUMP_FACTOR, flat_tolerance: float = FLAT_TOLERANCE,
     ) -> JointSolution:
         """Joint values that put ``frame`` (a tool) on ``target`` at each time: inverse
         kinematics along a path.
@@ -321,7 +325,9 @@ class TreeQueries(EditableTree):
         times, time_ref
             As for :meth:`pose`. Default: every keyframe and joint sample of what moves on
             the path from ``frame`` to the target (a ``Pose`` target's times too), except
-            the samples of the solved joints themselves.
+            the samples of the solved joints themselves, and between them as many more as
+            ``path_tolerance`` needs. Given times are the samples, and
+            ``JointSolution.path_deviation`` says how far the tool strays between them.
         joints : str or sequence of str, optional
             The actuated joints to solve for (default: every robot joint between ``frame``
             and the lowest common ancestor of the two frames), or the name of a joint group
@@ -353,7 +359,8 @@ class TreeQueries(EditableTree):
             not reached and its errors, instead of returning it as not reached; and
             :class:`~pinframes.errors.JointSpeedError`, naming the joint, the time and the
             ratio, where a joint moves faster than its URDF velocity limit (a mimic joint
-            that moves: its own limit).
+            that moves: its own limit); and :class:`~pinframes.errors.JointJumpError` at
+            the first jump (see ``jump_threshold``).
         flat : str, optional
             A frame the solved joints move (a seam on a positioner solved with the robot):
             once the tool is on its target, the freedom left turns this frame's z toward
@@ -374,8 +381,10 @@ class TreeQueries(EditableTree):
             Process windows, radians (each from 0 to below pi/2): the tool's z may tilt
             from the target's by up to ``about_x`` about the target's x and ``about_y`` about
             its y (a seam-like target, x along the travel: the work and travel angle
-            windows). The tilt is free within them: the solver spends it on reach and the
-            smallest motion, and reports it per sample (``JointSolution.tilt``). With
+            windows). The windows are used only where needed: the target's own
+            orientation (no tilt) wherever it is reachable, and on the stretches where it
+            is not, the tilt within the windows that the smallest motion from the sample
+            before needs; reported per sample (``JointSolution.tilt``). With
             ``free_axis="z"`` the spin about the tool's z is free too; without, it is the
             target's. A sample is reached within the windows (to ``orientation_tolerance``)
             and the position tolerance.
@@ -386,6 +395,27 @@ class TreeQueries(EditableTree):
             reached. Without it such an arm is solved in closed form on the branch nearest
             the seed (or default start), the wrist passing through straight continuously,
             unless that branch misses a sample (then as any other chain).
+        path_tolerance : float or (float, float) or None
+            Without ``times``: how far the tool may stray from its target between two
+            samples while the solved joints move linearly from the one to the other (as a
+            controller interpolates a joint trajectory), metres and radians (default 0.1 mm
+            and 0.1 degree; one number: metres, the angle the default). An interval that
+            strays further (measured at its midpoint and quarter points) is halved, its
+            midpoint added and the path solved again, down to 1 ms, where both its ends
+            reach their targets (an added sample out of reach is taken out again). None:
+            the default times only.
+        flat_tolerance : float
+            With ``flat=``: radians (default 0.5 degree) the frame's z may stray from
+            ``up``; a sample beyond it where the solved joints could turn it up (the tool
+            let go) is not reached. ``JointSolution.flat_error`` gives the angle per
+            sample. Without a seed, the first sample's start turns the frame up from
+            starts spread over the ranges of the joints that turn it (4 per joint, the
+            first 3 such joints), and keeps the one nearest to up.
+        jump_threshold : float
+            A sample whose step from the one before (the largest change of one solved
+            joint) is more than this many times the path's median step, and more than 0.1
+            radian (or metre), jumps: ``JointSolution.jumps`` lists it, and ``strict=True``
+            raises :class:`~pinframes.errors.JointJumpError` naming its time and joint.
 
         Returns
         -------
@@ -419,7 +449,9 @@ class TreeQueries(EditableTree):
             time_ref=time_ref, joints=joints, free_axis=free_axis, seed=seed,
             position_tolerance=position_tolerance,
             orientation_tolerance=orientation_tolerance, strict=strict, flat=flat, up=up,
-            tilt=tilt, add_joints=add_joints, configuration=configuration)
+            tilt=tilt, add_joints=add_joints, configuration=configuration,
+            path_tolerance=path_tolerance, jump_threshold=jump_threshold,
+            flat_tolerance=flat_tolerance)
         named = urdf_joint_names(self, solution.joint_names)
         return solution if named is None else replace(solution, urdf_joint_names=tuple(named))
 

@@ -114,6 +114,9 @@ class _Scene:
         self.package_dirs = package_dirs
         self.xacro = xacro
         self._read: dict[tuple[str, Path, str], Any] = {}
+        # trajectory columns no robot took: (name, prefix, file, field), checked at the end
+        self._left: list[tuple[str, str, Path, str]] = []
+        self._taken: set[tuple[Path, str]] = set()  # (file, column) some robot took
         self.fields = SceneFields(path)
         require_format(source, "scene")
         content = source.yaml()
@@ -155,6 +158,7 @@ class _Scene:
             for entry in ready:
                 self._apply(entry, tree)
             pending = [entry for entry in pending if entry not in ready]
+        self._check_left(tree)
         self._units.warn()
         if program is not None:
             tree.metadata[PROGRAM_METADATA_KEY] = program
@@ -300,24 +304,43 @@ class _Scene:
                 named = "srdf" if srdf is not None and exc.file == str(srdf) else "urdf"
                 raise self._referenced(exc, f"{field}.{named}") from None
             if trajectory is not None:
-                self._drive(tree, trajectory, prefix, path, label, f"{field}.trajectory")
+                self._drive(tree, trajectory, prefix, {joint.name for joint in robot.joints},
+                            path, f"{field}.trajectory")
 
         return _Entry(field, label, parent, f"{field}.parent", attach)
 
     def _drive(self, tree: FrameTree, trajectory: tuple[np.ndarray, np.ndarray, list[str]],
-               prefix: str, path: Path, label: str | None, field: str) -> None:
+               prefix: str, own: set[str], path: Path, field: str) -> None:
+        """Drive the robot of ``prefix`` (its joints ``own``, unprefixed) by the columns of
+        ``trajectory`` that name its joints, with or without the prefix; the other columns
+        are left to other robots (a file ``solve`` wrote for a robot and a positioner,
+        which each robot's ``trajectory`` may name), checked once the scene is built."""
         times, positions, names = trajectory
-        joints = tree.joints
-        for name in names:
-            if prefix + name not in joints:
-                known = ", ".join(sorted(joints)) or "none"
-                raise self._referenced(FileFormatError(
-                    f"no joint {prefix + name!r} in the tree (joints: {known})", file=path,
-                    joint=name, field="header"), field)
+        columns = [column for column, name in enumerate(names)
+                   if name in own or (name.startswith(prefix) and name[len(prefix):] in own)]
+        self._left.extend((name, prefix, path, field) for column, name in enumerate(names)
+                          if column not in columns)
+        self._taken.update((path, names[column]) for column in columns)
+        if not columns:
+            return
+        taken = [prefix + names[column] if names[column] in own else names[column]
+                 for column in columns]
         try:
-            tree.set_joint_trajectory(times, positions, [prefix + name for name in names])
+            tree.set_joint_trajectory(times, positions[:, columns], taken)
         except PinframesError as exc:
             raise self._referenced(exc.located(file=path), field) from None
+
+    def _check_left(self, tree: FrameTree) -> None:
+        """Every trajectory column that a robot left is another robot's or names a joint of
+        the built tree."""
+        joints = tree.joints
+        for name, prefix, path, field in self._left:
+            if (path, name) not in self._taken and name not in joints:
+                known = ", ".join(sorted(joints)) or "none"
+                also = f" nor {name!r}" if prefix else ""
+                raise self._referenced(FileFormatError(
+                    f"no joint {prefix + name!r}{also} in the tree (joints: {known})",
+                    file=path, joint=name, field="header"), field)
 
     # -- the scene's own fields ------------------------------------------------------------
     def _list(self, key: str) -> list[Any]:

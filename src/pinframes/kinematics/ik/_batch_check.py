@@ -15,12 +15,12 @@ from .._sampling import sample_joints
 from ._newton_tracking import Tracked, TrackingProblem, solve_again
 from ._tool_error import tilts_of
 
-__all__ = ["check_unmeasured", "tilts_at"]
+__all__ = ["check_unmeasured", "flat_errors", "tilts_at", "tools_in_targets"]
 
 FloatArray = NDArray[np.float64]
 
 
-def _tools_in_targets(
+def tools_in_targets(
     path: PreparedPath, times: NDArray[np.int64], shifts: dict[str, int],
     joint_names: tuple[str, ...], positions: FloatArray, targets: Transform | None,
 ) -> Transform:
@@ -47,7 +47,7 @@ def check_unmeasured(path: PreparedPath, times: NDArray[np.int64], shifts: dict[
     if not unmeasured.shape[0]:
         return
     subset = None if targets is None else (targets[0][unmeasured], targets[1][unmeasured])
-    position, orientation = problem.error.errors(*_tools_in_targets(
+    position, orientation = problem.error.errors(*tools_in_targets(
         path, times[unmeasured], shifts, problem.joints.names,
         tracked.positions[unmeasured], subset))
     tracked.position_error[unmeasured] = position
@@ -66,5 +66,21 @@ def tilts_at(
 ) -> FloatArray:
     """The tilts (N, 2) of the tool of ``path`` about its targets' x and y, radians, with the
     solved joints at ``positions`` (N, n)."""
-    rotations, _ = _tools_in_targets(path, times, shifts, joint_names, positions, targets)
+    rotations, _ = tools_in_targets(path, times, shifts, joint_names, positions, targets)
     return tilts_of(rotations)
+
+
+def flat_errors(path: PreparedPath, times: NDArray[np.int64], shifts: dict[str, int],
+                joint_names: tuple[str, ...], positions: FloatArray, carrier: int,
+                z_on_carrier: FloatArray, up: FloatArray) -> FloatArray:
+    """Per sample (N,), the angle (radians) between a frame's z and ``up`` (both in the
+    compiled model root's axes), the frame's z ``z_on_carrier`` in the axes of the model's
+    joint ``carrier`` (its index), with the solved joints at ``positions`` (N, n)."""
+    count = times.shape[0]
+    held = {name: positions[:, column] for column, name in enumerate(joint_names)}
+    samples = sample_joints(path.samplers, times, shifts, held=held)
+    assert path.model is not None
+    rotation = next(frame for index, frame in path.model.joint_frames(samples)
+                    if index == carrier)[0]
+    rotations = to_stacks((rotation, np.zeros((3, count))), count)[0]
+    return np.arccos(np.clip(rotations.dot(z_on_carrier).dot(up), -1.0, 1.0))

@@ -32,9 +32,9 @@ from ..closed_form.solutions import (
     free_wrist_joint,
     turn_periods,
 )
-from ._batch_check import _tools_in_targets
+from ._batch_check import tools_in_targets
 from ._newton_tracking import Tracked
-from ._path_chunks import TARGET_SOURCE, PathToSolve, _raise_unreached, _targets
+from ._path_chunks import TARGET_SOURCE, PathToSolve, raise_unreached, targets_at
 from ._solved_joints import SolvedJoints
 
 __all__ = ["AT_START", "JUMP", "arm_order", "closed_form_arm", "flange_motions",
@@ -329,7 +329,7 @@ def solve_in_closed_form(request: PathToSolve, shape: ArmShape, start: FloatArra
 
     def targets(part: slice) -> Transform | None:
         if part.start not in sampled:
-            sampled[part.start] = _targets(request.target, times[part], shift)
+            sampled[part.start] = targets_at(request.target, times[part], shift)
         return sampled[part.start]
 
     positions, valid, branches = track_in_closed_form(shape, path, times, shifts,
@@ -343,17 +343,16 @@ def solve_in_closed_form(request: PathToSolve, shape: ArmShape, start: FloatArra
     for begin in range(0, times.shape[0], KERNEL_CHUNK):
         part = slice(begin, begin + KERNEL_CHUNK)
         position_error[part], orientation_error[part] = request.error.errors(
-            *_tools_in_targets(path, times[part], shifts, request.joints.names,
+            *tools_in_targets(path, times[part], shifts, request.joints.names,
                                positions[part], targets(part)))
     reached = valid & (position_error <= request.position_tolerance) & (
         orientation_error <= request.orientation_tolerance)
     tracked = Tracked(positions, position_error, orientation_error, reached,
                       np.ones(times.shape[0], dtype=bool))
     if strict and not reached.all():
-        last = int(np.argmin(reached)) + 1
-        _raise_unreached([Tracked(*(getattr(tracked, name)[:last] for name in (
-            "positions", "position_error", "orientation_error", "reached", "measured")))],
-            request, frame)
+        index = int(np.argmin(reached))
+        raise_unreached(request, index, float(position_error[index]),
+                        float(orientation_error[index]), frame)
     return tracked, branches
 
 

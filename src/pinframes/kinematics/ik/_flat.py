@@ -14,12 +14,13 @@ rest. Where the remaining freedom cannot turn the frame further, the motion fade
 frame stays as close to up as it gets.
 
 A sample solved from a start is served until the frame is within :data:`FLAT_ENOUGH` of up;
-a tracked sample only when it is beyond :data:`FLAT_TOLERANCE` (one forward kinematics to
-look), then by one step: the tool's smallest motion lets the frame drift a little per
-sample, and serving only where that adds up keeps ``flat=`` within twice a plain solve's
-time (benchmarks/bench_positioner.py). The prediction of each sample carries on the whole
-last step, the positioner's turning included (``carries_self_motion``), so the frame drifts
-by second-order amounts only and few samples need serving.
+a tracked sample only when it is beyond its tolerance (one forward kinematics to look),
+then by one step, or a few until it is within (:data:`TRACKED_ROUNDS`): the tool's smallest
+motion lets the frame drift a little per sample, and serving only where that adds up keeps
+``flat=`` within twice a plain solve's time (benchmarks/bench_positioner.py). The
+prediction of each sample carries on the whole last step, the positioner's turning included
+(``carries_self_motion``), so the frame drifts by second-order amounts only and few samples
+need serving.
 """
 
 from __future__ import annotations
@@ -48,12 +49,24 @@ FLAT_ENOUGH = 1e-9
 from a start (the first: to convergence)."""
 
 FLAT_TOLERANCE = math.radians(0.5)
-"""Radians between the frame's z and up below which nothing is asked on a sample solved from
-a prediction: a sample beyond it is turned back (to within the step's linearisation error),
-the others left as the tool's smallest motion put them."""
+"""The default ``flat_tolerance``: radians between the frame's z and up below which nothing
+is asked on a sample solved from a prediction: a sample beyond it is turned back (to within
+the step's linearisation error), the others left as the tool's smallest motion put them."""
 
 FLAT_ROUNDS = 100
 """Rounds at most on a sample solved from a start (each one a task-priority step)."""
+
+TRACKED_ROUNDS = 5
+"""Rounds at most on a tracked sample beyond the tolerance: one step turns the frame back to
+within its linearisation error, which after a long time step can still exceed the
+tolerance."""
+
+SPREAD = 4
+"""Starts per joint that turns the flat frame, spread over its range (within -pi..pi), for
+the global choice of the first sample (:meth:`FlatFrame.turned_up_globally`)."""
+
+MOST_TURNING = 3
+"""Joints that turn the flat frame spread over at most (the first ones of the chain)."""
 
 LONGEST_TURN = 0.3
 """Largest change of one joint per round, radians or metres."""
@@ -67,8 +80,6 @@ SMALLEST_MOTION = 1e-12
 
 _WORLD_ALIGNED = pin.ReferenceFrame.LOCAL_WORLD_ALIGNED
 
-_WITHIN_TOLERANCE = math.cos(FLAT_TOLERANCE)
-"""The cosine of :data:`FLAT_TOLERANCE`: z dot up at least this, nothing is asked."""
 
 
 class FlatFrame:
@@ -91,13 +102,18 @@ class FlatFrame:
     """
 
     quiet_margin = math.inf
+    rounds_tracked = TRACKED_ROUNDS
     rounds_from_a_start = FLAT_ROUNDS
     carries_self_motion = True
 
     def __init__(self, model: pin.Model, data: pin.Data, joints: SolvedJoints, joint_id: int,
-                 rotation_on_joint: FloatArray, up: FloatArray, solver: LeastSquares) -> None:
+                 rotation_on_joint: FloatArray, up: FloatArray, solver: LeastSquares,
+                 tolerance: float = FLAT_TOLERANCE) -> None:
         self._model, self._data, self._joints = model, data, joints
+        self.tolerance = tolerance  # radians
+        self._within_tolerance = math.cos(tolerance)  # z dot up at least this: nothing asked
         self._joint_id = joint_id
+        self.carrier = joint_id - 1  # the compiled model's index of the joint carrying it
         self._rotation_on_joint = np.asarray(rotation_on_joint, dtype=float)
         self._z_on_joint = self._rotation_on_joint[:, 2].copy()
         self._up = np.asarray(up, dtype=float)
@@ -106,13 +122,13 @@ class FlatFrame:
     def motion(self, theta: FloatArray, configuration: FloatArray,
                task_rows: Callable[[], FloatArray], settle: bool) -> FloatArray | None:
         """The task-priority step toward up (module docstring); None when the frame is
-        within :data:`FLAT_TOLERANCE` of up (``settle``: :data:`FLAT_ENOUGH`) or the freedom
+        within its tolerance of up (``settle``: :data:`FLAT_ENOUGH`) or the freedom
         left cannot turn it."""
         model, data = self._model, self._data
         if not settle:  # a look first: most samples stay within the tolerance
             pin.forwardKinematics(model, data, configuration)
             face = data.oMi[self._joint_id].rotation.dot(self._z_on_joint)
-            if face.dot(self._up) >= _WITHIN_TOLERANCE:
+            if face.dot(self._up) >= self._within_tolerance:
                 return None
         rows = task_rows()
         if not self._joints.moves_reference:  # else task_rows() computed them
@@ -170,6 +186,66 @@ class FlatFrame:
             theta = moved
         return theta
 
+    def could_turn_up(self, theta: FloatArray, configuration: FloatArray) -> bool:
+        """Whether the solved joints alone, the tool let go, turn the frame within the
+        tolerance of up from ``theta`` (:meth:`turned_up`; ``configuration``: the sample's
+        ``q``): the frame could be flat there."""
+        return self._cosine(self.turned_up(theta, configuration), configuration) >= (
+            self._within_tolerance)
+
+    def _cosine(self, theta: FloatArray, configuration: FloatArray) -> float:
+        """The cosine of the frame's angle from up with the solved joints at ``theta``
+        (``configuration``: the sample's ``q``, left as it is)."""
+        q = configuration.copy()
+        self._joints.set_configuration(q, theta)
+        pin.forwardKinematics(self._model, self._data, q)
+        face = self._data.oMi[self._joint_id].rotation.dot(self._z_on_joint)
+        return float(face.dot(self._up))
+
+    @property
+    def z_on_carrier(self) -> FloatArray:
+        """The flat frame's z (3,) in the axes of the joint that carries it."""
+        return self._z_on_joint
+
+    @property
+    def up(self) -> FloatArray:
+        """The unit direction (3,) the frame's z is turned toward, in the model root's axes."""
+        return self._up
+
+    def turned_up_globally(self, theta: FloatArray, configuration: FloatArray
+                           ) -> FloatArray:
+        """:meth:`turned_up` from ``theta`` and from starts spread over the ranges of the
+        joints that turn the frame (:data:`SPREAD` values each, the others as in
+        ``theta``): the one that comes nearest to up, the first of equals (``theta``'s
+        own first). A local turn from one start can stop where the frame's z only spins
+        about up's level (no first-order gain) or on a limit."""
+        joints = self._joints
+        q = configuration.copy()
+        joints.set_configuration(q, theta)
+        pin.computeJointJacobians(self._model, self._data, q)
+        jacobian = joints.jacobian(pin.getJointJacobian(self._model, self._data,
+                                                        self._joint_id, _WORLD_ALIGNED))
+        turning = np.flatnonzero(np.abs(jacobian[3:]).max(axis=0) > 0.0)[:MOST_TURNING]
+        limits = joints.limits
+        grids = []
+        for column in turning.tolist():
+            low = max(float(limits.lower[column]), -math.pi)
+            high = min(float(limits.upper[column]), math.pi)
+            grids.append(low + (high - low) * (np.arange(SPREAD) + 0.5) / SPREAD)
+        best, best_angle = theta, math.inf
+        candidates = [theta]
+        for values in (np.stack(np.meshgrid(*grids, indexing="ij"), -1).reshape(-1, len(grids))
+                       if grids else ()):
+            start = theta.copy()
+            start[turning] = values
+            candidates.append(start)
+        for start in candidates:
+            turned = self.turned_up(start, configuration)
+            angle = math.acos(max(-1.0, min(1.0, self._cosine(turned, configuration))))
+            if angle < best_angle - FLAT_ENOUGH:
+                best, best_angle = turned, angle
+        return best
+
     def _axes(self) -> FloatArray:
         """The flat frame's axes (3, 3) in the model root's, from Pinocchio's data."""
         return self._data.oMi[self._joint_id].rotation.dot(self._rotation_on_joint)  # type: ignore[no-any-return]
@@ -196,7 +272,8 @@ def _turn_across(axes: FloatArray, up: FloatArray, tolerance: float) -> FloatArr
 
 
 def flat_objective(tree: TreeDescription, model: CompiledModel, joints: SolvedJoints,
-                   flat: str, up: Any, frame: str, solver: LeastSquares) -> FlatFrame:
+                   flat: str, up: Any, frame: str, solver: LeastSquares,
+                   tolerance: float = FLAT_TOLERANCE) -> FlatFrame:
     """The :class:`FlatFrame` of ``solve_joints(frame, ..., flat=flat, up=up)`` on the
     compiled path ``model``; ``up`` a 3-vector in the tree root's axes (None: its +z), which
     the root of ``model`` (where tool and target meet) must not turn."""
@@ -217,7 +294,7 @@ def flat_objective(tree: TreeDescription, model: CompiledModel, joints: SolvedJo
                          f"joints move (the workpiece on a positioner solved with "
                          f"joints=[...])", frame=frame, field="flat")
     return FlatFrame(pinocchio_model, model.data, joints, carriers[0], rotation_on_anchor,
-                     model_root_in_root.T.dot(up_in_root), solver)
+                     model_root_in_root.T.dot(up_in_root), solver, tolerance)
 
 
 def _unit_vector(up: Any, frame: str) -> FloatArray:

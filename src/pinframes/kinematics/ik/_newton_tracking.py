@@ -218,6 +218,11 @@ class Tracked:
     reached: NDArray[np.bool_]
     measured: NDArray[np.bool_]
 
+    def taken(self, rows: NDArray[np.intp] | NDArray[np.bool_]) -> Tracked:
+        """The samples ``rows`` (indices or a mask) of these."""
+        return Tracked(self.positions[rows], self.position_error[rows],
+                       self.orientation_error[rows], self.reached[rows], self.measured[rows])
+
 
 class TrackingHistory:
     """What the next sample starts from: the seed, the last two solutions when both reached
@@ -322,11 +327,13 @@ def _cost(problem: TrackingProblem, solved: Solved) -> float:
                       solved[2] / problem.orientation_tolerance)
 
 
-def solve_again(problem: TrackingProblem, index: int, theta: FloatArray) -> Solution:
-    """Sample ``index`` solved from ``theta`` and measured: the solution, its position and
-    orientation errors (m, rad) and whether it is reached."""
+def solve_again(problem: TrackingProblem, index: int, theta: FloatArray, serve: bool = True
+                ) -> Solution:
+    """Sample ``index`` solved from ``theta`` and measured (with ``serve``, offered to the
+    secondary objective): the solution, its position and orientation errors (m, rad) and
+    whether it is reached."""
     solution, position, orientation, reached, _ = _SampleSolver(problem).solve(
-        index, theta, 0.0, trust_newton=False, bridge=True)
+        index, theta, 0.0, trust_newton=False, bridge=True, serve=serve)
     return solution, position, orientation, reached
 
 
@@ -444,13 +451,15 @@ class _SampleSolver:
         tool gets back within its tolerances from there; else ``solved`` (with its margin
         measured afresh when that is wide enough for the objective to ask nothing: the
         bound carried from sample to sample stays above it for a while). ``from_a_start``:
-        served again while it asks, up to its ``rounds_from_a_start``."""
+        served again while it asks, up to its ``rounds_from_a_start`` (else its
+        ``rounds_tracked``)."""
         assert self.objective is not None
         theta = solved[0]
         margin = self.limits.margin(theta.tolist())
         if margin > self.objective_margin:
             return solved[0], solved[1], solved[2], solved[3], margin
-        for _ in range(self.objective.rounds_from_a_start if from_a_start else 1):
+        for _ in range(self.objective.rounds_from_a_start if from_a_start
+                       else self.objective.rounds_tracked):
             theta = solved[0]
             self.joints.set_configuration(q, theta)
             self._asked_rows, self._asked_at = None, q

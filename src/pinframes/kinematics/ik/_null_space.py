@@ -39,6 +39,9 @@ class NullSpaceObjective(Protocol):
     quiet_margin : float
         A margin inside the joint limits (radians or metres) from which on it asks for
         nothing (``math.inf``: it may ask anywhere); the solver skips asking it there.
+    rounds_tracked : int
+        How many times at most it is served, one after the other, on a sample solved from a
+        prediction (it asks for nothing once it is content: most samples take none).
     rounds_from_a_start : int
         How many times at most it is served, one after the other, on a sample solved from a
         start rather than a prediction (1: once, as on every other sample).
@@ -49,6 +52,7 @@ class NullSpaceObjective(Protocol):
     """
 
     quiet_margin: float
+    rounds_tracked: int
     rounds_from_a_start: int
     carries_self_motion: bool
 
@@ -89,6 +93,7 @@ class AwayFromLimits:
         span = np.where(bounded, limits.upper - limits.lower, 0.0)
         self._band = np.minimum(BAND * span, WIDEST_BAND)
         self.quiet_margin = float(self._band.max()) if self._band.shape[0] else 0.0
+        self.rounds_tracked = 1
         self.rounds_from_a_start = 1
         self.carries_self_motion = False
         self._limits = limits

@@ -32,7 +32,8 @@ from ._solved_joints import SolvedJoints
 from ._starts import track_from_the_best_start
 from ._tool_error import ToolMatch, WindowMatch
 
-__all__ = ["STILL", "TARGET_SOURCE", "PathToSolve", "track_in_chunks"]
+__all__ = ["STILL", "TARGET_SOURCE", "PathToSolve", "problem_of", "raise_unreached", "targets_at",
+           "track_in_chunks"]
 
 FloatArray = NDArray[np.float64]
 
@@ -121,7 +122,8 @@ def track_in_chunks(request: PathToSolve, start: FloatArray, search_starts: bool
                 chunk = first.leading(chunk)
             problem = chunk.problem(request)
             if isinstance(request.objective, FlatFrame):
-                start = request.objective.turned_up(start, problem.configurations[0])
+                start = request.objective.turned_up_globally(start,
+                                                             problem.configurations[0])
             tracked, history = track_from_the_best_start(problem, start, strict)
         else:
             problem = chunk.problem(request)
@@ -137,7 +139,7 @@ def track_in_chunks(request: PathToSolve, start: FloatArray, search_starts: bool
             lead = 1 if strict and not tracked.reached[0] else standing
             rows = np.concatenate([np.zeros(lead, dtype=np.intp),
                                    np.arange(1, tracked.reached.shape[0])])
-            tracked = Tracked(*(getattr(tracked, name)[rows] for name in _TRACKED))
+            tracked = tracked.taken(rows)
             chunk_tilts = None if chunk_tilts is None else chunk_tilts[rows]
             standing = 0
         if chunk_tilts is not None:
@@ -174,7 +176,7 @@ class _Chunk:
         model = plan.path.model
         assert model is not None
         moments = plan.sample_times[part]
-        targets = _targets(request.target, moments, plan.shifts.get(TARGET_SOURCE, 0))
+        targets = targets_at(request.target, moments, plan.shifts.get(TARGET_SOURCE, 0))
         target_rows = None if targets is None else np.concatenate(
             [targets[1], quaternion_from_matrix(targets[0])], axis=1)
         configurations = sample_configurations(model, plan.path.samplers, moments, plan.shifts,
@@ -213,11 +215,19 @@ class _Chunk:
             _standing_still(self.configurations, self.target_rows))
 
 
+def problem_of(request: PathToSolve) -> TrackingProblem:
+    """The :class:`TrackingProblem` of every sample of ``request``'s plan at once (a few:
+    one chunk)."""
+    moments = request.plan.sample_times
+    return _Chunk.sampled(request, slice(0, moments.shape[0]), _step_ratios(moments)).problem(
+        request)
+
+
 def _step_ratios(moments: NDArray[np.int64]) -> FloatArray:
     """Per sample, its time step over the previous one (1 where there is none)."""
     ratios = np.ones(moments.shape[0])
     if moments.shape[0] > 2:
-        steps = np.diff(moments).astype(float)
+        steps = np.abs(np.diff(moments)).astype(float)  # (times in reverse: a path back)
         before = steps[:-1]
         # a step after a repeated time (none before it) is not predicted: inf
         ratios[2:] = np.divide(steps[1:], before, out=np.full(before.shape, np.inf),
@@ -225,7 +235,7 @@ def _step_ratios(moments: NDArray[np.int64]) -> FloatArray:
     return ratios
 
 
-def _targets(target: Pose | None, moments: NDArray[np.int64], shift: int
+def targets_at(target: Pose | None, moments: NDArray[np.int64], shift: int
              ) -> Transform | None:
     """The target in the reference frame at each of ``moments``: ``(N, 3, 3)`` rotations
     and ``(N, 3)`` translations (None: the frame itself)."""
@@ -251,14 +261,21 @@ def _standing_still(configurations: FloatArray, targets: FloatArray | None
 
 def _raise_unreached(parts: list[Tracked], request: PathToSolve, frame: str) -> None:
     """The :class:`TargetNotReachedError` of ``strict=True`` at the last sample solved."""
-    plan = request.plan
-    index = sum(part.reached.shape[0] for part in parts) - 1
     last = parts[-1]
+    raise_unreached(request, sum(part.reached.shape[0] for part in parts) - 1,
+                    float(last.position_error[-1]), float(last.orientation_error[-1]), frame)
+
+
+def raise_unreached(request: PathToSolve, index: int, position_error: float,
+                    orientation_error: float, frame: str) -> None:
+    """The :class:`TargetNotReachedError` of ``strict=True`` at sample ``index`` of
+    ``request``'s plan, with its errors (m, rad)."""
+    plan = request.plan
     offsets = np.zeros(1, dtype=np.int64) if plan.offsets is None else plan.offsets
     when = f"{offsets[index] / 1e9:.9g} s" + (
         "" if plan.reference_time is None else f" after {plan.reference_time}")
     raise TargetNotReachedError(
         f"target not reached at {when} (sample {index + 1} of {offsets.shape[0]}): position "
-        f"error {last.position_error[-1]:.3g} m, orientation error "
-        f"{last.orientation_error[-1]:.3g} rad (tolerances {request.position_tolerance:g} m, "
-        f"{request.orientation_tolerance:g} rad)", frame=frame, field="target")
+        f"error {position_error:.3g} m, orientation error {orientation_error:.3g} rad "
+        f"(tolerances {request.position_tolerance:g} m, {request.orientation_tolerance:g} "
+        "rad)", frame=frame, field="target")

@@ -22,7 +22,7 @@ from .._plan import plan_query, prepare_path
 from .._sampling import KERNEL_CHUNK
 from ..closed_form.solutions import IkSolutions, every_solution
 from ._closed_form_arm import arm_order, closed_form_arm, flange_motions
-from ._path_chunks import TARGET_SOURCE, _targets
+from ._path_chunks import TARGET_SOURCE, targets_at
 from ._solved_joints import solved_joints
 from .solve_joints import _reference
 
@@ -56,7 +56,7 @@ def evaluate_ik_solutions(tree: TreeDescription, frame: str, target: str | Pose,
     for begin in range(0, moments.shape[0], KERNEL_CHUNK):
         chunk = moments[begin:begin + KERNEL_CHUNK]
         motions = flange_motions(path, chunk, plan.shifts, solved.names,
-                                 _targets(target_pose, chunk, shift))
+                                 targets_at(target_pose, chunk, shift))
         positions, branches, chunk_valid = every_solution(shape, *motions, lower, upper,
                                                        whole_turns)
         if columns is None or valid is None:

@@ -56,6 +56,23 @@ class JointSolution(Timed):
         ``(a, b)`` with the tool's z ``Rx(a) Ry(b)`` the target's (about the target's x, then
         the y so turned): ``z = (sin b, -sin a cos b, cos a cos b)`` in the target's axes.
         None without windows.
+    path_deviation : ndarray, shape (T,), or None
+        Per sample, how far (metres) the tool strays from its target between the sample
+        before and it while the solved joints move linearly from the one to the other (a
+        controller interpolating the solution): the distance at the interval's midpoint,
+        or the largest at its quarter points where that comes near the tolerance; 0 for the
+        first sample. Without given times the samples are dense enough to keep it within
+        ``path_tolerance`` wherever both ends are reached (see ``FrameTree.solve_joints``).
+    path_angle_deviation : ndarray, shape (T,), or None
+        The same for the orientation, radians (as :attr:`orientation_error`).
+    flat_error : ndarray, shape (T,), or None
+        With ``flat=``: the angle between the flat frame's z and ``up``, radians; a sample
+        more than ``flat_tolerance`` from up where the solved joints could turn it up (the
+        tool let go, from the sample's solution) is not :attr:`reached`. None without.
+    jumps : ndarray of int, shape (J,), or None
+        The samples whose step from the one before jumps: one joint changes by more than
+        ``jump_threshold`` times the path's median step and more than 0.1 radian (or metre)
+        (``pinframes.kinematics.ik.joint_jumps``). Empty when none does.
     urdf_joint_names : tuple of str or None
         :attr:`joint_names` as the robot's URDF names them (the tree's prefix removed: what
         the robot's controller knows), when every solved joint belongs to one robot read
@@ -75,6 +92,10 @@ class JointSolution(Timed):
     velocity_limits: FloatArray
     velocity_limit_joints: tuple[str, ...]
     tilt: FloatArray | None = None
+    path_deviation: FloatArray | None = None
+    path_angle_deviation: FloatArray | None = None
+    jumps: NDArray[np.intp] | None = None
+    flat_error: FloatArray | None = None
     urdf_joint_names: tuple[str, ...] | None = None
     configurations: NDArray[np.str_] | None = None
 
@@ -104,6 +125,12 @@ class JointSolution(Timed):
         """Per sample (T,), the largest of :attr:`joint_speed_ratios`: above 1 a joint moves
         faster than its URDF velocity limit allows; 0 without limits."""
         return self.joint_speed_ratios.max(axis=1, initial=0.0)
+
+    def when(self, index: int) -> str:
+        """Sample ``index``'s time as messages give it: seconds, after the reference time
+        when there is one."""
+        return f"{int(self.times[index].astype(np.int64)) / 1e9:.9g} s" + (
+            "" if self.reference_time is None else f" after {self.reference_time}")
 
     @property
     def all_reached(self) -> bool:

@@ -44,8 +44,7 @@ def require_within_speed(solution: JointSolution, joints: Mapping[str, Joint], f
     limit = limiting.velocity
     assert limit is not None  # a finite velocity limit came from it
     unit = speed_unit(limiting)
-    when = f"{int(solution.times[index].astype(np.int64)) / 1e9:.9g} s" + (
-        "" if solution.reference_time is None else f" after {solution.reference_time}")
+    when = solution.when(index)
     follows = "" if limiting.name == solved else f" (it follows {solved!r})"
     raise JointSpeedError(
         f"{ratio * limit:.3g} {unit} at {when} (sample {index + 1} of {len(solution)}) is "

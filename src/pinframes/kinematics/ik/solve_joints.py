@@ -11,13 +11,16 @@ joints, whose samples are what is being solved for, and the first sample's start
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Mapping
+from functools import partial
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
-from ...errors import ArgumentTypeError, InvalidDataError, JointError
+from ...errors import ArgumentTypeError, InvalidDataError, JointError, TargetNotReachedError
 from ...values.joint import Joint
 from ...values.pose import Pose
 from ...values.timeline import TimedSource
@@ -26,18 +29,26 @@ from .._joint_argument import named_joints
 from .._plan import PreparedPath, plan_query, prepare_path
 from ..closed_form.arm_shapes import ArmShape
 from ..closed_form.configurations import BRANCH_NAMES, branch_flags, requested_branch
+from ._batch_check import flat_errors
+from ._between_samples import DEFAULT_PATH_TOLERANCE, densely_tracked
 from ._bounded_step import LeastSquares
 from ._closed_form_arm import arm_order, closed_form_arm, solve_in_closed_form
-from ._flat import flat_objective
+from ._flat import FLAT_TOLERANCE, FlatFrame, flat_objective
+from ._newton_tracking import Tracked
 from ._null_space import AwayFromLimits, NullSpaceObjective
-from ._path_chunks import TARGET_SOURCE, PathToSolve, track_in_chunks
+from ._path_chunks import TARGET_SOURCE, PathToSolve, problem_of, track_in_chunks
 from ._solved_joints import SolvedJoints, solved_joints
 from ._starts import first_start
 from ._tool_error import AXES, AxisMatch, PoseMatch, ToolMatch, WindowMatch
+from ._windows_where_needed import nominal_where_reachable
+from .joint_jumps import DEFAULT_JUMP_FACTOR, jumps_of, require_no_jumps
 from .joint_solution import JointSolution
 from .joint_speeds import require_within_speed
 
-__all__ = ["SMALLEST_TOLERANCE", "evaluate_solve_joints"]
+__all__ = ["DEFAULT_PATH_TOLERANCE", "FLAT_TOLERANCE", "SMALLEST_TOLERANCE",
+           "evaluate_solve_joints"]
+
+FloatArray = NDArray[np.float64]
 
 SMALLEST_TOLERANCE = 1e-12
 """The smallest position (m) and orientation (rad) tolerance: errors of poses a few metres
@@ -50,9 +61,13 @@ def evaluate_solve_joints(
     position_tolerance: float, orientation_tolerance: float, strict: bool,
     flat: str | None = None, up: Any = None, tilt: Any = None, add_joints: Any = None,
     configuration: Any = None,
+    path_tolerance: Any = DEFAULT_PATH_TOLERANCE, jump_threshold: Any = DEFAULT_JUMP_FACTOR,
+    flat_tolerance: Any = FLAT_TOLERANCE,
 ) -> JointSolution:
     """``tree.solve_joints(...)``; ``frame`` (and a target frame name) already checked."""
     branch = None if configuration is None else requested_branch(configuration, frame=frame)
+    between = _path_tolerance(path_tolerance, frame)
+    jump_factor = _tolerance(jump_threshold, "jump_threshold", frame)
     reference, target_pose = _reference(tree, frame, target, relative_to)
     error = _tool_match(free_axis, tilt, frame)
     if up is not None and flat is None:
@@ -80,7 +95,8 @@ def evaluate_solve_joints(
     solver = LeastSquares()
     objective: NullSpaceObjective = (
         AwayFromLimits(solved.limits) if flat is None
-        else flat_objective(tree, path.model, solved, flat, up, frame, solver))
+        else flat_objective(tree, path.model, solved, flat, up, frame, solver,
+                            _tolerance(flat_tolerance, "flat_tolerance", frame)))
     request = PathToSolve(plan, solved, target_pose, error, *tolerances, objective, solver)
     arm = _closed_form(path, solved, frame, branch is not None)
     closed = arm is not None and flat is None and isinstance(error, PoseMatch)
@@ -88,22 +104,33 @@ def evaluate_solve_joints(
         raise ArgumentTypeError("configuration= keeps a whole pose on a branch of the closed "
                                 "form; it does not combine with free_axis=, tilt= or flat=",
                                 frame=frame, field="configuration")
-    closed_form = None if not closed or arm is None else solve_in_closed_form(
-        request, arm, start, branch, strict, frame)
-    tilts, branches = None, None
-    if closed_form is None:
-        tracked, tilts = track_in_chunks(request, start, seed is None, strict, frame)
+    # given times are the samples; without, they are made dense enough for the tolerance
+    tolerance = between if times is None else None
+    tilts: FloatArray | None
+    if isinstance(error, WindowMatch):  # the nominal orientation where it is reachable
+        request, tracked, tilts, deviation = nominal_where_reachable(
+            request, error, start, seed is None, strict, frame, tolerance, jump_factor)
     else:
-        tracked, branches = closed_form
-    if arm is not None and branches is None:
-        branches = branch_flags(arm, tracked.positions[:, arm_order(arm, solved.names)])
+        track = (track_in_chunks if not closed or arm is None
+                 else partial(_track_in_closed_form, arm=arm, branch=branch,
+                              jump_factor=jump_factor))
+        request, tracked, tilts, deviation = densely_tracked(
+            request, start, seed is None, strict, frame, tolerance, jump_factor, track)
+    plan = request.plan
+    flat_error = None if not isinstance(objective, FlatFrame) else _flat_errors(
+        request, objective, tracked, strict, frame)
+    branches = None if arm is None else branch_flags(
+        arm, tracked.positions[:, arm_order(arm, solved.names)])
     offsets = np.zeros(1, dtype=np.int64) if plan.offsets is None else plan.offsets
     solution = JointSolution(
         solved.names, tracked.positions, offsets.astype("timedelta64[ns]"),
         plan.reference_time, tracked.position_error, tracked.orientation_error,
         tracked.reached, solved.velocity_limits, solved.velocity_limit_joints, tilt=tilts,
-        configurations=None if branches is None else np.array(BRANCH_NAMES)[branches])
+        configurations=None if branches is None else np.array(BRANCH_NAMES)[branches],
+        path_deviation=deviation.position, path_angle_deviation=deviation.orientation,
+        jumps=jumps_of(tracked.positions, jump_factor), flat_error=flat_error)
     if strict:
+        require_no_jumps(solution, jump_factor, frame)
         require_within_speed(solution, tree.joints_by_name, frame)
     return solution
 
@@ -118,6 +145,48 @@ def _closed_form(path: PreparedPath, solved: SolvedJoints, frame: str, needed: b
         if needed:
             raise
         return None
+
+
+def _track_in_closed_form(request: PathToSolve, start: FloatArray, search_starts: bool,
+                          strict: bool, frame: str, *, arm: ArmShape,
+                          branch: tuple[str, int] | None, jump_factor: float
+                          ) -> tuple[Tracked, None]:
+    """``request`` tracked on one branch of ``arm``'s closed form; where no configuration
+    was asked and that branch misses a sample or jumps (``jump_factor``: through a wrist
+    singularity the closed form splits a turn between wrists 1 and 3 its own way), by the
+    numeric solver (:func:`track_in_chunks`) instead."""
+    with np.errstate(over="ignore", invalid="ignore"):  # a target out of all reach: no root
+        solved = solve_in_closed_form(request, arm, start, branch, strict, frame)
+    if solved is not None and (branch is not None
+                               or not jumps_of(solved[0].positions, jump_factor).shape[0]):
+        return solved[0], None
+    tracked, _ = track_in_chunks(request, start, search_starts, strict, frame)
+    return tracked, None
+
+
+def _flat_errors(request: PathToSolve, flat: FlatFrame, tracked: Tracked, strict: bool,
+                 frame: str) -> FloatArray:
+    """Per sample, the flat frame's angle from up (radians); a reached sample beyond the
+    tolerance where the solved joints could turn it up (:meth:`FlatFrame.could_turn_up`)
+    is made not reached (``strict``: an error)."""
+    plan = request.plan
+    assert plan.offsets is not None  # a path that moves
+    errors = flat_errors(plan.path, plan.sample_times, plan.shifts, request.joints.names,
+                         tracked.positions, flat.carrier, flat.z_on_carrier, flat.up)
+    beyond = np.flatnonzero(tracked.reached & (errors > flat.tolerance))
+    if beyond.shape[0]:
+        configurations = problem_of(dataclasses.replace(request, plan=plan.at(beyond))
+                                    ).configurations
+        for index, configuration in zip(beyond.tolist(), configurations, strict=True):
+            if flat.could_turn_up(tracked.positions[index], configuration):
+                tracked.reached[index] = False
+                if strict:
+                    raise TargetNotReachedError(
+                        f"the flat frame could be flat at {plan.offsets[index] / 1e9:.9g} s "
+                        f"(sample {index + 1}) but its z is {errors[index]:.3g} rad from up "
+                        f"(flat_tolerance {flat.tolerance:.3g} rad)", frame=frame,
+                        field="flat")
+    return errors
 
 
 def _reference(tree: TreeDescription, frame: str, target: str | Pose, relative_to: str | None
@@ -160,6 +229,21 @@ def _windows(tilt: Any, frame: str) -> tuple[float, float]:
             raise InvalidDataError(f"expected angles from 0 to below pi/2 radians, got {tilt!r}",
                                    frame=frame, field="tilt")
     return about_x, about_y
+
+
+def _path_tolerance(value: Any, frame: str) -> tuple[float, float] | None:
+    """``path_tolerance`` as (metres, radians): a pair, or one length (the angle then the
+    default's); None: the default times as they are."""
+    if value is None:
+        return None
+    pair = (value, DEFAULT_PATH_TOLERANCE[1]) if isinstance(value, (int, float)) else value
+    try:
+        length, angle = pair
+    except (TypeError, ValueError):
+        raise ArgumentTypeError(f"expected metres or (metres, radians), got {value!r}",
+                                frame=frame, field="path_tolerance") from None
+    return (_tolerance(length, "path_tolerance", frame),
+            _tolerance(angle, "path_tolerance", frame))
 
 
 def _tolerance(value: Any, field: str, frame: str) -> float:
