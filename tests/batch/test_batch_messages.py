@@ -10,9 +10,13 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
 import yaml
 
 from pinframes.batch import BatchSummary, run_batch
+
+# a Dask cluster per test: in the slow set (CI runs it)
+pytestmark = pytest.mark.slow
 
 ROOT = Path(__file__).resolve().parents[2]
 

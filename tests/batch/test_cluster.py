@@ -22,6 +22,9 @@ from pinframes.batch import partition_path, run_batch
 from pinframes.batch._engine import local_cluster
 from pinframes.batch._task import KILL_ONCE_VARIABLE
 
+# a Dask cluster per test: in the slow set (CI runs it)
+pytestmark = pytest.mark.slow
+
 FRAME, RELATIVE_TO = "torch_tcp", "workpiece"
 CHUNK = 97  # rows per chunk: every run's file has several row groups
 BAD_VALUE, MISSING_TRAJECTORY = "run_0004", "run_0011"

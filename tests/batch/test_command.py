@@ -10,8 +10,12 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+import pytest
 
 from pinframes import read_scene
+
+# a Dask cluster per test: in the slow set (CI runs it)
+pytestmark = pytest.mark.slow
 
 SRC = Path(__file__).resolve().parents[2] / "src"
 

@@ -20,6 +20,9 @@ from pinframes.batch import partition_path, run_batch
 from pinframes.batch._compute import MAX_GRID_SAMPLES
 from pinframes.errors import FrameNotFoundError, ManifestWarning
 
+# a Dask cluster per test: in the slow set (CI runs it)
+pytestmark = pytest.mark.slow
+
 FRAME, RELATIVE_TO = "torch_tcp", "workpiece"
 SECONDS_ALLOWED = 180  # a batch that hangs fails here instead of hanging the suite
 

@@ -20,6 +20,9 @@ from distributed import LocalCluster
 from pinframes import Limits, read_scene
 from pinframes.batch import run_batch
 
+# a Dask cluster per test: in the slow set (CI runs it)
+pytestmark = pytest.mark.slow
+
 FRAME, RELATIVE_TO = "torch_tcp", "workpiece"
 BIG, SMALL = "run_0000", "run_0001"
 SRC = Path(__file__).resolve().parents[2] / "src"

@@ -13,6 +13,9 @@ from distributed.security import Security
 
 from pinframes.batch._engine import local_cluster
 
+# a Dask cluster per test: in the slow set (CI runs it)
+pytestmark = pytest.mark.slow
+
 
 def _refused(address: str, security: Security | None) -> bool:
     """Whether a connection to ``address`` that then asks for the peer's identity fails."""

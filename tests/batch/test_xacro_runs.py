@@ -9,6 +9,9 @@ from pinframes import FileFormatError, Limits
 from pinframes.batch._inputs import read_run, run_inputs
 from pinframes.batch._options import BatchOptions
 
+# a Dask cluster per test: in the slow set (CI runs it)
+pytestmark = pytest.mark.slow
+
 pytest.importorskip("xacro")
 
 ROBOT = ('<robot name="r" xmlns:xacro="http://www.ros.org/wiki/xacro">'

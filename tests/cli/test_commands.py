@@ -74,6 +74,7 @@ def test_convert_scene_to_urdf_at_a_time(run_cli, turntable, tmp_path):
                                [1 + 0.2 * np.cos(angle), 0.2 * np.sin(angle), 0.5], atol=1e-9)
 
 
+@pytest.mark.slow  # seconds of CPU (subprocesses): CI's slow set
 def test_convert_scene_to_scene_and_errors(run_cli, turntable, tmp_path):
     out = tmp_path / "copy.yaml"
     assert run_cli("convert", turntable, out).returncode == 0
@@ -105,6 +106,7 @@ def test_unreadable_yaml_kinds(run_cli, tmp_path):
     assert result.stderr.startswith(f"pinframes: error: {broken}: YAML syntax error at line")
 
 
+@pytest.mark.slow  # seconds of CPU (subprocesses): CI's slow set
 def test_plot_writes_png(run_cli, turntable, tmp_path):
     out = tmp_path / "frames.png"
     result = run_cli("plot", turntable, "--frames", "table", "tip", "-r", "world", "-o", out)

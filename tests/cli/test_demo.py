@@ -8,6 +8,7 @@ import io
 from pathlib import Path
 
 import numpy as np
+import pytest
 import yaml
 from scipy.spatial.transform import Rotation
 
@@ -111,6 +112,7 @@ def test_seam_point_rides_the_seam_at_the_travel_speed():
                                atol=1e-11)  # 10 degrees ahead, square across the seam
 
 
+@pytest.mark.slow  # seconds of CPU (subprocesses): CI's slow set
 def test_demo_prints_summary_and_writes_csv_and_png(run_cli, tmp_path):
     result = run_cli("demo", "--out", "results", cwd=tmp_path)
     assert result.returncode == 0, result.stderr

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import coal
 import numpy as np
+import pytest
 
 from pinframes import read_scene
 
@@ -45,6 +46,7 @@ def torch_to_pipe_mm(times) -> float:
     return 1000 * smallest
 
 
+@pytest.mark.slow  # seconds of CPU (subprocesses): CI's slow set
 def test_demo_names_the_closest_pair_and_the_pairs_it_leaves_out(run_cli, tmp_path):
     result = run_cli("demo", "--out", "results", cwd=tmp_path)
     assert result.returncode == 0, result.stderr

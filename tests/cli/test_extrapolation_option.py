@@ -26,6 +26,7 @@ def warnings_of(result) -> list[str]:
     ("solve", CELL, "--frame", "torch_tcp", "--target", "torch_target"),
     ("clearance", CELL, "torch", "pipe"),
 ])
+@pytest.mark.slow  # seconds of CPU (subprocesses): CI's slow set
 def test_times_after_the_motion_warn_once_or_fail(run_cli, tmp_path, command):
     points = tmp_path / "points.csv"
     points.write_text("x_m,y_m,z_m\n0,0,0\n0.1,0,0\n")

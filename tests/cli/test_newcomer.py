@@ -57,6 +57,7 @@ def test_help_of_convert_names_the_default_schema(run_cli):
     assert "(default: 0.1.0)" in text
 
 
+@pytest.mark.slow  # seconds of CPU (subprocesses): CI's slow set
 def test_tree_files_are_told_by_content_whatever_their_name(run_cli, tmp_path):
     scene = bundled_scene()
     asdf = tmp_path / "cell.data"
@@ -169,6 +170,7 @@ def test_bundled_cell_exports_to_frames_yaml_with_a_slash_replacement(run_cli, t
     np.testing.assert_allclose(flange[1:4], expected, atol=1e-9)
 
 
+@pytest.mark.slow  # seconds of CPU (subprocesses): CI's slow set
 def test_demo_on_the_base_install_writes_the_csv_and_says_what_the_extras_add(
         tmp_path, cli_env):
     # the base install: neither the plot extra (matplotlib) nor the view extra (umsgpack)

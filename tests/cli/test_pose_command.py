@@ -141,6 +141,7 @@ def test_user_errors_exit_1_with_one_line(run_cli, turntable, args, expected):
     assert expected in lines[0]
 
 
+@pytest.mark.slow  # seconds of CPU (subprocesses): CI's slow set
 def test_verbose_adds_traceback_and_usage_errors_exit_2(run_cli, turntable):
     result = run_cli("pose", turntable, "nope", "--verbose")
     assert result.returncode == 1

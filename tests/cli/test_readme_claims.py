@@ -31,6 +31,7 @@ def test_the_documented_ctwd_command_names_a_contact_tip(run_cli):
     np.testing.assert_allclose([float(row["ctwd_m"]) for row in rows], STICK_OUT_M, atol=1e-5)
 
 
+@pytest.mark.slow  # seconds of CPU (subprocesses): CI's slow set
 def test_the_view_page_gives_the_size_of_the_demo_page(run_cli, tmp_path):
     pytest.importorskip("meshcat")
     page = (ROOT / "docs" / "view.md").read_text(encoding="utf-8")

@@ -51,6 +51,7 @@ def test_static_path_keeps_the_points(run_cli, turntable, tmp_path):
     np.testing.assert_allclose(read_rows(result.stdout, "x,y,z"), [[0.3, 0, 0]], atol=1e-15)
 
 
+@pytest.mark.slow  # seconds of CPU (subprocesses): CI's slow set
 def test_bad_data_files_name_file_and_field(run_cli, turntable, tmp_path):
     data = tmp_path / "bad.csv"
     for text, message in [("x,y\n1,2\n", "three data columns"),

@@ -7,6 +7,7 @@ import json
 import re
 
 import numpy as np
+import pytest
 import umsgpack
 
 from pinframes.cli import main
@@ -67,6 +68,7 @@ def test_view_finds_packages_in_package_dir(run_cli, tmp_path):
     assert meshes == ["/pinframes/frames/frame:base/geometry/0"]
 
 
+@pytest.mark.slow  # seconds of CPU (subprocesses): CI's slow set
 def test_demo_without_meshcat_writes_the_rest_and_says_what_the_extra_adds(
         tmp_path, monkeypatch, capsys):
     import pinframes.view._page as page_module

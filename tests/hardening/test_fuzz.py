@@ -7,6 +7,9 @@ import pytest
 from conftest import SHARED_DATA
 from hardening import fuzz
 
+# thousands of mutated files: in the slow set (CI runs it)
+pytestmark = pytest.mark.slow
+
 FUZZ_SEED = 20261123
 INPUTS_PER_READER = 120
 FEWER_INPUTS = {"read_asdf": 80}

@@ -131,6 +131,7 @@ def _round_trip_test(name: str):
 
 
 @pytest.mark.parametrize("name", sorted(ROUND_TRIPS))
+@pytest.mark.slow  # seconds of CPU (subprocesses): CI's slow set
 def test_read_of_written_tree_equals_the_tree(name):
     _round_trip_test(name)()
 

@@ -17,6 +17,9 @@ import pytest
 import pinframes.kinematics._memo as memo
 from pinframes import FrameTree, Pose, read_asdf, write_asdf
 
+# many threads, seconds each: in the slow set (CI runs it)
+pytestmark = pytest.mark.slow
+
 THREADS = 8
 
 

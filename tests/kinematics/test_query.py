@@ -288,6 +288,7 @@ def test_whole_tree_model_matches_pinocchio_forward_kinematics(rng):
                                            atol=1e-12)
 
 
+@pytest.mark.slow  # seconds of CPU (subprocesses): CI's slow set
 def test_the_pinocchio_model_orders_its_joints_the_same_in_every_process():
     # Sibling joints once followed set order, which string hashing changes per process.
     script = ("from pinframes import FrameTree, Pose\n"

@@ -16,6 +16,9 @@ pd = pytest.importorskip("pandas")
 from pinframes.batch import find_runs, run_batch  # noqa: E402
 from pinframes.batch._inputs import run_inputs  # noqa: E402
 
+# a Dask cluster per test: in the slow set (CI runs it)
+pytestmark = pytest.mark.slow
+
 SECOND = 1_000_000_000
 START = 1_700_000_000 * SECOND
 

@@ -81,6 +81,7 @@ def test_too_many_elements_are_refused_naming_file_limit_and_element(tmp_path):
     assert len(read_urdf(path, limits=Limits(max_xml_elements=207))) == 2  # 207 elements
 
 
+@pytest.mark.slow  # seconds of CPU (subprocesses): CI's slow set
 def test_a_file_over_the_default_element_count_fails_within_the_caps(tmp_path):
     path = tmp_path / "robot.urdf"  # 4.8 MB: 1.2 million empty elements in one link
     path.write_text(_deep_link("<a/>" * 1_200_000))

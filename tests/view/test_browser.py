@@ -24,7 +24,9 @@ from headless_chromium import Chromium, available
 
 if not available() and os.environ.get("CI"):
     pytest.fail("CI needs Debian's chromium for the browser tests", pytrace=False)
-pytestmark = pytest.mark.skipif(not available(), reason="chromium is not installed")
+# headless Chromium takes seconds a test: in the slow set (CI runs it)
+pytestmark = [pytest.mark.slow,
+              pytest.mark.skipif(not available(), reason="chromium is not installed")]
 
 WIDTH, HEIGHT = 1000, 700
 FLANGE_ON_SCREEN = """(() => {

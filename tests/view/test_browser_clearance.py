@@ -20,7 +20,9 @@ from pinframes.view import write_view
 
 from headless_chromium import Chromium, available
 
-pytestmark = pytest.mark.skipif(not available(), reason="chromium is not installed")
+# headless Chromium takes seconds a test: in the slow set (CI runs it)
+pytestmark = [pytest.mark.slow,
+              pytest.mark.skipif(not available(), reason="chromium is not installed")]
 
 MARK = """(() => {
   const root = pinframes.viewer.scene_tree.find(["pinframes"]).object;

@@ -17,7 +17,9 @@ from headless_chromium import Chromium, available
 
 if not available() and os.environ.get("CI"):
     pytest.fail("CI needs Debian's chromium for the browser tests", pytrace=False)
-pytestmark = pytest.mark.skipif(not available(), reason="chromium is not installed")
+# headless Chromium takes seconds a test: in the slow set (CI runs it)
+pytestmark = [pytest.mark.slow,
+              pytest.mark.skipif(not available(), reason="chromium is not installed")]
 
 VISIBLE_LABELS = """[...document.querySelectorAll('.pinframes-label')]
   .filter((e) => e.style.display === 'block')

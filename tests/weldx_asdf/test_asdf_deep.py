@@ -101,6 +101,7 @@ def test_weldx_reads_a_chain_as_deep_as_it_handles(tmp_path):
     np.testing.assert_allclose(answer["rotation"][0], expected[:3, :3], rtol=0, atol=1e-9)
 
 
+@pytest.mark.slow  # seconds of CPU (subprocesses): CI's slow set
 def test_yaml_nested_past_the_parser_is_refused_with_its_problem(tmp_path):
     """Nesting that is no weldx graph: the parser's problem, not its context, is reported
     (libyaml stops at 1,000 levels, the pure-Python parser at the recursion limit)."""
