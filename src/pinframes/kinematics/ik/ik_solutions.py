@@ -13,18 +13,14 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ...errors import JointError
 from ...values.pose import Pose
-from ...values.timeline import TimedSource
 from .._description import TreeDescription
 from .._joint_argument import named_joints
-from .._plan import plan_query, prepare_path
 from .._sampling import KERNEL_CHUNK
 from ..closed_form.solutions import IkSolutions, every_solution
 from ._closed_form_arm import arm_order, closed_form_arm, flange_motions
 from ._path_chunks import TARGET_SOURCE, targets_at
-from ._solved_joints import solved_joints
-from .solve_joints import _reference
+from .solve_joints import _reference, planned_solve
 
 __all__ = ["evaluate_ik_solutions"]
 
@@ -35,17 +31,9 @@ def evaluate_ik_solutions(tree: TreeDescription, frame: str, target: str | Pose,
     """``tree.ik_solutions(...)``; ``frame`` (and a target frame name) already checked."""
     reference, target_pose = _reference(tree, frame, target, relative_to)
     names = None if joints is None else named_joints(joints, tree.joints_by_name, frame)
-    target_times = None if target_pose is None else target_pose.times
-    extra = () if target_pose is None or target_times is None else (
-        TimedSource(TARGET_SOURCE, target_times.astype(np.int64), target_pose.reference_time),)
-    path = prepare_path(tree, frame, reference)
-    if path.model is None:
-        raise JointError(f"no robot joint moves {frame!r} relative to {reference!r}",
-                         frame=frame, field="joints")
-    solved = solved_joints(path, tree.joints_by_name, tree.drives, names)
+    path, solved, plan = planned_solve(tree, frame, reference, target_pose, times, time_ref,
+                                       names)
     shape = closed_form_arm(path, solved, frame)
-    plan = plan_query(tree, frame, reference, times, time_ref, "clamp", held=solved.names,
-                      extra=extra)
     order = arm_order(shape, solved.names)
     lower, upper = solved.limits.lower[order], solved.limits.upper[order]
     moments = plan.sample_times

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from functools import partial
 from typing import Any
 
@@ -26,7 +26,7 @@ from ...values.pose import Pose
 from ...values.timeline import TimedSource
 from .._description import TreeDescription
 from .._joint_argument import named_joints
-from .._plan import PreparedPath, plan_query, prepare_path
+from .._plan import PreparedPath, QueryPlan, plan_query, prepare_path
 from ..closed_form.arm_shapes import ArmShape
 from ..closed_form.configurations import BRANCH_NAMES, branch_flags, requested_branch
 from ._batch_check import flat_errors
@@ -78,18 +78,9 @@ def evaluate_solve_joints(
     names = None if joints is None else _to_solve(joints, tree.joints_by_name, frame, "joints")
     added = () if add_joints is None else _to_solve(add_joints, tree.joints_by_name, frame,
                                                     "add_joints")
-    # a time-dependent target's times are the solve's, beside those of what moves
-    target_times = None if target_pose is None else target_pose.times
-    extra = () if target_pose is None or target_times is None else (
-        TimedSource(TARGET_SOURCE, target_times.astype(np.int64), target_pose.reference_time),)
-    path = prepare_path(tree, frame, reference)
-    if path.model is None:
-        raise JointError(f"no robot joint moves {frame!r} relative to {reference!r}",
-                         frame=frame, field="joints")
-    solved = solved_joints(path, tree.joints_by_name, tree.drives, names, added)
-    # the solved joints' samples are what is solved for: not among the solve's times
-    plan = plan_query(tree, frame, reference, times, time_ref, "clamp", held=solved.names,
-                      extra=extra)
+    path, solved, plan = planned_solve(tree, frame, reference, target_pose, times, time_ref,
+                                       names, added)
+    assert path.model is not None  # planned_solve refuses a path that no joint moves
     start = first_start(solved, seed, plan, tree.joints_by_name, tree.joint_trajectories,
                         frame)
     solver = LeastSquares()
@@ -187,6 +178,25 @@ def _flat_errors(request: PathToSolve, flat: FlatFrame, tracked: Tracked, strict
                         f"(flat_tolerance {flat.tolerance:.3g} rad)", frame=frame,
                         field="flat")
     return errors
+
+
+def planned_solve(tree: TreeDescription, frame: str, reference: str, target_pose: Pose | None,
+                  times: Any, time_ref: Any, names: list[str] | None,
+                  added: Sequence[str] = ()) -> tuple[PreparedPath, SolvedJoints, QueryPlan]:
+    """The path from ``frame`` to ``reference``, the joints solved on it (``names``, else
+    the default set, then ``added``) and the plan of the solve: a time-dependent target's
+    times beside those of what moves, the solved joints' own samples not among them."""
+    target_times = None if target_pose is None else target_pose.times
+    extra = () if target_pose is None or target_times is None else (
+        TimedSource(TARGET_SOURCE, target_times.astype(np.int64), target_pose.reference_time),)
+    path = prepare_path(tree, frame, reference)
+    if path.model is None:
+        raise JointError(f"no robot joint moves {frame!r} relative to {reference!r}",
+                         frame=frame, field="joints")
+    solved = solved_joints(path, tree.joints_by_name, tree.drives, names, added)
+    plan = plan_query(tree, frame, reference, times, time_ref, "clamp", held=solved.names,
+                      extra=extra)
+    return path, solved, plan
 
 
 def _reference(tree: TreeDescription, frame: str, target: str | Pose, relative_to: str | None
