@@ -329,9 +329,8 @@ def _cost(problem: TrackingProblem, solved: Solved) -> float:
 
 def solve_again(problem: TrackingProblem, index: int, theta: FloatArray, serve: bool = True
                 ) -> Solution:
-    """Sample ``index`` solved from ``theta`` and measured (with ``serve``, offered to the
-    secondary objective): the solution, its position and orientation errors (m, rad) and
-    whether it is reached."""
+    """Sample ``index`` solved from ``theta`` and measured (``serve``: offered to the secondary
+    objective): the solution, its position and orientation errors (m, rad), if reached."""
     solution, position, orientation, reached, _ = _SampleSolver(problem).solve(
         index, theta, 0.0, trust_newton=False, bridge=True, serve=serve)
     return solution, position, orientation, reached
@@ -451,8 +450,7 @@ class _SampleSolver:
         tool gets back within its tolerances from there; else ``solved`` (with its margin
         measured afresh when that is wide enough for the objective to ask nothing: the
         bound carried from sample to sample stays above it for a while). ``from_a_start``:
-        served again while it asks, up to its ``rounds_from_a_start`` (else its
-        ``rounds_tracked``)."""
+        served again while it asks, up to ``rounds_from_a_start`` (else ``rounds_tracked``)."""
         assert self.objective is not None
         theta = solved[0]
         margin = self.limits.margin(theta.tolist())
