@@ -2,7 +2,9 @@
 
 :mod:`.solve_joints` is the query (``FrameTree.solve_joints``) and :mod:`.joint_solution` its
 result. Its steps: the solved joints (``_solved_joints``), where the solve starts
-(``_starts``), the solve chunk by chunk (``_path_chunks``), the solver loop sample by sample
+(``_starts``), the tracker it picks (``_trackers``: the numeric solver, or a closed form, its
+jumps bridged by ``_jump_bridge``) on times made dense enough (``_between_samples``), the
+numeric solve chunk by chunk (``_path_chunks``), the solver loop sample by sample
 (``_newton_tracking``) with the tool's error (``_tool_error``), the step within limits
 (``_bounded_step``) and the secondary objectives (``_null_space``, ``_flat``), and the
 batched check of its samples (``_batch_check``). The planning and sampling it shares with
