@@ -26,7 +26,7 @@ need serving.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from typing import Any
 
 import numpy as np
@@ -40,7 +40,8 @@ from .._model import CompiledModel
 from ._bounded_step import LeastSquares
 from ._solved_joints import SolvedJoints
 
-__all__ = ["FLAT_ENOUGH", "FLAT_ROUNDS", "FLAT_TOLERANCE", "FlatFrame", "flat_objective"]
+__all__ = ["FLAT_ENOUGH", "FLAT_ROUNDS", "FLAT_TOLERANCE", "SAME_START", "FlatFrame",
+           "flat_objective"]
 
 FloatArray = NDArray[np.float64]
 
@@ -63,10 +64,13 @@ tolerance."""
 
 SPREAD = 4
 """Starts per joint that turns the flat frame, spread over its range (within -pi..pi), for
-the global choice of the first sample (:meth:`FlatFrame.turned_up_globally`)."""
+the global choice of the first sample (:meth:`FlatFrame.flat_starts`)."""
 
 MOST_TURNING = 3
 """Joints that turn the flat frame spread over at most (the first ones of the chain)."""
+
+SAME_START = 1e-3
+"""Radians or metres (largest joint difference) within which two turned-up starts are one."""
 
 LONGEST_TURN = 0.3
 """Largest change of one joint per round, radians or metres."""
@@ -188,10 +192,12 @@ class FlatFrame:
 
     def could_turn_up(self, theta: FloatArray, configuration: FloatArray) -> bool:
         """Whether the solved joints alone, the tool let go, turn the frame within the
-        tolerance of up from ``theta`` (:meth:`turned_up`; ``configuration``: the sample's
-        ``q``): the frame could be flat there."""
-        return self._cosine(self.turned_up(theta, configuration), configuration) >= (
-            self._within_tolerance)
+        tolerance of up from ``theta`` or from any of the starts of :meth:`flat_starts`
+        (``configuration``: the sample's ``q``): the frame could be flat there, also where
+        ``theta`` holds a joint on its limit that another configuration leaves free (a turn
+        joint at the end of its range, a whole turn short of one that is flat)."""
+        return any(cosine >= self._within_tolerance
+                   for _, cosine in self._turned_from_spread_starts(theta, configuration))
 
     def _cosine(self, theta: FloatArray, configuration: FloatArray) -> float:
         """The cosine of the frame's angle from up with the solved joints at ``theta``
@@ -212,13 +218,32 @@ class FlatFrame:
         """The unit direction (3,) the frame's z is turned toward, in the model root's axes."""
         return self._up
 
-    def turned_up_globally(self, theta: FloatArray, configuration: FloatArray
-                           ) -> FloatArray:
-        """:meth:`turned_up` from ``theta`` and from starts spread over the ranges of the
-        joints that turn the frame (:data:`SPREAD` values each, the others as in
-        ``theta``): the one that comes nearest to up, the first of equals (``theta``'s
-        own first). A local turn from one start can stop where the frame's z only spins
-        about up's level (no first-order gain) or on a limit."""
+    def flat_starts(self, theta: FloatArray, configuration: FloatArray) -> list[FloatArray]:
+        """The first sample's candidate starts (``configuration``: its ``q``): the
+        configurations of :meth:`_turned_from_spread_starts` within the tolerance of up,
+        distinct (:data:`SAME_START` apart), ``theta``'s own first; when none is within, the
+        one nearest up (the first of equals).
+
+        A local turn from one start can stop where the frame's z only spins about up's level
+        (no first-order gain) or on a limit; and of the configurations that turn the first
+        sample up, only some may keep it up along the path (a turn joint of 400 degrees that
+        a whole girth seam needs from one end of its range): the caller tracks each."""
+        flat: list[FloatArray] = []
+        nearest, nearest_cosine = theta, -math.inf
+        for turned, cosine in self._turned_from_spread_starts(theta, configuration):
+            if cosine >= self._within_tolerance:
+                if all(float(np.abs(turned - other).max()) > SAME_START for other in flat):
+                    flat.append(turned)
+            elif cosine > nearest_cosine:
+                nearest, nearest_cosine = turned, cosine
+        return flat or [nearest]
+
+    def _turned_from_spread_starts(self, theta: FloatArray, configuration: FloatArray
+                                   ) -> Iterator[tuple[FloatArray, float]]:
+        """:meth:`turned_up` from ``theta``, then from starts spread over the ranges of the
+        joints that turn the frame (:data:`SPREAD` values each, within -pi..pi, the others
+        as in ``theta``), each with the cosine of the frame's angle from up there
+        (``configuration``: the sample's ``q``)."""
         joints = self._joints
         q = configuration.copy()
         joints.set_configuration(q, theta)
@@ -232,19 +257,23 @@ class FlatFrame:
             low = max(float(limits.lower[column]), -math.pi)
             high = min(float(limits.upper[column]), math.pi)
             grids.append(low + (high - low) * (np.arange(SPREAD) + 0.5) / SPREAD)
-        best, best_angle = theta, math.inf
-        candidates = [theta]
+        starts = [theta]
         for values in (np.stack(np.meshgrid(*grids, indexing="ij"), -1).reshape(-1, len(grids))
                        if grids else ()):
             start = theta.copy()
             start[turning] = values
-            candidates.append(start)
-        for start in candidates:
+            starts.append(start)
+        for start in starts:
             turned = self.turned_up(start, configuration)
-            angle = math.acos(max(-1.0, min(1.0, self._cosine(turned, configuration))))
-            if angle < best_angle - FLAT_ENOUGH:
-                best, best_angle = turned, angle
-        return best
+            yield turned, self._cosine(turned, configuration)
+
+    def angles(self, positions: FloatArray, configurations: FloatArray) -> FloatArray:
+        """Per sample (N,), the frame's angle from up (radians) with the solved joints at
+        ``positions`` (N, n); ``configurations`` (at least N, nq): the samples' ``q``, left as
+        they are."""
+        cosines = [self._cosine(theta, q) for theta, q in
+                   zip(positions, configurations[:positions.shape[0]], strict=True)]
+        return np.arccos(np.clip(cosines, -1.0, 1.0))
 
     def _axes(self) -> FloatArray:
         """The flat frame's axes (3, 3) in the model root's, from Pinocchio's data."""

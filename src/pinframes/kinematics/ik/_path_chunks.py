@@ -25,7 +25,6 @@ from .._plan import QueryPlan
 from .._sampling import KERNEL_CHUNK, sample_configurations
 from ._batch_check import check_unmeasured, tilts_at, tools_in_targets
 from ._bounded_step import LeastSquares
-from ._flat import FlatFrame
 from ._newton_tracking import Tracked, TrackingHistory, TrackingProblem, track_targets
 from ._null_space import NullSpaceObjective
 from ._solved_joints import SolvedJoints
@@ -143,9 +142,6 @@ def track_in_chunks(request: PathToSolve, start: FloatArray, search_starts: bool
             if standing:
                 chunk = first.leading(chunk)
             problem = chunk.problem(request)
-            if isinstance(request.objective, FlatFrame):
-                start = request.objective.turned_up_globally(start,
-                                                             problem.configurations[0])
             tracked, history = track_from_the_best_start(problem, start, strict)
         else:
             problem = chunk.problem(request)

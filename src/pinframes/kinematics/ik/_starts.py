@@ -37,6 +37,7 @@ from ...values.joint import Joint
 from ...values.joint_trajectory import JointTrajectory
 from .._plan import QueryPlan
 from ._bounded_step import JointLimits
+from ._flat import FlatFrame
 from ._newton_tracking import Tracked, TrackingHistory, TrackingProblem, solve_again, track_targets
 from ._solved_joints import SolvedJoints
 
@@ -137,14 +138,24 @@ def track_from_the_best_start(problem: TrackingProblem, default: FloatArray,
     A solution is first tracked up to its first miss only: on a branch that loses the path
     every later sample is a miss, and a miss costs many iterations. Only when none reaches
     every sample are those that followed furthest tracked to the end and counted (with
-    ``stop_when_unreached`` the furthest is returned as it stopped)."""
+    ``stop_when_unreached`` the furthest is returned as it stopped). With a flat frame
+    (:class:`FlatFrame`) the default start is each of its flat starts in turn, and a
+    solution is taken at once only when it also keeps the frame flat at every sample (see
+    :func:`_kept_flat`); of those that reach every sample without, the one flat at the most
+    samples (the earlier on ties)."""
     samples = problem.step_ratios.shape[0]
+    flat = problem.objective if isinstance(problem.objective, FlatFrame) else None
+    defaults = [default] if flat is None else flat.flat_starts(default,
+                                                                problem.configurations[0])
     firsts: list[FloatArray] = []
     followed: list[int] = []  # per solution, the samples tracked up to its first miss
     furthest: tuple[Tracked, TrackingHistory] | None = None
+    flattest: tuple[Tracked, TrackingHistory] | None = None  # reaches all, flat at the most
+    most_flat = -1
+    bar = 0.0 if flat is None else _flat_bar(flat, defaults[0], problem.configurations[0])
     # from far away a joint that may turn a whole turn turns the short way, not onto a limit
     turning = replace(problem, joints=problem.joints.turning_freely())
-    for start in [default, *spread_starts(problem.joints.limits, default)]:
+    for start in [*defaults, *spread_starts(problem.joints.limits, defaults[0])]:
         first, _, _, reached = solve_again(turning, 0, start)
         first = problem.joints.into_ranges(first)
         if not reached or any(np.max(np.abs(first - other)) <= SAME_SOLUTION
@@ -155,18 +166,39 @@ def track_from_the_best_start(problem: TrackingProblem, default: FloatArray,
         history = TrackingHistory(first)
         tracked = track_targets(problem, history, stop_when_unreached=True)
         if tracked.reached.shape[0] == samples and tracked.reached.all():
-            return tracked, history
+            kept = samples if flat is None else _kept_flat(flat, bar, tracked,
+                                                           problem.configurations)
+            if kept == samples:
+                return tracked, history
+            if kept > most_flat:
+                flattest, most_flat = (tracked, history), kept
         firsts.append(first)
         followed.append(tracked.reached.shape[0])
         if followed[-1] > max(followed[:-1], default=0):
             furthest = tracked, history
+    if flattest is not None:
+        return flattest
     if furthest is None:  # no start reaches the first sample: the default's closest approach
-        history = TrackingHistory(default)
+        history = TrackingHistory(defaults[0])
         return track_targets(problem, history, stop_when_unreached), history
     if stop_when_unreached:
         return furthest
     return _most_reached(problem, [first for first, count in zip(firsts, followed, strict=True)
                                    if count == max(followed)])
+
+
+def _flat_bar(flat: FlatFrame, start: FloatArray, configuration: FloatArray) -> float:
+    """Radians from up within which a tracked sample keeps the flat frame flat: its tolerance
+    beyond the angle of the frame at the first flat start ``start`` (0 where the first
+    sample can be flat; ``configuration``: the first sample's ``q``)."""
+    return float(flat.angles(start[None], configuration[None])[0]) + flat.tolerance
+
+
+def _kept_flat(flat: FlatFrame, bar: float, tracked: Tracked,
+               configurations: FloatArray) -> int:
+    """How many samples of ``tracked`` hold the flat frame within ``bar`` radians of up."""
+    angles = flat.angles(tracked.positions, configurations)
+    return int(np.count_nonzero(angles <= bar))
 
 
 def _most_reached(problem: TrackingProblem, firsts: list[FloatArray]
