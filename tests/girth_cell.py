@@ -55,12 +55,14 @@ def around(seconds: np.ndarray) -> np.ndarray:
     return 2.0 * math.pi * np.asarray(seconds, dtype=float) / DURATION
 
 
-def seam_keyframes() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The seam in the workpiece (the faceplate): times (s), origins (T, 3) and axes
-    (T, 3, 3): x along the travel, y the pipe's axis, z out of the pipe (the weld's face)."""
-    times = np.linspace(0.0, DURATION, COUNT)
+def seam_keyframes(turns: float = 1.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The seam in the workpiece (the faceplate), ``turns`` times round the pipe (one
+    keyframe per degree): times (s), origins (T, 3) and axes (T, 3, 3): x along the travel, y
+    the pipe's axis, z out of the pipe (the weld's face)."""
+    count = round((COUNT - 1) * turns) + 1
+    times = np.linspace(0.0, DURATION * turns, count)
     angle = around(times)
-    zeros = np.zeros(COUNT)
+    zeros = np.zeros(count)
     outward = np.stack([np.cos(angle), np.sin(angle), zeros], 1)
     travel = np.stack([-np.sin(angle), np.cos(angle), zeros], 1)
     axis = np.stack([zeros, zeros, zeros + 1.0], 1)

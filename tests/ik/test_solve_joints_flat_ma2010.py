@@ -29,17 +29,17 @@ from pinframes import Pose, read_urdf
 FAST = ["shipped", "left_side"]  # the others in the slow set
 
 
-def solved(folder, placement: str, tilt):
-    """The placed cell's tree and URDF, and its solve of the whole girth seam."""
+def solved(folder, placement: str, tilt, turns: float = 1.0, **options):
+    """The placed cell's URDF, and its solve of a girth seam ``turns`` times round."""
     urdf = placed_cell(folder, *PLACEMENTS[placement])
     tree = read_urdf(urdf, package_dirs=[PACKAGES])
-    times, origins, axes = seam_keyframes()
+    times, origins, axes = seam_keyframes(turns)
     tree.add("seam", "workpiece", Pose(origins, axes, times=times))
     joints = [name for name in tree.joints if tree.joints[name].is_actuated]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the joints have no samples
         solution = tree.solve_joints("torch_tip", "seam", joints=joints, free_axis="z",
-                                     flat="seam", tilt=tilt)
+                                     flat="seam", tilt=tilt, **options)
     return urdf, solution
 
 
@@ -75,3 +75,20 @@ def test_a_whole_girth_seam_is_flat_without_a_seed(tmp_path, placement, tilt):
     check_flat_all_along(urdf, solution, tilt)
     tilt_joint = solution.joint_names.index("d500_joint_1")
     assert abs(solution.positions[0, tilt_joint] + math.pi / 2) <= 1e-3
+
+
+@pytest.mark.slow
+def test_samples_past_the_turn_s_range_are_not_reached(tmp_path):
+    """A seam 1.15 times round (414 degrees) outruns the D500's 400-degree turn: where the
+    turn stands on its limit the face leaves up, and those samples are not reached (a
+    whole turn back the turn is free, and flat); every other sample is reached and flat."""
+    times = seam_keyframes(1.15)[0]
+    urdf, solution = solved(tmp_path, "left_side", None, 1.15, times=times)
+    measured = measure(urdf, solution.joint_names, solution.seconds, solution.positions)
+    np.testing.assert_allclose(solution.flat_error, measured.face, atol=1e-6)
+    off_flat = measured.face > FLAT_TOLERANCE
+    assert 0 < np.count_nonzero(off_flat) <= 40  # 14 degrees of seam, one sample each
+    assert not solution.reached[off_flat].any()
+    assert solution.reached[~off_flat].all()
+    turn = solution.positions[off_flat, solution.joint_names.index("d500_joint_2")]
+    np.testing.assert_allclose(turn, 3.4906, atol=1e-4)  # on its limit; -2.79 is free
