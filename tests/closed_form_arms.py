@@ -5,6 +5,8 @@ the closed form must not miss."""
 
 from __future__ import annotations
 
+import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -12,6 +14,7 @@ import pinocchio as pin
 
 from ik_paths import DATA, example_robot
 from pinframes import FrameTree, Pose
+from urdf.ros_packages import UR_DESCRIPTION, UR_XACRO, xacro_command
 
 ARMS = DATA / "ros_industrial_arms"
 KR6R900 = ARMS / "kuka_experimental" / "kr6r900sixx.urdf"
@@ -30,6 +33,34 @@ def ros_industrial_arms() -> list[Path]:
 def universal_robots() -> list[Path]:
     """The UR3, UR5 and UR10 of example-robot-data (their full joint ranges)."""
     return [example_robot(f"{name}_robot.urdf") for name in ("ur3", "ur5", "ur10")]
+
+
+UR_TYPES = tuple(sorted(folder.name for folder in (UR_DESCRIPTION / "config").iterdir()))
+"""The arms of tests/data/ur_description (ur3, ur3e, ur5, ..., ur30): their nominal
+parameter files, as published."""
+
+
+def ur_description_tree(ur_type: str) -> FrameTree:
+    """The ``ur_type`` arm as pinframes reads ``ur.urdf.xacro`` with ``ur_type:=...``."""
+    tree = FrameTree("floor")
+    tree.attach_urdf(UR_XACRO, "floor", xacro_args={"name": "ur", "ur_type": ur_type})
+    return tree
+
+
+def ur_description_urdf(ur_type: str, scratch: Path) -> Path:
+    """The ``ur_type`` arm as the ``xacro`` command expands ``ur.urdf.xacro``, written into
+    ``scratch``, for Pinocchio: a continuous joint (the UR3's wrist 3) is made revolute over
+    (-pi, pi], the range in which pinframes gives its one value, so that Pinocchio reads
+    one angle for it (a continuous joint would be its cosine and sine); nothing else
+    changes."""
+    text = xacro_command(UR_XACRO, {"name": "ur", "ur_type": ur_type},
+                         {"ur_description": str(UR_DESCRIPTION)}, scratch)
+    text = re.sub(r'type="continuous">(.*?)<limit ',
+                  rf'type="revolute">\1<limit lower="{-math.pi!r}" upper="{math.pi!r}" ',
+                  text, flags=re.DOTALL)
+    path = scratch / f"{ur_type}.urdf"
+    path.write_text(text)
+    return path
 
 
 def arm_tree(urdf: Path) -> FrameTree:

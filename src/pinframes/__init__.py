@@ -37,7 +37,7 @@ from .errors import (
 from .formats import read, read_joint_trajectory, write
 from .formats.frames_yaml import read_frames_yaml, write_frames_yaml
 from .formats.joint_limits import read_joint_limits
-from .formats.joint_trajectory.writer import write_joint_trajectory
+from .formats.joint_trajectory_writer import write_joint_trajectory
 from .formats.limits import Limits
 from .formats.rosbag import read_rosbag
 from .formats.scene import read_program, read_scene, write_scene

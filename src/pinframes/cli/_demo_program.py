@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..formats.joint_trajectory.writer import write_joint_trajectory
+from ..formats.joint_trajectory_writer import write_joint_trajectory
 from ..formats.scene.program_section import PROGRAM_METADATA_KEY, scene_program
 from ..tree import FrameTree
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..formats.joint_trajectory.writer import write_joint_trajectory
+from ..formats.joint_trajectory_writer import write_joint_trajectory
 from ..formats.scene.program_section import scene_program
 from ._files import read_tree
 from ._program_summary import motion_summary

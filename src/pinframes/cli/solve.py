@@ -12,7 +12,7 @@ import numpy as np
 
 from ..errors import JointError, JointWithoutSamplesWarning, joint_not_found
 from ..formats.joint_trajectory import joint_trajectory_csv
-from ..formats.joint_trajectory.writer import write_joint_trajectory
+from ..formats.joint_trajectory_writer import write_joint_trajectory
 from ..kinematics import JointSolution
 from ..kinematics.ik.joint_speeds import speed_unit
 from ..tree import FrameTree

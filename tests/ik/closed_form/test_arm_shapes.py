@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+import yaml
 
 from closed_form_arms import (
     HC10,
@@ -19,9 +20,11 @@ from closed_form_arms import (
     targets_pose,
     tool_pose,
     universal_robots,
+    ur_description_urdf,
 )
 from ik_paths import example_robot
-from pinframes import JointError
+from pinframes import FrameTree, JointError
+from urdf.ros_packages import UR_DESCRIPTION, UR_XACRO
 
 # opw_kinematics (Jmeyer1292/opw_kinematics), include/opw_kinematics/opw_parameters_examples.h:
 # makeKukaKR6_R700_sixx, makeIrb2400_10, makeIrb2600_12_165 (a1, a2, b, c1, c2, c3, c4)
@@ -81,6 +84,25 @@ def test_an_offset_wrist_is_neither_family_and_the_error_says_why():
     assert ("joint 6 (joint_6_t) axis misses the point where joint 4 and joint 5 axes meet: "
             f"{apart:.3g} m apart") in message and f"{apart:.3g}" == "0.162"
     assert "joint 4 (joint_4_r) axis is not parallel to joint 3 (joint_3_u) axis" in message
+
+
+def test_a_calibration_that_tilts_an_axis_breaks_the_ur_shape(tmp_path):
+    """Universal Robots' description takes a robot's calibration as ``kinematics_params``;
+    one that tilts the elbow axis by 0.2 mrad (pitch of the forearm's origin) leaves the
+    arm of neither family, and the error says by how much."""
+    nominal = yaml.safe_load((UR_DESCRIPTION / "config" / "ur5e" / "default_kinematics.yaml"
+                              ).read_text())
+    nominal["kinematics"]["forearm"]["pitch"] = 2e-4
+    calibration = tmp_path / "calibration.yaml"
+    calibration.write_text(yaml.safe_dump(nominal))
+    tree = FrameTree("floor")
+    tree.attach_urdf(UR_XACRO, "floor", xacro_args={"name": "ur", "ur_type": "ur5e",
+                                                    "kinematics_params": str(calibration)})
+    target = tool_pose(arm_model(ur_description_urdf("ur5e", tmp_path)), np.full(6, 0.3))
+    with pytest.raises(JointError, match=r"nor a UR-type arm \(three parallel axes, offset "
+                       r"wrist\): joint 3 \(elbow_joint\) axis is not parallel to joint 2 "
+                       r"\(shoulder_lift_joint\) axis: 0\.0002 rad apart"):
+        tree.ik_solutions("tool0", targets_pose([target]), relative_to="floor")
 
 
 def test_seven_joints_are_not_a_closed_form_arm():

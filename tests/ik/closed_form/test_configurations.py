@@ -10,8 +10,11 @@ import pinocchio as pin
 import pytest
 
 from closed_form_arms import (
+    ARMS,
     IRB2400,
+    IRB2600,
     KR6R900,
+    UR_TYPES,
     arm_model,
     arm_tree,
     joint_axes,
@@ -21,8 +24,12 @@ from closed_form_arms import (
     targets_pose,
     tool_pose,
     universal_robots,
+    ur_description_tree,
+    ur_description_urdf,
 )
 from ik_paths import example_robot
+from pinframes import FrameTree
+from pinframes.kinematics.closed_form.configurations import abb_cfx
 
 
 def wrist_point(model: pin.Model, q: np.ndarray, family: str) -> np.ndarray:
@@ -57,11 +64,13 @@ def geometric_flags(model: pin.Model, q: np.ndarray, family: str) -> str:
                      "flip" if flip else "noflip"])
 
 
-def check_flags(urdf: Path, poses: int) -> None:
+def check_flags(urdf: Path, poses: int, tree: FrameTree | None = None) -> None:
+    """The flags of ``tree``'s solutions (default: ``urdf`` attached), measured with
+    Pinocchio on ``urdf``."""
     model = arm_model(urdf)
     rng = np.random.default_rng(3)
     configurations = random_configurations(model, poses, rng)
-    solutions = arm_tree(urdf).ik_solutions(
+    solutions = (tree or arm_tree(urdf)).ik_solutions(
         "tool0", targets_pose([tool_pose(model, q) for q in configurations]),
         relative_to="floor", whole_turns=False)
     family = solutions.arm.family
@@ -85,6 +94,13 @@ def test_the_flags_are_their_geometric_definitions(urdf):
                          ids=lambda path: path.stem)
 def test_the_flags_of_every_arm(urdf):
     check_flags(urdf, poses=6)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("ur_type", UR_TYPES)
+def test_the_flags_of_every_type_of_universal_robots_own_description(ur_type, tmp_path):
+    check_flags(ur_description_urdf(ur_type, tmp_path), poses=6,
+                tree=ur_description_tree(ur_type))
 
 
 def stretched_angle(model: pin.Model) -> float:
@@ -146,3 +162,78 @@ def test_kuka_turn_and_abb_quadrants_are_the_signs_and_quadrants_of_the_joints()
     assert (solutions.kuka_turn[0][~valid] == -1).all()
     degrees = np.degrees(positions[:, [0, 3, 5]])
     np.testing.assert_array_equal(solutions.abb_quadrants[0][valid], degrees // 90)
+
+
+def abb_cfx_by_definition(model: pin.Model, q: np.ndarray) -> int:
+    """ABB's cfx of ``q`` by its table, measured with Pinocchio: 4 where the wrist centre is
+    behind axis 1 (at negative x in link_1's axes, which turn with axis 1), 2 where it is
+    behind the lower arm (the line from axis 2 to axis 3, upright at joint 2 zero: behind
+    is link_1's -x side there, turned with joint 2), 1 where axis 5 is negative."""
+    def measured(q: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The wrist centre in link_1's axes, and across the lower arm: the wrist centre's
+        offset and link_1's x (both in the world)."""
+        directions, points = joint_axes(model, q)
+        data = model.createData()
+        pin.forwardKinematics(model, data, q)
+        wrist = wrist_point(model, q, "opw")
+        across = np.cross(directions[1], points[2] - points[1])
+        return (data.oMi[1].actInv(wrist), (wrist - points[1]) @ across,
+                data.oMi[1].rotation[:, 0] @ across)
+
+    _, _, forward_at_zero = measured(np.zeros(6))  # the lower arm upright
+    in_link_1, across_lower_arm, _ = measured(q)
+    return (4 * int(in_link_1[0] < 0.0) + 2 * int(across_lower_arm * forward_at_zero < 0.0)
+            + int(q[4] < 0.0))
+
+
+def check_abb_cfx(urdf: Path, poses: int) -> None:
+    model = arm_model(urdf)
+    directions, points = joint_axes(model, np.zeros(6))
+    lower_arm = points[2] - points[1]
+    # ABB's premise: at zero the lower arm stands upright, along axis 1, the wrist centre
+    # in front of axis 1 and of the lower arm
+    assert np.linalg.norm(np.cross(lower_arm, directions[0])) < 1e-9, urdf.name
+    assert abb_cfx_by_definition(model, np.zeros(6)) == 0, urdf.name
+    rng = np.random.default_rng(5)
+    configurations = random_configurations(model, poses, rng)
+    solutions = arm_tree(urdf).ik_solutions(
+        "tool0", targets_pose([tool_pose(model, q) for q in configurations]),
+        relative_to="floor", whole_turns=False)
+    cfx = solutions.abb_cfx
+    for index in range(poses):
+        for branch in np.flatnonzero(solutions.valid[index]):
+            q = solutions.positions[index, branch]
+            assert cfx[index, branch] == abb_cfx_by_definition(model, q), (urdf.name, q)
+    assert (cfx[~solutions.valid] == -1).all()
+    # beyond the limits too (an ABB's joint 3 range keeps the wrist in front of the lower
+    # arm), over every joint's whole turn
+    anywhere = rng.uniform(-np.pi, np.pi, size=(64, 6))
+    values = abb_cfx(solutions.arm, anywhere)
+    assert [int(value) for value in values] == [abb_cfx_by_definition(model, q)
+                                                for q in anywhere], urdf.name
+    assert set(values) == set(range(8))
+
+
+@pytest.mark.parametrize("urdf", [IRB2400, IRB2600], ids=lambda path: path.stem)
+def test_abb_cfx_is_abbs_definition(urdf):
+    check_abb_cfx(urdf, poses=4)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("urdf", sorted(ARMS.glob("abb*/*.urdf")), ids=lambda path: path.stem)
+def test_abb_cfx_of_every_abb_arm(urdf):
+    check_abb_cfx(urdf, poses=8)
+
+
+def test_abb_cfx_counts_a_straight_wrist_as_positive_where_the_flags_say_flip():
+    model = arm_model(IRB2400)
+    solutions = arm_tree(IRB2400).ik_solutions(
+        "tool0", targets_pose([tool_pose(model, np.array([0.3, 0.2, 0.1, 0.4, 0.6, 0.2]))]),
+        relative_to="floor", whole_turns=False)
+    straight = np.array([0.3, 0.2, 0.1, 0.0, 0.0, 0.6])
+    assert geometric_flags(model, straight, "opw") == "front,up,flip"
+    assert abb_cfx(solutions.arm, straight) == 0 == abb_cfx_by_definition(model, straight)
+    bent = straight.copy()
+    bent[4] = -1e-12  # just negative: flip, and cfx 1
+    assert geometric_flags(model, bent, "opw") == "front,up,flip"
+    assert abb_cfx(solutions.arm, bent) == 1 == abb_cfx_by_definition(model, bent)

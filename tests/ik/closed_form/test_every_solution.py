@@ -1,6 +1,7 @@
 """Every solution of ``FrameTree.ik_solutions`` on the arms of ROS-Industrial and Universal
-Robots: each checked with Pinocchio's forward kinematics on the URDF, and none missed against
-a damped least-squares solver started from many random configurations."""
+Robots (example-robot-data's and every type of Universal Robots' own xacro description):
+each checked with Pinocchio's forward kinematics on the URDF, and none missed against a
+damped least-squares solver started from many random configurations."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ import pytest
 
 from closed_form_arms import (
     KR6R900,
+    UR_TYPES,
     arm_model,
     arm_tree,
     lowest_in_range,
@@ -21,20 +23,26 @@ from closed_form_arms import (
     targets_pose,
     tool_pose,
     universal_robots,
+    ur_description_tree,
+    ur_description_urdf,
 )
 from ik_paths import example_robot
+from pinframes import FrameTree
 
 EXACT = 1e-9  # metres and radians: every closed-form solution reaches its pose this close
 SAME = 1e-6  # radians: a numeric solution and a closed-form one are the same solution
 
 
-def check_every_solution(urdf: Path, poses: int, starts: int, seed: int = 7) -> None:
+def check_every_solution(urdf: Path, poses: int, starts: int, seed: int = 7,
+                         tree: FrameTree | None = None) -> str:
+    """Check ``tree``'s solutions (default: ``urdf`` attached) with Pinocchio on ``urdf``;
+    the family the arm is recognised as."""
     model = arm_model(urdf)
     rng = np.random.default_rng(seed)
     configurations = random_configurations(model, poses, rng)
     targets = [tool_pose(model, q) for q in configurations]
-    solutions = arm_tree(urdf).ik_solutions("tool0", targets_pose(targets),
-                                            relative_to="floor")
+    solutions = (tree or arm_tree(urdf)).ik_solutions("tool0", targets_pose(targets),
+                                                      relative_to="floor")
     lower, upper = model.lowerPositionLimit, model.upperPositionLimit
     assert solutions.positions.shape[0] == poses
     assert solutions.configurations.shape == (solutions.positions.shape[1],)
@@ -58,6 +66,7 @@ def check_every_solution(urdf: Path, poses: int, starts: int, seed: int = 7) -> 
             gaps = np.minimum(gaps, 2 * np.pi - gaps)
             assert gaps.max(axis=1).min() <= SAME, (urdf.name, solution)
         assert distinct.shape[0] == found.shape[0]  # no branch repeats another
+    return str(solutions.arm.family)
 
 
 @pytest.mark.parametrize("urdf", [KR6R900, "ur5"], ids=["kr6r900sixx", "ur5"])
@@ -77,6 +86,20 @@ def test_every_ros_industrial_arm(urdf):
 def test_every_universal_robot(name):
     urdf = {path.stem.split("_")[0]: path for path in universal_robots()}[name]
     check_every_solution(urdf, poses=4, starts=150)
+
+
+def test_universal_robots_own_ur20_description(tmp_path):
+    assert check_every_solution(ur_description_urdf("ur20", tmp_path), poses=2, starts=40,
+                                tree=ur_description_tree("ur20")) == "ur"
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("ur_type", UR_TYPES)
+def test_every_type_of_universal_robots_own_description(ur_type, tmp_path):
+    """Each type's nominal kinematics (config/<type>/default_kinematics.yaml) expanded from
+    ``ur.urdf.xacro``: UR-type, every solution on its pose, none missed."""
+    assert check_every_solution(ur_description_urdf(ur_type, tmp_path), poses=4, starts=150,
+                                tree=ur_description_tree(ur_type)) == "ur"
 
 
 def test_a_pose_out_of_reach_has_no_solution():

@@ -4,11 +4,22 @@ an arm riding on a moving frame with a tool on its flange; checked with Pinocchi
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pinocchio as pin
 import pytest
 
-from closed_form_arms import KR6R900, arm_model, arm_tree, pose_errors, tool_pose
+from closed_form_arms import (
+    KR6R900,
+    arm_model,
+    arm_tree,
+    pose_errors,
+    targets_pose,
+    tool_pose,
+    ur_description_tree,
+    ur_description_urdf,
+)
 from ik_paths import example_robot
 from pinframes import ArgumentTypeError, FrameTree, JointError, Pose
 
@@ -151,3 +162,67 @@ def arm_tree_on(urdf, torch: pin.SE3) -> FrameTree:
     quaternion = pin.Quaternion(torch.rotation).coeffs()
     tree.add("torch", "tool0", Pose(torch.translation, quaternion))
     return tree
+
+
+STRAIGHT = 1e-7
+"""The sine of joint 5 below which the wrist counts as straight (docs/closed-form-ik.md)."""
+
+
+def straight_wrist_arm(arm: str, scratch: Path) -> tuple[pin.Model, FrameTree, np.ndarray, int]:
+    """Pinocchio's model, the tree, a configuration with joint 5 at 0 (the wrist straight:
+    axis 6 in line with axis 4, on a UR-type arm with axes 2 to 4) and the wrist joint the
+    closed form takes as given there (joint 4; UR-type: joint 6)."""
+    if arm == "ur5e":
+        return (arm_model(ur_description_urdf("ur5e", scratch)), ur_description_tree("ur5e"),
+                np.array([0.3, -1.2, 1.5, -1.8, 0.0, 0.5]), 5)
+    return arm_model(KR6R900), arm_tree(KR6R900), np.array([0.3, -1.2, 1.5, 0.4, 0.0, 0.2]), 3
+
+
+def straight_wrist_bound(model: pin.Model, q: np.ndarray) -> tuple[float, float]:
+    """Metres and radians by which a solution at a straight wrist may miss its pose: pi
+    times :data:`STRAIGHT` radians, times the tool's distance from axis 5 in metres."""
+    data = model.createData()
+    pin.forwardKinematics(model, data, q)
+    reach = np.linalg.norm(tool_pose(model, q).translation - data.oMi[5].translation)
+    return float(reach) * np.pi * STRAIGHT + 1e-9, np.pi * STRAIGHT
+
+
+@pytest.mark.parametrize("arm", ["kr6r900sixx", "ur5e"])
+def test_ik_solutions_give_the_free_wrist_joint_0_at_a_straight_wrist(arm, tmp_path):
+    """Only the sum of joints 4 and 6 (UR-type: of 6 and the parallel joints) is fixed at a
+    straight wrist: each solution there has joint 4 (UR-type: joint 6) at 0 and reaches the
+    pose (Pinocchio's forward kinematics)."""
+    model, tree, q, free = straight_wrist_arm(arm, tmp_path)
+    target = tool_pose(model, q)
+    solutions = tree.ik_solutions("tool0", targets_pose([target]), relative_to="floor",
+                                  whole_turns=False)
+    found = solutions.positions[0][solutions.valid[0]]
+    straight = found[np.abs(np.sin(found[:, 4])) < STRAIGHT]
+    assert straight.shape[0] >= 2
+    metres, radians = straight_wrist_bound(model, q)
+    for positions in straight:
+        assert positions[free] == 0.0
+        position, orientation = pose_errors(model, positions, target)
+        assert position <= metres and orientation <= radians, (positions, position, orientation)
+    if arm == "kr6r900sixx":  # axes 4 and 6 in line, the same way: joint 6 takes the sum
+        np.testing.assert_allclose(np.cos(straight[:, 5] - q[3] - q[5]), 1.0, atol=1e-12)
+
+
+@pytest.mark.parametrize("arm", ["kr6r900sixx", "ur5e"])
+def test_solve_joints_holds_the_free_wrist_joint_along_a_straight_wrist(arm, tmp_path):
+    """A path whose wrist stays straight: joint 4 (UR-type: 6) keeps the seed's value at
+    every sample (each sample holds it where the one before left it), the others follow."""
+    model, tree, home, free = straight_wrist_arm(arm, tmp_path)
+    configurations = home + 0.2 * np.sin(np.outer(TIMES, [0.3, 0.5, 0.7, 0.9, 0.0, 1.3]))
+    placements = [tool_pose(model, q) for q in configurations]
+    pose = Pose(np.array([p.translation for p in placements]),
+                np.array([p.rotation for p in placements]), times=TIMES)
+    seed = configurations[0] + np.where(np.arange(6) == free, 0.7, 0.0)
+    solution = tree.solve_joints("tool0", pose, relative_to="floor", seed=seed)
+    assert solution.all_reached
+    np.testing.assert_array_equal(solution.positions[:, free], seed[free])
+    assert (np.abs(np.sin(solution.positions[:, 4])) < STRAIGHT).all()
+    for q, target in zip(solution.positions, placements, strict=True):
+        metres, radians = straight_wrist_bound(model, q)
+        position, orientation = pose_errors(model, q, target)
+        assert position <= metres and orientation <= radians

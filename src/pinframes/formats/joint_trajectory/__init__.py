@@ -1,10 +1,6 @@
 """Joint trajectories in files: joint values over time, read from CSV or NPZ
-(``_files``: the two registry formats and the one joint CSV writer) and written to CSV, NPZ
-or a ROS bag (:mod:`.writer`).
-
-The writer is a public module of its own, not named here: it writes bags through
-``formats.rosbag``, which reads ``formats.urdf``, whose writer in turn writes joint values
-with :func:`joint_trajectory_csv`.
+(``_files``: the two registry formats and the one joint CSV writer, which the URDF writer
+uses too). ``formats.joint_trajectory_writer`` writes them, or a ROS bag.
 """
 
 from ._files import (

@@ -18,7 +18,9 @@ in the signs of the URDF's joints (ROS-Industrial's KUKA descriptions use the co
 Status bit 0 the wrist point behind axis 1, bit 1 joint 3 at or above the stretched-arm
 angle (in ``(-pi, pi]``), bit 2 joint 5 at or below 0; Turn bit ``i`` joint ``i + 1``
 below 0. ABB's ``cf1``, ``cf4``, ``cf6`` are the quadrants of joints 1, 4 and 6
-(``floor(q / (pi / 2))``).
+(``floor(q / (pi / 2))``); ABB's ``cfx`` (6-axis arms) is 4 where the wrist centre is behind
+axis 1 (``back``), plus 2 where it is behind the lower arm (the line from axis 2 to axis 3:
+``down``), plus 1 where joint 5 is below 0 (at 0: positive, where the flags say ``flip``).
 """
 
 from __future__ import annotations
@@ -33,7 +35,7 @@ from ...errors import ArgumentTypeError
 from ._subproblems import column, dot, rotated
 from .arm_shapes import ArmShape
 
-__all__ = ["BRANCH_NAMES", "abb_quadrants", "branch_flags", "kuka_status", "kuka_turn",
+__all__ = ["BRANCH_NAMES", "abb_cfx", "abb_quadrants", "branch_flags", "kuka_status", "kuka_turn",
            "requested_branch"]
 
 FloatArray = NDArray[np.float64]
@@ -118,3 +120,10 @@ def abb_quadrants(positions: FloatArray) -> IntArray:
     """ABB's ``cf1``, ``cf4``, ``cf6`` (..., 3): the quadrants ``floor(q / (pi / 2))`` of
     joints 1, 4 and 6 of ``positions`` (..., 6)."""
     return np.floor(positions[..., [0, 3, 5]] / (0.5 * math.pi)).astype(np.int64)
+
+
+def abb_cfx(shape: ArmShape, positions: FloatArray) -> IntArray:
+    """ABB's ``cfx`` (...) of joint values ``positions`` (..., 6) in the shape's order: the
+    branch index with joint 5 at 0 counted as positive (``noflip``), not as ``flip``."""
+    index = branch_flags(shape, positions)
+    return (index - index % 2 + (positions[..., 4] < 0.0)).astype(np.int64)

@@ -14,7 +14,7 @@ from numpy.typing import NDArray
 from ...values.timed import Timed
 from ._arm_steps import SINGULAR
 from .arm_shapes import ArmShape, OpwParameters
-from .configurations import BRANCH_NAMES, abb_quadrants, kuka_status, kuka_turn
+from .configurations import BRANCH_NAMES, abb_cfx, abb_quadrants, kuka_status, kuka_turn
 from .opw import opw_solutions
 from .ur_type import ur_solutions
 
@@ -92,6 +92,14 @@ class IkSolutions(Timed):
         order = [self.joint_names.index(name) for name in self.arm.joint_names]
         return np.where(self.valid[..., None],
                         abb_quadrants(np.nan_to_num(self.positions[..., order])), 0)
+
+    @property
+    def abb_cfx(self) -> NDArray[np.int64]:
+        """ABB's ``cfx`` (T, k) of each solution, 0..7: 4 where the wrist centre is behind
+        axis 1, 2 behind the lower arm, 1 where joint 5 is below 0 (-1 where there is no
+        solution; see docs/closed-form-ik.md)."""
+        order = [self.joint_names.index(name) for name in self.arm.joint_names]
+        return np.where(self.valid, abb_cfx(self.arm, self.positions[..., order]), -1)
 
     def __len__(self) -> int:
         return int(self.positions.shape[0])

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -25,16 +24,9 @@ from numpy.typing import NDArray
 
 from .._plan import QueryPlan
 from .._sampling import KERNEL_CHUNK
-from ._batch_check import tools_in_targets
-from ._jump_bridge import bridged_jumps
 from ._newton_tracking import Tracked
-from ._path_chunks import (
-    TARGET_SOURCE,
-    PathToSolve,
-    raise_unreached,
-    targets_at,
-    track_in_chunks,
-)
+from ._path_chunks import PathToSolve
+from ._trackers import Tracker
 
 __all__ = ["DEFAULT_PATH_TOLERANCE", "MOST_SAMPLES", "SHORTEST_INTERVAL", "Deviations",
            "densely_tracked", "deviations"]
@@ -101,34 +93,20 @@ def _strays(request: PathToSolve, positions: FloatArray, ends: NDArray[np.intp],
     before, after = moments[ends - 1], moments[ends]
     times = before + (after - before) * quarter // 4  # no float rounding of ns
     between = positions[ends - 1] + (positions[ends] - positions[ends - 1]) * (quarter / 4)
-    shift = request.plan.shifts.get(TARGET_SOURCE, 0)
-    tools = tools_in_targets(request.plan.path, times, request.plan.shifts,
-                             request.joints.names, between,
-                             targets_at(request.target, times, shift))
-    return request.error.errors(*tools)
-
-
-Tracker = Callable[[PathToSolve, FloatArray, bool, bool, str],
-                   tuple[Tracked, FloatArray | None]]
-"""How a request is solved on its plan's times: ``(request, start, search_starts, strict,
-frame)`` to the solutions and tilts; :func:`track_in_chunks`, or the closed form of an arm."""
+    return request.error.errors(*request.tools_in_targets(times, between))
 
 
 def densely_tracked(request: PathToSolve, start: FloatArray, search_starts: bool,
                     strict: bool, frame: str, tolerance: tuple[float, float] | None,
-                    jump_factor: float, track: Tracker = track_in_chunks
-                    ) -> tuple[PathToSolve, Tracked, FloatArray | None, Deviations]:
-    """``request`` solved (``track``, by default :func:`track_in_chunks`) on its plan's
-    times, with
-    ``tolerance`` (metres, radians) on times made denser where an interval passes it (see
-    the module docstring): the request on the times solved, its solutions, tilts and
-    deviations. An added sample that is not reached is taken out again, and the interval
-    it halved is not halved again (a target interpolated off what the joints can reach).
-    After each solve its jumps (``jump_factor``, :mod:`.joint_jumps`) are bridged where
-    they can be (:mod:`._jump_bridge`)."""
+                    track: Tracker) -> tuple[PathToSolve, Tracked, FloatArray | None, Deviations]:
+    """``request`` solved by ``track`` (any :class:`._trackers.Tracker`) on its plan's
+    times, with ``tolerance`` (metres, radians) on times made denser where an interval
+    passes it (see the module docstring): the request on the times solved, its solutions,
+    tilts and deviations. An added sample that is not reached is taken out again, and the
+    interval it halved is not halved again (a target interpolated off what the joints can
+    reach)."""
     measuring = DEFAULT_PATH_TOLERANCE if tolerance is None else tolerance
     tracked, tilts = track(request, start, search_starts, strict, frame)
-    tracked = bridged_jumps(request, tracked, jump_factor, frame)
     measured = deviations(request, tracked.positions, measuring)
     if tolerance is None:
         return request, tracked, tilts, measured
@@ -148,21 +126,18 @@ def densely_tracked(request: PathToSolve, start: FloatArray, search_starts: bool
         request = dataclasses.replace(request, plan=_with_midpoints(request.plan, halved))
         given, settled = np.insert(given, halved, False), np.insert(settled, halved, False)
         tracked, tilts = track(request, first, False, False, frame)
-        tracked = bridged_jumps(request, tracked, jump_factor, frame)
         missed = np.flatnonzero(~given & ~tracked.reached)
         if missed.shape[0]:
             settled[missed + 1] = True  # (an added sample always has one after it)
             kept = np.ones_like(given)
             kept[missed] = False
-            request = dataclasses.replace(request, plan=request.plan.at(kept))
+            request = request.at(kept)
             tracked = tracked.taken(kept)
             tilts = None if tilts is None else tilts[kept]
             given, settled = given[kept], settled[kept]
         measured = deviations(request, tracked.positions, measuring)
-    if strict and not tracked.reached.all():  # a sample given lost on the way
-        index = int(np.argmin(tracked.reached))
-        raise_unreached(request, index, float(tracked.position_error[index]),
-                        float(tracked.orientation_error[index]), frame)
+    if strict:  # a sample given lost on the way
+        request.require_reached(tracked, frame)
     return request, tracked, tilts, measured
 
 

@@ -23,8 +23,7 @@ any other.
 
 from __future__ import annotations
 
-import dataclasses
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 
 import numpy as np
 from numpy.typing import NDArray
@@ -70,8 +69,7 @@ def _recover_lost_stretches(request: PathToSolve, tracked: Tracked, frame: str) 
         if begin == 0:
             continue  # lost from the first sample: the start's business
         rows = np.arange(end - 1, begin - 1, -1)
-        back, _ = track_in_chunks(dataclasses.replace(request, plan=request.plan.at(rows)),
-                                  tracked.positions[end], False, False, frame)
+        back = _backwards(request, rows, tracked.positions[end], frame)
         found = rows[back.reached]
         tracked.positions[found] = back.positions[back.reached]
         tracked.position_error[found] = back.position_error[back.reached]
@@ -80,30 +78,46 @@ def _recover_lost_stretches(request: PathToSolve, tracked: Tracked, frame: str) 
         tracked.measured[found] = back.measured[back.reached]
 
 
+def _backwards(request: PathToSolve, rows: NDArray[np.intp], start: FloatArray, frame: str
+               ) -> Tracked:
+    """The samples ``rows`` of ``request`` (in reverse order) solved by the numeric solver
+    from ``start``, the solution of the sample after them."""
+    back, _ = track_in_chunks(request.at(rows), start, False, False, frame)
+    return back
+
+
 def _bridge(request: PathToSolve, tracked: Tracked, after: int, bar: float, frame: str
             ) -> None:
     """The jump into sample ``after`` bridged in ``tracked`` when it holds."""
     positions = tracked.positions
     first = max(0, after - BACK_SAMPLES)
     rows = np.arange(after - 1, first - 1, -1)  # the samples before the jump, backwards
-    back, _ = track_in_chunks(dataclasses.replace(request, plan=request.plan.at(rows)),
-                              positions[after], False, False, frame)
+    back = _backwards(request, rows, positions[after], frame)
     backward, reached = back.positions[::-1], back.reached[::-1]  # samples first..after-1
     apart = np.abs(backward - positions[first:after]).max(axis=1)
     agreeing = np.flatnonzero(apart <= AGREE)
     begin = first + (int(agreeing[-1]) + 1 if agreeing.shape[0] else 0)
     if begin >= after or not reached[begin - first:].all():
         return
-    problem = problem_of(dataclasses.replace(request, plan=request.plan.at(
-        slice(begin, after))))
+    problem = problem_of(request.at(slice(begin, after)))
     before = positions[max(begin - 1, 0)]
     jump = float(np.abs(positions[after] - positions[after - 1]).max())
     best: tuple[float, list[Solution]] | None = None
-    for guides in (_led(problem, before, backward[begin - first:]),
-                   _blended(problem, positions[begin:after], backward[begin - first:],
-                            request.plan.sample_times[max(begin - 1, 0):after + 1])):
+    count = after - begin
+    backward, forward = backward[begin - first:], positions[begin:after]
+    times = request.plan.sample_times[max(begin - 1, 0):after + 1].astype(float)
+    weights = (times[-count - 1:-1] - times[0]) / (times[-1] - times[0])
+
+    def led(index: int, theta: FloatArray) -> FloatArray:  # from the solution before it
+        return theta + (backward[index] - theta) / (count - index)  # a share of the way left
+
+    def blended(index: int, _: FloatArray) -> FloatArray:  # in proportion to the time
+        return forward[index] + weights[index] * (backward[index] - forward[index])
+
+    for guides in (_on_targets(problem, before, count, led),
+                   _on_targets(problem, before, count, blended)):
         solved = list(guides)
-        if len(solved) < after - begin:  # a sample missed
+        if len(solved) < count:  # a sample missed
             continue
         steps = np.diff(np.vstack([before, *(solution[0] for solution in solved),
                                    positions[after]]), axis=0)
@@ -118,31 +132,15 @@ def _bridge(request: PathToSolve, tracked: Tracked, after: int, bar: float, fram
         tracked.measured[index] = True
 
 
-def _led(problem: TrackingProblem, before: FloatArray, backward: FloatArray
-         ) -> Iterator[Solution]:
-    """The stretch led sample by sample from ``before`` (the solution before it): each from
-    the one before moved a share of the way left to ``backward`` (the rest of the way over
-    the samples left, so the last lands on it); stops at a miss."""
+def _on_targets(problem: TrackingProblem, before: FloatArray, count: int,
+                guess: Callable[[int, FloatArray], FloatArray]) -> Iterator[Solution]:
+    """The ``count`` samples of ``problem`` put back on their targets by Newton, each from
+    ``guess(index, previous)`` (``previous`` the solution before it, the first's
+    ``before``); stops at a miss."""
     theta = before
-    for index, goal in enumerate(backward):
-        solution = solve_again(problem, index, theta + (goal - theta) / (
-            backward.shape[0] - index), serve=False)
+    for index in range(count):
+        solution = solve_again(problem, index, guess(index, theta), serve=False)
         if not solution[3]:
             return
         yield solution
         theta = solution[0]
-
-
-def _blended(problem: TrackingProblem, forward: FloatArray, backward: FloatArray,
-             moments: NDArray[np.int64]) -> Iterator[Solution]:
-    """The stretch blended from ``forward`` to ``backward`` in proportion to the time (of
-    ``moments``: the sample before, the stretch's and the one after), each sample put back
-    on its target; stops at a miss."""
-    times = moments.astype(float)
-    weights = (times[-forward.shape[0] - 1:-1] - times[0]) / (times[-1] - times[0])
-    for index, (ahead, behind, weight) in enumerate(zip(forward, backward, weights,
-                                                        strict=True)):
-        solution = solve_again(problem, index, ahead + weight * (behind - ahead), serve=False)
-        if not solution[3]:
-            return
-        yield solution

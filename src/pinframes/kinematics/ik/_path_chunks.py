@@ -10,7 +10,7 @@ takes); :mod:`._batch_check` measures the samples the loop took as solved, all a
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import Any
 
@@ -23,7 +23,7 @@ from ...values.rotations import quaternion_from_matrix
 from ...values.se3 import Transform
 from .._plan import QueryPlan
 from .._sampling import KERNEL_CHUNK, sample_configurations
-from ._batch_check import check_unmeasured, tilts_at
+from ._batch_check import check_unmeasured, tilts_at, tools_in_targets
 from ._bounded_step import LeastSquares
 from ._flat import FlatFrame
 from ._newton_tracking import Tracked, TrackingHistory, TrackingProblem, track_targets
@@ -86,6 +86,28 @@ class PathToSolve:
         frame = path.model.model.frames[frame_ids[path.relative_to]]
         return None if frame.parentJoint == 0 and frame.placement.isIdentity() else (
             frame_ids[path.relative_to])
+
+    def at(self, rows: NDArray[np.intp] | NDArray[np.bool_] | slice) -> PathToSolve:
+        """This request on some samples of its plan (indices in any order, a mask or a
+        slice)."""
+        return replace(self, plan=self.plan.at(rows))
+
+    def tools_in_targets(self, times: NDArray[np.int64], positions: FloatArray) -> Transform:
+        """The tool in its targets at ``times`` (timeline basis, ns) with the solved joints
+        at ``positions`` (N, n): ``(N, 3, 3)`` rotations and ``(N, 3)`` translations
+        (metres)."""
+        plan = self.plan
+        targets = targets_at(self.target, times, plan.shifts.get(TARGET_SOURCE, 0))
+        return tools_in_targets(plan.path, times, plan.shifts, self.joints.names, positions,
+                                targets)
+
+    def require_reached(self, tracked: Tracked, frame: str) -> None:
+        """The :class:`TargetNotReachedError` of ``strict=True`` (naming ``frame``) at the
+        first sample of this request's plan that ``tracked`` did not reach, if any."""
+        if not tracked.reached.all():
+            index = int(np.argmin(tracked.reached))
+            raise_unreached(self, index, float(tracked.position_error[index]),
+                            float(tracked.orientation_error[index]), frame)
 
 
 def track_in_chunks(request: PathToSolve, start: FloatArray, search_starts: bool,

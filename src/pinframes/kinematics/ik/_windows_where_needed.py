@@ -8,7 +8,7 @@ the whole path, also where it could hold the target's orientation. Here every sa
 nominal solve reaches keeps its nominal solution (tilt 0); each stretch it misses is solved
 with the windows from the nominal solution before it (the smallest motion from there tilts
 only as far as the stretch needs), and the jumps where the stretches join are bridged as any
-other (:mod:`._jump_bridge`).
+other; all by the one tracker given (:class:`._trackers.JumpsBridged`).
 """
 
 from __future__ import annotations
@@ -18,12 +18,11 @@ import dataclasses
 import numpy as np
 from numpy.typing import NDArray
 
-from ._batch_check import tilts_at
 from ._between_samples import DEFAULT_PATH_TOLERANCE, Deviations, densely_tracked, deviations
-from ._jump_bridge import bridged_jumps
 from ._newton_tracking import Tracked
-from ._path_chunks import TARGET_SOURCE, PathToSolve, raise_unreached, targets_at, track_in_chunks
-from ._tool_error import AxisMatch, PoseMatch, WindowMatch
+from ._path_chunks import PathToSolve
+from ._tool_error import AxisMatch, PoseMatch, WindowMatch, tilts_of
+from ._trackers import JumpsBridged
 
 __all__ = ["nominal_where_reachable"]
 
@@ -32,7 +31,7 @@ FloatArray = NDArray[np.float64]
 
 def nominal_where_reachable(
     request: PathToSolve, windows: WindowMatch, start: FloatArray, search_starts: bool,
-    strict: bool, frame: str, tolerance: tuple[float, float] | None, jump_factor: float,
+    strict: bool, frame: str, tolerance: tuple[float, float] | None, track: JumpsBridged,
 ) -> tuple[PathToSolve, Tracked, FloatArray, Deviations]:
     """As :func:`densely_tracked` for a request whose match is ``windows``: the request on
     the times solved (its match ``windows``), the solutions, their tilts (T, 2) and
@@ -40,28 +39,22 @@ def nominal_where_reachable(
     nominal = AxisMatch("z") if windows.free_spin else PoseMatch()
     solved, tracked, _, _ = densely_tracked(dataclasses.replace(request, error=nominal),
                                             start, search_starts, False, frame, tolerance,
-                                            jump_factor)
+                                            track)
     request = dataclasses.replace(solved, error=windows)
     missed = ~tracked.reached
     if missed.any():
         edges = np.flatnonzero(np.diff(np.concatenate([[False], missed, [False]]).astype(int)))
         for begin, end in zip(edges[::2].tolist(), edges[1::2].tolist(), strict=True):
             rows = np.arange(begin, end)
-            stretch, _ = track_in_chunks(
-                dataclasses.replace(request, plan=request.plan.at(rows)),
-                tracked.positions[begin - 1] if begin else start, search_starts and not begin,
-                False, frame)
+            stretch, _ = track.tracker(request.at(rows),
+                                       tracked.positions[begin - 1] if begin else start,
+                                       search_starts and not begin, False, frame)
             for name in ("positions", "position_error", "orientation_error", "reached",
                          "measured"):
                 getattr(tracked, name)[rows] = getattr(stretch, name)
-        tracked = bridged_jumps(request, tracked, jump_factor, frame)
-    if strict and not tracked.reached.all():
-        index = int(np.argmin(tracked.reached))
-        raise_unreached(request, index, float(tracked.position_error[index]),
-                        float(tracked.orientation_error[index]), frame)
-    plan = request.plan
-    moments = plan.sample_times
-    tilts = tilts_at(plan.path, moments, plan.shifts, request.joints.names, tracked.positions,
-                     targets_at(request.target, moments, plan.shifts.get(TARGET_SOURCE, 0)))
+        tracked = track.bridged(request, tracked, frame)
+    if strict:
+        request.require_reached(tracked, frame)
+    tilts = tilts_of(request.tools_in_targets(request.plan.sample_times, tracked.positions)[0])
     measuring = DEFAULT_PATH_TOLERANCE if tolerance is None else tolerance
     return request, tracked, tilts, deviations(request, tracked.positions, measuring)

@@ -6,15 +6,15 @@ to the frame the target is given in is prepared as for a pose query (:mod:`.._pl
 Pinocchio model rooted at their lowest common ancestor), the solved joints found on it
 (:mod:`._solved_joints`), its times planned from every moving thing on it but the solved
 joints, whose samples are what is being solved for, and the first sample's start taken
-(:mod:`._starts`). :mod:`._path_chunks` solves the samples chunk by chunk.
+(:mod:`._starts`). The request goes down once, to the tracker picked here
+(:mod:`._trackers`: the numeric solver, or an arm's closed form, its jumps bridged) on times
+made dense enough (:mod:`._between_samples`).
 """
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Mapping, Sequence
-from functools import partial
 from typing import Any
 
 import numpy as np
@@ -32,14 +32,15 @@ from ..closed_form.configurations import BRANCH_NAMES, branch_flags, requested_b
 from ._batch_check import flat_errors
 from ._between_samples import DEFAULT_PATH_TOLERANCE, densely_tracked
 from ._bounded_step import LeastSquares
-from ._closed_form_arm import arm_order, closed_form_arm, solve_in_closed_form
+from ._closed_form_arm import arm_order, closed_form_arm
 from ._flat import FLAT_TOLERANCE, FlatFrame, flat_objective
 from ._newton_tracking import Tracked
 from ._null_space import AwayFromLimits, NullSpaceObjective
-from ._path_chunks import TARGET_SOURCE, PathToSolve, problem_of, track_in_chunks
+from ._path_chunks import TARGET_SOURCE, PathToSolve, problem_of
 from ._solved_joints import SolvedJoints, solved_joints
 from ._starts import first_start
 from ._tool_error import AXES, AxisMatch, PoseMatch, ToolMatch, WindowMatch
+from ._trackers import NEWTON, ClosedForm, JumpsBridged
 from ._windows_where_needed import nominal_where_reachable
 from .joint_jumps import DEFAULT_JUMP_FACTOR, jumps_of, require_no_jumps
 from .joint_solution import JointSolution
@@ -95,18 +96,17 @@ def evaluate_solve_joints(
         raise ArgumentTypeError("configuration= keeps a whole pose on a branch of the closed "
                                 "form; it does not combine with free_axis=, tilt= or flat=",
                                 frame=frame, field="configuration")
+    track = JumpsBridged(ClosedForm(arm, branch, jump_factor) if closed and arm is not None
+                         else NEWTON, jump_factor)
     # given times are the samples; without, they are made dense enough for the tolerance
     tolerance = between if times is None else None
     tilts: FloatArray | None
     if isinstance(error, WindowMatch):  # the nominal orientation where it is reachable
         request, tracked, tilts, deviation = nominal_where_reachable(
-            request, error, start, seed is None, strict, frame, tolerance, jump_factor)
+            request, error, start, seed is None, strict, frame, tolerance, track)
     else:
-        track = (track_in_chunks if not closed or arm is None
-                 else partial(_track_in_closed_form, arm=arm, branch=branch,
-                              jump_factor=jump_factor))
         request, tracked, tilts, deviation = densely_tracked(
-            request, start, seed is None, strict, frame, tolerance, jump_factor, track)
+            request, start, seed is None, strict, frame, tolerance, track)
     plan = request.plan
     flat_error = None if not isinstance(objective, FlatFrame) else _flat_errors(
         request, objective, tracked, strict, frame)
@@ -138,23 +138,6 @@ def _closed_form(path: PreparedPath, solved: SolvedJoints, frame: str, needed: b
         return None
 
 
-def _track_in_closed_form(request: PathToSolve, start: FloatArray, search_starts: bool,
-                          strict: bool, frame: str, *, arm: ArmShape,
-                          branch: tuple[str, int] | None, jump_factor: float
-                          ) -> tuple[Tracked, None]:
-    """``request`` tracked on one branch of ``arm``'s closed form; where no configuration
-    was asked and that branch misses a sample or jumps (``jump_factor``: through a wrist
-    singularity the closed form splits a turn between wrists 1 and 3 its own way), by the
-    numeric solver (:func:`track_in_chunks`) instead."""
-    with np.errstate(over="ignore", invalid="ignore"):  # a target out of all reach: no root
-        solved = solve_in_closed_form(request, arm, start, branch, strict, frame)
-    if solved is not None and (branch is not None
-                               or not jumps_of(solved[0].positions, jump_factor).shape[0]):
-        return solved[0], None
-    tracked, _ = track_in_chunks(request, start, search_starts, strict, frame)
-    return tracked, None
-
-
 def _flat_errors(request: PathToSolve, flat: FlatFrame, tracked: Tracked, strict: bool,
                  frame: str) -> FloatArray:
     """Per sample, the flat frame's angle from up (radians); a reached sample beyond the
@@ -166,8 +149,7 @@ def _flat_errors(request: PathToSolve, flat: FlatFrame, tracked: Tracked, strict
                          tracked.positions, flat.carrier, flat.z_on_carrier, flat.up)
     beyond = np.flatnonzero(tracked.reached & (errors > flat.tolerance))
     if beyond.shape[0]:
-        configurations = problem_of(dataclasses.replace(request, plan=plan.at(beyond))
-                                    ).configurations
+        configurations = problem_of(request.at(beyond)).configurations
         for index, configuration in zip(beyond.tolist(), configurations, strict=True):
             if flat.could_turn_up(tracked.positions[index], configuration):
                 tracked.reached[index] = False

@@ -1,5 +1,8 @@
 """``write_joint_trajectory``: joint values over time to the files a scene robot reads
-(``.csv``, ``.npz``) or to a ROS bag (``.mcap``, ``.bag``, ``.db3``, a folder).
+(``.csv``, ``.npz``: :mod:`.joint_trajectory`) or to a ROS bag (``.mcap``, ``.bag``,
+``.db3``, a folder: :mod:`.rosbag`). A module of its own above both formats, because the
+bag format reads URDFs (:mod:`.urdf`), which read and write joint values as
+:mod:`.joint_trajectory` does.
 
 What ``pinframes solve -o`` writes. Joint names: a solution's as the robot's URDF names them
 (the tree's prefix removed, as a robot's controller knows them) when every joint belongs to
@@ -18,24 +21,24 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ...errors import (
+from ..errors import (
     ArgumentTypeError,
     FileFormatError,
     InvalidDataError,
     InvalidTimeError,
     PinframesError,
 )
-from ...kinematics import JointSolution
-from ...tree import FrameTree
-from ...tree.urdf_names import urdf_joint_names
-from ...values.motion import Motion
-from ...values.numbers import float_array
-from ...values.timeconv import parse_time_axis
-from .._paths import path_argument
-from .._writable import check_joint_names
-from ..atomic import atomic_write
-from ..rosbag import write_trajectory_bag
-from ._files import joint_trajectory_csv
+from ..kinematics import JointSolution
+from ..tree import FrameTree
+from ..tree.urdf_names import urdf_joint_names
+from ..values.motion import Motion
+from ..values.numbers import float_array
+from ..values.timeconv import parse_time_axis
+from ._paths import path_argument
+from ._writable import check_joint_names
+from .atomic import atomic_write
+from .joint_trajectory import joint_trajectory_csv
+from .rosbag import write_trajectory_bag
 
 __all__ = ["write_joint_trajectory"]
 
