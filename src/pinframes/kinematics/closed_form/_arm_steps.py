@@ -5,15 +5,29 @@ are radians about the unit axes of :class:`.arm_shapes.ArmShape`, samples first;
 
 from __future__ import annotations
 
-import math
+from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
-from ._subproblems import column, dot, rotated, turn_angle, two_angles
+from ._subproblems import (
+    TURN,
+    Turn,
+    applied,
+    backwards,
+    column,
+    dot,
+    one_of,
+    rotated,
+    turning,
+    two_angles,
+    wrapped,
+)
 from .arm_shapes import ArmShape
 
-__all__ = ["SINGULAR", "TURN", "into_arm_plane", "shoulder_angles", "two_link_angles", "wrapped"]
+__all__ = ["SINGULAR", "TURN", "Angle", "Branches", "branches", "into_arm_plane",
+           "shoulder_angles", "two_link_angles", "wrapped"]
 
 FloatArray = NDArray[np.float64]
 
@@ -23,35 +37,72 @@ joint 6 (UR-type) is then taken as given (or 0) and the other wrist joint turns 
 (Rounding alone bends a straight wrist by about 1e-8 rad, which leaves the two joints'
 split to noise; taking the split as given turns the tool by at most pi times this.)"""
 
-
-TURN = 2.0 * math.pi
-"""One turn, radians."""
-
-
-def wrapped(angle: FloatArray) -> FloatArray:
-    """``angle`` into ``[-pi, pi]`` (whole turns taken off: faster than a modulo)."""
-    return angle - TURN * np.rint(angle * (1.0 / TURN))
+Angle = tuple[FloatArray, Turn]
+"""An angle (radians, per sample) and its :data:`._subproblems.Turn`."""
 
 
-def shoulder_angles(shape: ArmShape, point: FloatArray) -> FloatArray:
-    """Joint 1's two angles (..., 2), front then back, that put the plane in which axes 2 and
+@dataclass(frozen=True)
+class Branches:
+    """What a closed form fills, one shoulder and elbow at a time.
+
+    Attributes
+    ----------
+    point : ndarray, shape (3, T)
+        The flange motions moving :attr:`ArmShape.wrist_point`.
+    shoulders : list of Angle
+        Joint 1's two angles that put it in the arm's plane, front then back.
+    arms : list of int
+        The branches (index ``4 back + 2 down``) asked.
+    angles : ndarray, shape (T, 2 * len(arms), 6)
+        The result: per arm, no flip then flip.
+    """
+
+    point: FloatArray
+    shoulders: list[Angle]
+    arms: list[int]
+    angles: FloatArray
+
+    def elbows(self, shoulder: int) -> list[tuple[int, FloatArray]]:
+        """The elbows asked with ``shoulder`` and their two wrists' rows (T, 2, 6) of
+        :attr:`angles`, joint 1 filled in."""
+        rows = []
+        for elbow in (0, 1):
+            if 4 * shoulder + 2 * elbow in self.arms:
+                slot = 2 * self.arms.index(4 * shoulder + 2 * elbow)
+                rows.append((elbow, self.angles[:, slot:slot + 2]))
+                rows[-1][1][..., 0] = self.shoulders[shoulder][0][:, None]
+        return rows
+
+
+def branches(shape: ArmShape, rotations: FloatArray, translations: FloatArray,
+             arm: int | None) -> Branches:
+    """The :class:`Branches` of the flange motions ``rotations`` (3, 3, T) and
+    ``translations`` (3, T): all eight, or ``arm``'s shoulder and elbow."""
+    point = applied(rotations, shape.wrist_point) + translations
+    arms = list(range(0, 8, 2)) if arm is None else [arm & 6]
+    return Branches(point, shoulder_angles(shape, point), arms,
+                    np.empty((translations.shape[-1], 2 * len(arms), 6)))
+
+
+def shoulder_angles(shape: ArmShape, point: FloatArray) -> list[Angle]:
+    """Joint 1's two angles (...), front then back, that put the plane in which axes 2 and
     3 carry :attr:`ArmShape.wrist_point` through ``point`` (3, ...); NaN out of reach."""
     axis, normal = shape.axes[0], shape.parallel
     reach = point - column(shape.points[0], point.ndim - 1)
     wanted = np.array(float(np.dot(normal, shape.wrist_point - shape.points[0])))
-    centre, half = two_angles(dot(normal, reach), dot(np.cross(axis, normal), reach), wanted)
-    side = shape.front_sign * half
-    return wrapped(np.stack([centre + side, centre - side], axis=-1))
+    halves = two_angles(dot(normal, reach), dot(np.cross(axis, normal), reach), wanted)
+    return [one_of(halves, shape.front_sign), one_of(halves, -shape.front_sign)]
 
 
-def into_arm_plane(shape: ArmShape, shoulder: FloatArray, point: FloatArray) -> FloatArray:
+def into_arm_plane(shape: ArmShape, shoulder: Turn, point: FloatArray) -> FloatArray:
     """``point`` (3, ...) turned back by joint 1's ``shoulder`` angles (...)."""
     origin = column(shape.points[0], point.ndim - 1)
-    return rotated(shape.axes[0], -shoulder, point - origin) + origin
+    return rotated(shape.axes[0], backwards(shoulder), point - origin) + origin
 
 
-def two_link_angles(shape: ArmShape, point: FloatArray) -> tuple[FloatArray, FloatArray]:
-    """Joints 2 and 3 (each (..., 2), elbow up then down) that carry
+def two_link_angles(shape: ArmShape, point: FloatArray, elbows: Sequence[int] = (0, 1)
+                    ) -> list[tuple[Angle, Angle]]:
+    """Joints 2 and 3 (each (...)) of each of ``elbows`` (0 up, 1 down) that carry
     :attr:`ArmShape.carried_point` to ``point`` (3, ...), given in the arm's plane at joint
     1 zero (:func:`into_arm_plane`); NaN where out of reach."""
     axis2, axis3 = shape.axes[1], shape.axes[2]
@@ -63,11 +114,12 @@ def two_link_angles(shape: ArmShape, point: FloatArray) -> tuple[FloatArray, Flo
     to_point = point - column(shoulder, point.ndim - 1)
     distance_squared = dot(to_point, to_point) - dot(axis2, to_point) ** 2
     value = 0.5 * (distance_squared - across @ across - between @ between)
-    centre, half = two_angles(np.array(between @ across),
-                              np.array(between @ np.cross(axis3, across)), value)
+    halves = two_angles(np.array(between @ across),
+                        np.array(between @ np.cross(axis3, across)), value)
     _, up_sign = shape.elbow  # the centre is the stretched angle
-    elbow_angles = wrapped(np.stack([centre + up_sign * half, centre - up_sign * half],
-                                    axis=-1))
-    carried = rotated(axis3, elbow_angles, offset) + column(elbow - shoulder, point.ndim)
-    upper_arm = turn_angle(axis2, carried, to_point[..., None])
-    return upper_arm, elbow_angles
+    angles = []
+    for down in elbows:
+        third = one_of(halves, -up_sign if down else up_sign)
+        carried = rotated(axis3, third[1], offset) + column(elbow - shoulder, point.ndim - 1)
+        angles.append((turning(axis2, carried, to_point), third))
+    return angles
