@@ -17,6 +17,7 @@ from ._subproblems import (
     applied,
     backwards,
     column,
+    cross,
     dot,
     one_of,
     rotated,
@@ -90,7 +91,7 @@ def shoulder_angles(shape: ArmShape, point: FloatArray) -> list[Angle]:
     axis, normal = shape.axes[0], shape.parallel
     reach = point - column(shape.points[0], point.ndim - 1)
     wanted = np.array(float(np.dot(normal, shape.wrist_point - shape.points[0])))
-    halves = two_angles(dot(normal, reach), dot(np.cross(axis, normal), reach), wanted)
+    halves = two_angles(dot(normal, reach), dot(cross(axis, normal), reach), wanted)
     return [one_of(halves, shape.front_sign), one_of(halves, -shape.front_sign)]
 
 
@@ -115,7 +116,7 @@ def two_link_angles(shape: ArmShape, point: FloatArray, elbows: Sequence[int] = 
     distance_squared = dot(to_point, to_point) - dot(axis2, to_point) ** 2
     value = 0.5 * (distance_squared - across @ across - between @ between)
     halves = two_angles(np.array(between @ across),
-                        np.array(between @ np.cross(axis3, across)), value)
+                        np.array(between @ cross(axis3, across)), value)
     _, up_sign = shape.elbow  # the centre is the stretched angle
     angles = []
     for down in elbows:

@@ -48,7 +48,9 @@ def cross(first: FloatArray, second: FloatArray) -> FloatArray:
 
 def _stacked(x: FloatArray, y: FloatArray, z: FloatArray) -> FloatArray:
     """Three components (broadcast) as one vector array."""
-    shape = np.broadcast_shapes(np.shape(x), np.shape(y), np.shape(z))
+    shape = np.shape(x)
+    if np.shape(y) != shape or np.shape(z) != shape:
+        shape = np.broadcast_shapes(shape, np.shape(y), np.shape(z))
     out = np.empty((3, *shape))
     out[0], out[1], out[2] = x, y, z
     return out

@@ -19,6 +19,7 @@ from ._subproblems import (
     added,
     applied,
     backwards,
+    cross,
     dot,
     one_of,
     rotated,
@@ -73,7 +74,7 @@ def _wrists(shape: ArmShape, rotations: FloatArray, back1: Turn, second: Angle,
         return rotated(axes[1], back23, rotated(axes[0], back1, applied(rotations, vector)))
 
     tool_axis = wrist_turned(axis6)  # (3, T)
-    halves = two_angles(np.array(axis4 @ axis6), np.array(axis4 @ np.cross(axis5, axis6)),
+    halves = two_angles(np.array(axis4 @ axis6), np.array(axis4 @ cross(axis5, axis6)),
                         dot(axis4, tool_axis))
     fifth, turn5 = one_of(halves, 1.0)  # no flip
     fourth, turn4 = turning(axis4, rotated(axis5, turn5, axis6), tool_axis)

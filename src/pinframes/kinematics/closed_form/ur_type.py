@@ -20,6 +20,7 @@ from ._subproblems import (
     applied,
     backwards,
     column,
+    cross,
     dot,
     one_of,
     rotated,
@@ -60,7 +61,7 @@ def _wrists_and_links(shape: ArmShape, rotations: FloatArray, translations: Floa
     axis5, axis6 = axes[4], axes[5]
     back1 = backwards(turn1)
     tool_axis = rotated(axes[0], back1, applied(rotations, axis6))
-    halves = two_angles(np.array(normal @ axis6), np.array(normal @ np.cross(axis5, axis6)),
+    halves = two_angles(np.array(normal @ axis6), np.array(normal @ cross(axis5, axis6)),
                         dot(normal, tool_axis))
     normal_in_tool = applied(rotations.swapaxes(0, 1), rotated(axes[0], turn1, normal))
     straight = np.flatnonzero(halves[3][1] < SINGULAR)
