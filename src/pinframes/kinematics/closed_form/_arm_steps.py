@@ -27,7 +27,7 @@ from ._subproblems import (
 )
 from .arm_shapes import ArmShape
 
-__all__ = ["SINGULAR", "TURN", "Angle", "Branches", "branches", "into_arm_plane",
+__all__ = ["SINGULAR", "TURN", "Angle", "Arm", "ArmGroup", "Down", "branches", "into_arm_plane",
            "shoulder_angles", "two_link_angles", "wrapped"]
 
 FloatArray = NDArray[np.float64]
@@ -42,47 +42,57 @@ Angle = tuple[FloatArray, Turn]
 """An angle (radians, per sample) and its :data:`._subproblems.Turn`."""
 
 
+Arm = int | NDArray[np.int64] | None
+"""The arm branches a closed form solves: a branch index (its shoulder and elbow), one per
+sample, or None (all eight)."""
+
+Down = int | NDArray[np.bool_]
+"""Elbow down (1) or up (0): at every sample, or per sample."""
+
+
 @dataclass(frozen=True)
-class Branches:
-    """What a closed form fills, one shoulder and elbow at a time.
+class ArmGroup:
+    """Arm branches a closed form solves together: one joint 1 angle per sample.
 
     Attributes
     ----------
-    point : ndarray, shape (3, T)
-        The flange motions moving :attr:`ArmShape.wrist_point`.
-    shoulders : list of Angle
-        Joint 1's two angles that put it in the arm's plane, front then back.
-    arms : list of int
-        The branches (index ``4 back + 2 down``) asked.
-    angles : ndarray, shape (T, 2 * len(arms), 6)
-        The result: per arm, no flip then flip.
+    shoulder : Angle
+        Joint 1 (radians about axis 1) and its turn.
+    elbows : list of Down
+        The elbows asked.
+    outs : list of ndarray, shape (T, 2, 6)
+        Per elbow, its rows of the result (no flip, flip), joint 1 filled in.
     """
 
-    point: FloatArray
-    shoulders: list[Angle]
-    arms: list[int]
-    angles: FloatArray
-
-    def elbows(self, shoulder: int) -> list[tuple[int, FloatArray]]:
-        """The elbows asked with ``shoulder`` and their two wrists' rows (T, 2, 6) of
-        :attr:`angles`, joint 1 filled in."""
-        rows = []
-        for elbow in (0, 1):
-            if 4 * shoulder + 2 * elbow in self.arms:
-                slot = 2 * self.arms.index(4 * shoulder + 2 * elbow)
-                rows.append((elbow, self.angles[:, slot:slot + 2]))
-                rows[-1][1][..., 0] = self.shoulders[shoulder][0][:, None]
-        return rows
+    shoulder: Angle
+    elbows: list[Down]
+    outs: list[FloatArray]
 
 
 def branches(shape: ArmShape, rotations: FloatArray, translations: FloatArray,
-             arm: int | None) -> Branches:
-    """The :class:`Branches` of the flange motions ``rotations`` (3, 3, T) and
-    ``translations`` (3, T): all eight, or ``arm``'s shoulder and elbow."""
+             arm: Arm) -> tuple[FloatArray, list[ArmGroup], FloatArray]:
+    """What a closed form fills for the flange motions ``rotations`` (3, 3, T) and
+    ``translations`` (3, T): where they move :attr:`ArmShape.wrist_point` (3, T), the
+    groups of arms to solve and the result (T, k, 6) they fill: all eight branches (k = 8),
+    or ``arm``'s shoulder and elbow (a branch index, or one per sample: k = 2)."""
     point = applied(rotations, shape.wrist_point) + translations
-    arms = list(range(0, 8, 2)) if arm is None else [arm & 6]
-    return Branches(point, shoulder_angles(shape, point), arms,
-                    np.empty((translations.shape[-1], 2 * len(arms), 6)))
+    front, back = shoulder_angles(shape, point)
+    angles = np.empty((translations.shape[-1], 2 if arm is not None else 8, 6))
+    if arm is None:
+        groups = [ArmGroup(side, [0, 1], [angles[:, slot:slot + 2], angles[:, slot + 2:slot + 4]])
+                  for side, slot in ((front, 0), (back, 4))]
+    elif isinstance(arm, (int, np.integer)):
+        groups = [ArmGroup(back if arm & 4 else front, [arm // 2 % 2], [angles])]
+    else:
+        behind = (arm & 4) > 0
+        groups = [ArmGroup((np.where(behind, back[0], front[0]),
+                            (np.where(behind, back[1][0], front[1][0]),
+                             np.where(behind, back[1][1], front[1][1]))),
+                           [(arm & 2) > 0], [angles])]
+    for group in groups:
+        for out in group.outs:
+            out[..., 0] = group.shoulder[0][:, None]
+    return point, groups, angles
 
 
 def shoulder_angles(shape: ArmShape, point: FloatArray) -> list[Angle]:
@@ -101,7 +111,7 @@ def into_arm_plane(shape: ArmShape, shoulder: Turn, point: FloatArray) -> FloatA
     return rotated(shape.axes[0], backwards(shoulder), point - origin) + origin
 
 
-def two_link_angles(shape: ArmShape, point: FloatArray, elbows: Sequence[int] = (0, 1)
+def two_link_angles(shape: ArmShape, point: FloatArray, elbows: Sequence[Down] = (0, 1)
                     ) -> list[tuple[Angle, Angle]]:
     """Joints 2 and 3 (each (...)) of each of ``elbows`` (0 up, 1 down) that carry
     :attr:`ArmShape.carried_point` to ``point`` (3, ...), given in the arm's plane at joint
@@ -120,7 +130,7 @@ def two_link_angles(shape: ArmShape, point: FloatArray, elbows: Sequence[int] = 
     _, up_sign = shape.elbow  # the centre is the stretched angle
     angles = []
     for down in elbows:
-        third = one_of(halves, -up_sign if down else up_sign)
+        third = one_of(halves, np.where(down, -up_sign, up_sign))
         carried = rotated(axis3, third[1], offset) + column(elbow - shoulder, point.ndim - 1)
         angles.append((turning(axis2, carried, to_point), third))
     return angles

@@ -141,7 +141,7 @@ def two_angles(cos_part: FloatArray, sin_part: FloatArray, value: FloatArray) ->
             (ratio, np.sqrt((1.0 - ratio) * (1.0 + ratio))))
 
 
-def one_of(halves: Halves, sign: float) -> tuple[FloatArray, Turn]:
+def one_of(halves: Halves, sign: float | FloatArray) -> tuple[FloatArray, Turn]:
     """The angle ``g + sign h`` of ``halves`` (wrapped into ``[-pi, pi]``) and its
     :data:`Turn`."""
     centre, half, centre_turn, (cosine, sine) = halves

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ._arm_steps import SINGULAR, Angle, branches, into_arm_plane, two_link_angles
+from ._arm_steps import SINGULAR, Angle, Arm, branches, into_arm_plane, two_link_angles
 from ._subproblems import (
     Turn,
     added,
@@ -37,7 +37,7 @@ FloatArray = NDArray[np.float64]
 
 
 def opw_solutions(shape: ArmShape, rotations: FloatArray, translations: FloatArray,
-                  arm: int | None = None, free: FloatArray | None = None) -> FloatArray:
+                  arm: Arm = None, free: FloatArray | None = None) -> FloatArray:
     """Angles (T, 8, 6), radians about the shape's axes, that move the tool from its zero
     configuration by each of ``rotations`` (3, 3, T) and ``translations`` (3, T) (in the
     tool's axes at zero); branch ``4 back + 2 down + flip``; NaN where out of reach. With
@@ -48,16 +48,14 @@ def opw_solutions(shape: ArmShape, rotations: FloatArray, translations: FloatArr
     Each array holds one value per sample (a branch at a time: numpy broadcasting a few
     branches against the samples runs inner loops a few elements long, several times
     slower), and each angle's cosine and sine come from products of those it is made of."""
-    solved = branches(shape, rotations, translations, arm)
-    for shoulder in sorted({branch // 4 for branch in solved.arms}):
-        turn1 = solved.shoulders[shoulder][1]
-        rows = solved.elbows(shoulder)
-        links = two_link_angles(shape, into_arm_plane(shape, turn1, solved.point),
-                                [elbow for elbow, _ in rows])
-        for (_, out), (second, third) in zip(rows, links, strict=True):
+    point, groups, angles = branches(shape, rotations, translations, arm)
+    for group in groups:
+        turn1 = group.shoulder[1]
+        links = two_link_angles(shape, into_arm_plane(shape, turn1, point), group.elbows)
+        for out, (second, third) in zip(group.outs, links, strict=True):
             out[..., 1], out[..., 2] = second[0][:, None], third[0][:, None]
             _wrists(shape, rotations, backwards(turn1), second, third, free, out[..., 3:])
-    return solved.angles
+    return angles
 
 
 def _wrists(shape: ArmShape, rotations: FloatArray, back1: Turn, second: Angle,

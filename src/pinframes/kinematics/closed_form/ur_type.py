@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ._arm_steps import SINGULAR, branches, into_arm_plane, two_link_angles
+from ._arm_steps import SINGULAR, Arm, Down, branches, into_arm_plane, two_link_angles
 from ._subproblems import (
     Turn,
     applied,
@@ -38,21 +38,20 @@ FloatArray = NDArray[np.float64]
 
 
 def ur_solutions(shape: ArmShape, rotations: FloatArray, translations: FloatArray,
-                 arm: int | None = None, free: FloatArray | None = None) -> FloatArray:
+                 arm: Arm = None, free: FloatArray | None = None) -> FloatArray:
     """As :func:`.opw.opw_solutions`, for a UR-type shape: angles (T, 8, 6), branch
     ``4 back + 2 down + flip``, NaN where out of reach; with ``arm``, (T, 2, 6). At the
     wrist singularity (axis 6 along axes 2 to 4) joint 6 takes ``free`` (else 0). One
     branch at a time, as there."""
-    solved = branches(shape, rotations, translations, arm)
-    for shoulder in sorted({branch // 4 for branch in solved.arms}):
-        rows = solved.elbows(shoulder)
-        _wrists_and_links(shape, rotations, translations, solved.shoulders[shoulder][1],
-                          [elbow for elbow, _ in rows], free, [out[..., 1:] for _, out in rows])
-    return solved.angles
+    _, groups, angles = branches(shape, rotations, translations, arm)
+    for group in groups:
+        _wrists_and_links(shape, rotations, translations, group.shoulder[1], group.elbows,
+                          free, [out[..., 1:] for out in group.outs])
+    return angles
 
 
 def _wrists_and_links(shape: ArmShape, rotations: FloatArray, translations: FloatArray,
-                      turn1: Turn, elbows: list[int], free: FloatArray | None,
+                      turn1: Turn, elbows: list[Down], free: FloatArray | None,
                       outs: list[FloatArray]) -> None:
     """Joints 2 to 6 (T, 2, 5) into ``outs`` (one per elbow of ``elbows``), no flip then
     flip, of the arm whose joint 1 turns by ``turn1``."""

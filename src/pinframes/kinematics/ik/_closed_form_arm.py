@@ -158,14 +158,21 @@ def track_in_closed_form(
     start = start[order]
     period = turn_periods(shape)[:, None]
     count = times.shape[0]
-    rotations, translations = np.empty((3, 3, count)), np.empty((3, count))
-    for begin in range(0, count, KERNEL_CHUNK):
-        part = slice(begin, begin + KERNEL_CHUNK)
-        rotations[..., part], translations[..., part] = flange_motions(
-            path, times[part], shifts, solved.names, targets(part))
+    chunks = [flange_motions(path, times[begin:begin + KERNEL_CHUNK], shifts, solved.names,
+                             targets(slice(begin, begin + KERNEL_CHUNK)))
+              for begin in range(0, count, KERNEL_CHUNK)]
+
+    joined: list[Transform] = []  # the chunks joined, once samples beyond the first ask
 
     def solved_at(rows: Any, arm: int | None, free: FloatArray | None = None) -> FloatArray:
-        moved = rotations[..., rows], translations[..., rows]
+        if isinstance(rows, slice) and rows.stop is not None and rows.stop <= KERNEL_CHUNK:
+            source = chunks[0]
+        else:
+            if not joined:
+                joined.append((np.concatenate([chunk[0] for chunk in chunks], axis=-1),
+                               np.concatenate([chunk[1] for chunk in chunks], axis=-1)))
+            source = joined[0]
+        moved = source[0][..., rows], source[1][..., rows]
         parts = [branch_angles(shape, moved[0][..., begin:begin + KERNEL_CHUNK],
                                moved[1][..., begin:begin + KERNEL_CHUNK], arm,
                                None if free is None else free[begin:begin + KERNEL_CHUNK])
@@ -181,17 +188,20 @@ def track_in_closed_form(
         positions[:, ~matching.any(axis=1)] = np.nan
     else:
         if branch is None:  # the branch nearest the start at the first sample
-            away = solved_at(slice(0, 1), None)[0] - start
+            # (the first sample's four arms side by side: one pass, not four)
+            rotation, translation = chunks[0][0][..., :1], chunks[0][1][..., :1]
+            away = branch_angles(shape, np.repeat(rotation, 4, axis=-1),
+                                 np.repeat(translation, 4, axis=-1),
+                                 np.arange(0, 8, 2)).reshape(8, 6) - start
             away -= period.T * np.rint(away / period.T)
             arm = int(np.argmin(np.where(np.isnan(away).any(axis=1), np.inf,
                                          np.abs(away).max(axis=1)))) & 6
         else:
             arm = branch[1] & 6
         candidates = np.empty((2, 6, count))  # per wrist, joint by joint
-        for begin in range(0, count, KERNEL_CHUNK):
-            part = slice(begin, begin + KERNEL_CHUNK)
-            candidates[..., part] = branch_angles(
-                shape, rotations[..., part], translations[..., part], arm).transpose(1, 2, 0)
+        for begin, chunk in zip(range(0, count, KERNEL_CHUNK), chunks, strict=True):
+            candidates[..., begin:begin + KERNEL_CHUNK] = branch_angles(
+                shape, *chunk, arm).transpose(1, 2, 0)
         flip = (np.full(count, bool(branch[1] & 1)) if branch is not None
                 else _wrist_passing_through(candidates, start, period))
         positions = np.where(flip, candidates[1], candidates[0])
