@@ -12,14 +12,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ...values.timed import Timed
-from ._arm_steps import SINGULAR, Arm
+from ._arm_steps import SINGULAR, Arm, wrapped
 from .arm_shapes import ArmShape, OpwParameters
 from .configurations import BRANCH_NAMES, abb_quadrants, kuka_status, kuka_turn
 from .opw import opw_solutions
 from .ur_type import ur_solutions
 
 __all__ = ["LIMIT_SLACK", "STRAIGHT_WRIST", "IkSolutions", "branch_angles", "every_solution",
-           "free_wrist_joint", "turn_periods"]
+           "free_wrist_joint", "straight_wrists", "turn_periods"]
 
 FloatArray = NDArray[np.float64]
 
@@ -114,6 +114,14 @@ def branch_angles(shape: ArmShape, rotations: FloatArray, translations: FloatArr
 STRAIGHT_WRIST = SINGULAR
 """The sine of joint 5's angle from the straight wrist below which the wrist is straight and
 the closed form takes its free joint (:func:`free_wrist_joint`) as given."""
+
+
+def straight_wrists(shape: ArmShape, fifth: FloatArray) -> NDArray[np.bool_]:
+    """Where joint 5's values ``fifth`` (...) leave the wrist straight (:data:`STRAIGHT_WRIST`:
+    the angle from the straight wrist that near a multiple of pi; numpy's sine takes 13 ns a
+    number)."""
+    return np.abs(wrapped(2.0 * (fifth * shape.scales[4] - shape.wrist_straight))
+                  ) < 2.0 * STRAIGHT_WRIST
 
 
 def free_wrist_joint(shape: ArmShape) -> int:

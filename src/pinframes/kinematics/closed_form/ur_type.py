@@ -24,7 +24,6 @@ from ._subproblems import (
     dot,
     one_of,
     rotated,
-    turn_angle,
     turn_of,
     turning,
     two_angles,
@@ -58,11 +57,18 @@ def _wrists_and_links(shape: ArmShape, rotations: FloatArray, translations: Floa
     axes, points = shape.axes, shape.points
     normal, forward = shape.parallel, shape.forward
     axis5, axis6 = axes[4], axes[5]
-    back1 = backwards(turn1)
-    tool_axis = rotated(axes[0], back1, applied(rotations, axis6))
+    into_tool = rotations.swapaxes(0, 1)  # (the flange's motion undone)
+
+    def in_tool(vector: FloatArray) -> FloatArray:
+        """A constant ``vector`` turned with joint 1, in the tool's axes at zero."""
+        return applied(into_tool, rotated(axes[0], turn1, vector))
+
+    normal_in_tool = in_tool(normal)
     halves = two_angles(np.array(normal @ axis6), np.array(normal @ cross(axis5, axis6)),
-                        dot(normal, tool_axis))
-    normal_in_tool = applied(rotations.swapaxes(0, 1), rotated(axes[0], turn1, normal))
+                        dot(normal_in_tool, axis6))
+    # the rotation of joints 2 to 4 about the parallel axes: the angle from forward to what
+    # the flange's motion makes of forward with joints 5 and 6 undone
+    forward_in_tool, across_in_tool = in_tool(forward), in_tool(cross(normal, forward))
     straight = np.flatnonzero(halves[3][1] < SINGULAR)
     sign3, sign4 = float(normal @ axes[2]), float(normal @ axes[3])
     for wrist in (0, 1):
@@ -73,11 +79,10 @@ def _wrists_and_links(shape: ArmShape, rotations: FloatArray, translations: Floa
             sixth[straight] = 0.0 if free is None else wrapped(free[straight])
             for part, value in zip(turn6, turn_of(sixth[straight]), strict=True):
                 part[straight] = value
-        # the rotation of joints 2 to 4 about the parallel axes
         back6 = backwards(turn6)
         forward_back = rotated(axis6, back6, rotated(axis5, back5, forward))
-        middle = turn_angle(normal, forward, rotated(axes[0], back1,
-                                                     applied(rotations, forward_back)))
+        middle = np.arctan2(dot(across_in_tool, forward_back),
+                            dot(forward_in_tool, forward_back))
         # where joints 2 and 3 carry axis 4: its point with joints 5 and 6 undone, the
         # flange's motion, joint 1 undone
         moved = rotated(axis5, back5, shape.carried_point - points[4]) + column(points[4], 1)

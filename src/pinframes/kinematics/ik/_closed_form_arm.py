@@ -24,12 +24,12 @@ from ...values.se3 import Transform, compose, inverse, samples_last
 from .._plan import PreparedPath
 from .._sampling import KERNEL_CHUNK, sample_joints
 from ..closed_form.arm_shapes import ArmShape, recognise_arm
-from ..closed_form.configurations import kuka_status
+from ..closed_form.configurations import kuka_status, wrist_flips
 from ..closed_form.solutions import (
     LIMIT_SLACK,
-    STRAIGHT_WRIST,
     branch_angles,
     free_wrist_joint,
+    straight_wrists,
     turn_periods,
 )
 from ._newton_tracking import Tracked
@@ -223,13 +223,8 @@ def track_in_closed_form(
                    axis=0)  # (False where NaN)
     result = np.empty((count, 6))
     result[:, order] = positions.T
-    branches = None if kept is None else kept + _flipped(shape, positions[4])
+    branches = None if kept is None else kept + wrist_flips(shape, positions[4])
     return result, valid, branches
-
-
-def _flipped(shape: ArmShape, fifth: FloatArray) -> NDArray[np.int64]:
-    """1 where joint 5's values ``fifth`` (radians) flip the wrist, else 0."""
-    return (np.sin(fifth * shape.scales[4] - shape.wrist_straight) <= 0.0).astype(np.int64)
 
 
 def _hold_free_wrist(shape: ArmShape, positions: FloatArray, start: FloatArray,
@@ -237,8 +232,7 @@ def _hold_free_wrist(shape: ArmShape, positions: FloatArray, start: FloatArray,
     """The samples of ``positions`` (6, T) at a straight wrist solved ``again(rows, free)``
     ((rows, 6)) with the wrist's free joint held where the sample before left it (the
     first: the start), in place."""
-    straight = np.abs(np.sin(positions[4] * shape.scales[4] - shape.wrist_straight)
-                      ) < STRAIGHT_WRIST
+    straight = straight_wrists(shape, positions[4])
     if not straight.any():
         return
     joint = free_wrist_joint(shape)
