@@ -15,20 +15,19 @@ from ._subproblems import (
     TURN,
     Turn,
     applied,
-    backwards,
     column,
     cross,
     dot,
     one_of,
+    plane_angle,
     rotated,
-    turning,
     two_angles,
     wrapped,
 )
 from .arm_shapes import ArmShape
 
-__all__ = ["SINGULAR", "TURN", "Angle", "Arm", "ArmGroup", "Down", "branches", "into_arm_plane",
-           "shoulder_angles", "two_link_angles", "wrapped"]
+__all__ = ["SINGULAR", "TURN", "Angle", "Arm", "ArmGroup", "Down", "Plane", "arm_plane",
+           "branches", "in_arm_plane", "shoulder_angles", "two_link_angles", "wrapped"]
 
 FloatArray = NDArray[np.float64]
 
@@ -105,32 +104,59 @@ def shoulder_angles(shape: ArmShape, point: FloatArray) -> list[Angle]:
     return [one_of(halves, shape.front_sign), one_of(halves, -shape.front_sign)]
 
 
-def into_arm_plane(shape: ArmShape, shoulder: Turn, point: FloatArray) -> FloatArray:
-    """``point`` (3, ...) turned back by joint 1's ``shoulder`` angles (...)."""
-    origin = column(shape.points[0], point.ndim - 1)
-    return rotated(shape.axes[0], backwards(shoulder), point - origin) + origin
+Plane = tuple[FloatArray, FloatArray]
+"""Two directions (3, T) across the parallel axes, turned with joint 1: the arm's
+:attr:`ArmShape.forward` and ``parallel x forward`` (see :func:`arm_plane`)."""
 
 
-def two_link_angles(shape: ArmShape, point: FloatArray, elbows: Sequence[Down] = (0, 1)
+def arm_plane(shape: ArmShape, shoulder: Turn) -> Plane:
+    """The :data:`Plane` of joint 1's ``shoulder`` angles (...)."""
+    forward = shape.forward
+    return (rotated(shape.axes[0], shoulder, forward),
+            rotated(shape.axes[0], shoulder, cross(shape.parallel, forward)))
+
+
+def in_arm_plane(shape: ArmShape, plane: Plane, point: FloatArray) -> Plane:
+    """Where ``point`` (3, ...) lies from axis 2, across the parallel axes: its coordinates
+    along the two directions of ``plane`` (metres, each (...)), joint 1 undone."""
+    origin = shape.points[0]
+    reach = point - column(origin, point.ndim - 1)
+    offset = origin - shape.points[1]
+    forward = shape.forward
+    return (dot(plane[0], reach) + float(forward @ offset),
+            dot(plane[1], reach) + float(cross(shape.parallel, forward) @ offset))
+
+
+def two_link_angles(shape: ArmShape, point: Plane, elbows: Sequence[Down] = (0, 1)
                     ) -> list[tuple[Angle, Angle]]:
     """Joints 2 and 3 (each (...)) of each of ``elbows`` (0 up, 1 down) that carry
-    :attr:`ArmShape.carried_point` to ``point`` (3, ...), given in the arm's plane at joint
-    1 zero (:func:`into_arm_plane`); NaN where out of reach."""
-    axis2, axis3 = shape.axes[1], shape.axes[2]
+    :attr:`ArmShape.carried_point` to ``point``, given by its coordinates across the
+    parallel axes (:func:`in_arm_plane`); NaN where out of reach. (In those two
+    coordinates joints 2 and 3 turn about one point: a few products per sample.)"""
+    axis3 = shape.axes[2]
     shoulder, elbow = shape.points[1], shape.points[2]
+    forward = shape.forward
+    sideways = cross(shape.parallel, forward)
     offset = shape.carried_point - elbow
     across = offset - axis3 * np.dot(offset, axis3)
     between = elbow - shoulder
     between = between - axis3 * np.dot(between, axis3)
-    to_point = point - column(shoulder, point.ndim - 1)
-    distance_squared = dot(to_point, to_point) - dot(axis2, to_point) ** 2
-    value = 0.5 * (distance_squared - across @ across - between @ between)
+    along, beside = point
+    value = 0.5 * (along * along + beside * beside - across @ across - between @ between)
     halves = two_angles(np.array(between @ across),
                         np.array(between @ cross(axis3, across)), value)
     _, up_sign = shape.elbow  # the centre is the stretched angle
+    # the carried point from axis 2: offset turned by joint 3, then the elbow's place
+    turned = cross(axis3, offset)
+    parts = [(float(direction @ offset), float(direction @ turned),
+              float(direction @ (elbow - shoulder))) for direction in (forward, sideways)]
     angles = []
     for down in elbows:
         third = one_of(halves, np.where(down, -up_sign, up_sign))
-        carried = rotated(axis3, third[1], offset) + column(elbow - shoulder, point.ndim - 1)
-        angles.append((turning(axis2, carried, to_point), third))
+        cosine, sine = third[1]
+        carried = [cosine * at + sine * turning_part + place
+                   for at, turning_part, place in parts]
+        sine_part = carried[0] * beside - carried[1] * along
+        cosine_part = carried[0] * along + carried[1] * beside
+        angles.append((plane_angle(sine_part, cosine_part), third))
     return angles

@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 __all__ = ["AT_LIMIT", "TURN", "Halves", "Turn", "added", "applied", "backwards", "column",
-           "cross", "dot", "one_of", "rotated", "turn_angle", "turn_of", "turning",
+           "cross", "dot", "one_of", "plane_angle", "rotated", "turn_angle", "turn_of", "turning",
            "two_angles", "wrapped"]
 
 FloatArray = NDArray[np.float64]
@@ -107,7 +107,12 @@ def turn_angle(axis: FloatArray, start: FloatArray, end: FloatArray) -> FloatArr
 def turning(axis: FloatArray, start: FloatArray, end: FloatArray
             ) -> tuple[FloatArray, Turn]:
     """:func:`turn_angle` and its :data:`Turn`."""
-    sine, cosine = _turn_parts(axis, start, end)
+    return plane_angle(*_turn_parts(axis, start, end))
+
+
+def plane_angle(sine: FloatArray, cosine: FloatArray) -> tuple[FloatArray, Turn]:
+    """The angle (...) whose sine and cosine are ``sine`` and ``cosine`` times one size
+    (0 where both are 0), and its :data:`Turn`."""
     size = np.hypot(sine, cosine)
     none = size == 0.0
     if none.any():

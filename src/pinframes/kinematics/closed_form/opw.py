@@ -13,7 +13,15 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ._arm_steps import SINGULAR, Angle, Arm, branches, into_arm_plane, two_link_angles
+from ._arm_steps import (
+    SINGULAR,
+    Angle,
+    Arm,
+    arm_plane,
+    branches,
+    in_arm_plane,
+    two_link_angles,
+)
 from ._subproblems import (
     Turn,
     added,
@@ -51,7 +59,8 @@ def opw_solutions(shape: ArmShape, rotations: FloatArray, translations: FloatArr
     point, groups, angles = branches(shape, rotations, translations, arm)
     for group in groups:
         turn1 = group.shoulder[1]
-        links = two_link_angles(shape, into_arm_plane(shape, turn1, point), group.elbows)
+        links = two_link_angles(shape, in_arm_plane(shape, arm_plane(shape, turn1), point),
+                                group.elbows)
         for out, (second, third) in zip(group.outs, links, strict=True):
             out[..., 1], out[..., 2] = second[0][:, None], third[0][:, None]
             _wrists(shape, rotations, backwards(turn1), second, third, free, out[..., 3:])

@@ -14,7 +14,15 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ._arm_steps import SINGULAR, Arm, Down, branches, into_arm_plane, two_link_angles
+from ._arm_steps import (
+    SINGULAR,
+    Arm,
+    Down,
+    arm_plane,
+    branches,
+    in_arm_plane,
+    two_link_angles,
+)
 from ._subproblems import (
     Turn,
     applied,
@@ -69,6 +77,7 @@ def _wrists_and_links(shape: ArmShape, rotations: FloatArray, translations: Floa
     # the rotation of joints 2 to 4 about the parallel axes: the angle from forward to what
     # the flange's motion makes of forward with joints 5 and 6 undone
     forward_in_tool, across_in_tool = in_tool(forward), in_tool(cross(normal, forward))
+    plane = arm_plane(shape, turn1)
     straight = np.flatnonzero(halves[3][1] < SINGULAR)
     sign3, sign4 = float(normal @ axes[2]), float(normal @ axes[3])
     for wrist in (0, 1):
@@ -88,7 +97,7 @@ def _wrists_and_links(shape: ArmShape, rotations: FloatArray, translations: Floa
         moved = rotated(axis5, back5, shape.carried_point - points[4]) + column(points[4], 1)
         moved = rotated(axis6, back6, moved - column(points[5], 1)) + column(points[5], 1)
         moved = applied(rotations, moved) + translations
-        links = two_link_angles(shape, into_arm_plane(shape, turn1, moved), elbows)
+        links = two_link_angles(shape, in_arm_plane(shape, plane, moved), elbows)
         for out, ((second, _), (third, _)) in zip(outs, links, strict=True):
             out[:, wrist, 0], out[:, wrist, 1] = second, third
             out[:, wrist, 2] = wrapped(sign4 * (middle - second - sign3 * third))
