@@ -21,6 +21,7 @@ from ._subproblems import (
     one_of,
     plane_angle,
     rotated,
+    turned_along,
     two_angles,
     wrapped,
 )
@@ -146,16 +147,13 @@ def two_link_angles(shape: ArmShape, point: Plane, elbows: Sequence[Down] = (0, 
     halves = two_angles(np.array(between @ across),
                         np.array(between @ cross(axis3, across)), value)
     _, up_sign = shape.elbow  # the centre is the stretched angle
-    # the carried point from axis 2: offset turned by joint 3, then the elbow's place
-    turned = cross(axis3, offset)
-    parts = [(float(direction @ offset), float(direction @ turned),
-              float(direction @ (elbow - shoulder))) for direction in (forward, sideways)]
+    places = [float(direction @ (elbow - shoulder)) for direction in (forward, sideways)]
     angles = []
     for down in elbows:
         third = one_of(halves, np.where(down, -up_sign, up_sign))
-        cosine, sine = third[1]
-        carried = [cosine * at + sine * turning_part + place
-                   for at, turning_part, place in parts]
+        # the carried point from axis 2: offset turned by joint 3, then the elbow's place
+        carried = [part + place for part, place in zip(
+            turned_along((forward, sideways), axis3, third[1], offset), places, strict=True)]
         sine_part = carried[0] * beside - carried[1] * along
         cosine_part = carried[0] * along + carried[1] * beside
         angles.append((plane_angle(sine_part, cosine_part), third))

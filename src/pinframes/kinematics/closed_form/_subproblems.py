@@ -10,13 +10,14 @@ samples last, as :mod:`pinframes.values.se3` holds them.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 from numpy.typing import NDArray
 
 __all__ = ["AT_LIMIT", "TURN", "Halves", "Turn", "added", "applied", "backwards", "column",
-           "cross", "dot", "one_of", "plane_angle", "rotated", "turn_angle", "turn_of", "turning",
-           "two_angles", "wrapped"]
+           "cross", "dot", "one_of", "plane_angle", "rotated", "turn_angle", "turn_of",
+           "turned_along", "turning", "two_angles", "wrapped"]
 
 FloatArray = NDArray[np.float64]
 
@@ -96,6 +97,20 @@ def rotated(axis: FloatArray, angle: FloatArray | Turn, vector: FloatArray) -> F
     return _stacked(x * cosine + (b * z - c * y) * sine + a * along,
                     y * cosine + (c * x - a * z) * sine + b * along,
                     z * cosine + (a * y - b * x) * sine + c * along)
+
+
+def turned_along(directions: Sequence[FloatArray], axis: FloatArray, turn: Turn,
+                 vector: FloatArray) -> list[FloatArray]:
+    """The components (...) along each constant direction (3,) of the constant ``vector``
+    (3,) turned by ``turn`` about the unit ``axis`` (3,): Rodrigues' formula dotted with the
+    direction beforehand, three products per sample."""
+    cosine, sine = turn
+    parts = []
+    for direction in directions:
+        fixed = float(direction @ axis) * float(axis @ vector)
+        parts.append(fixed + cosine * (float(direction @ vector) - fixed)
+                     + sine * float(direction @ cross(axis, vector)))
+    return parts
 
 
 def turn_angle(axis: FloatArray, start: FloatArray, end: FloatArray) -> FloatArray:

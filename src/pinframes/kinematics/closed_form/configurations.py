@@ -30,7 +30,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ...errors import ArgumentTypeError
-from ._subproblems import column, dot, rotated, wrapped
+from ._subproblems import column, cross, dot, rotated, wrapped
 from .arm_shapes import ArmShape
 
 __all__ = ["BRANCH_NAMES", "abb_quadrants", "branch_flags", "kuka_status", "kuka_turn",
@@ -59,8 +59,8 @@ def branch_flags(shape: ArmShape, positions: FloatArray) -> IntArray:
     extra = positions.ndim - 1
     wrist = column(shape.wrist_point - points[0], extra)
     for joint in (4, 3, 2, 1):  # the wrist point through joints 5 to 2 (6 keeps it)
-        offset = shape.wrist_point - points[joint]
-        if np.linalg.norm(np.cross(axes[joint], offset)) <= ON_AXIS:
+        off_axis = cross(axes[joint], shape.wrist_point - points[joint])
+        if float(off_axis @ off_axis) <= ON_AXIS * ON_AXIS:
             continue  # the axis passes through the wrist point: it stays
         point = column(points[joint] - points[0], extra)
         wrist = rotated(axes[joint], angle(joint), wrist - point) + point

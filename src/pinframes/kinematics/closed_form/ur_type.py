@@ -31,9 +31,10 @@ from ._subproblems import (
     cross,
     dot,
     one_of,
+    plane_angle,
     rotated,
     turn_of,
-    turning,
+    turned_along,
     two_angles,
     wrapped,
 )
@@ -78,12 +79,18 @@ def _wrists_and_links(shape: ArmShape, rotations: FloatArray, translations: Floa
     # the flange's motion makes of forward with joints 5 and 6 undone
     forward_in_tool, across_in_tool = in_tool(forward), in_tool(cross(normal, forward))
     plane = arm_plane(shape, turn1)
+    first6 = axis5 - axis6 * float(axis6 @ axis5)  # two directions across axis 6
+    across6 = (first6 / np.linalg.norm(first6), cross(axis6, first6 / np.linalg.norm(first6)))
+    starts = [dot(direction, normal_in_tool) for direction in across6]
     straight = np.flatnonzero(halves[3][1] < SINGULAR)
     sign3, sign4 = float(normal @ axes[2]), float(normal @ axes[3])
     for wrist in (0, 1):
         fifth, turn5 = one_of(halves, -1.0 if wrist else 1.0)
         back5 = backwards(turn5)
-        sixth, turn6 = turning(axis6, normal_in_tool, rotated(axis5, back5, normal))
+        # joint 6: from the normal in the tool to the normal with joint 5 undone, across axis 6
+        ends = turned_along(across6, axis5, back5, normal)
+        sixth, turn6 = plane_angle(starts[0] * ends[1] - starts[1] * ends[0],
+                                   starts[0] * ends[0] + starts[1] * ends[1])
         if straight.shape[0]:
             sixth[straight] = 0.0 if free is None else wrapped(free[straight])
             for part, value in zip(turn6, turn_of(sixth[straight]), strict=True):
