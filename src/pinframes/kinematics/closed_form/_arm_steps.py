@@ -77,7 +77,10 @@ def branches(shape: ArmShape, rotations: FloatArray, translations: FloatArray,
     or ``arm``'s shoulder and elbow (a branch index, or one per sample: k = 2)."""
     point = applied(rotations, shape.wrist_point) + translations
     front, back = shoulder_angles(shape, point)
-    angles = np.empty((translations.shape[-1], 2 if arm is not None else 8, 6))
+    # (held branch by branch, joint by joint, samples last: each joint's values are written
+    # in one contiguous pass; the result reads as samples first)
+    angles = np.empty((2 if arm is not None else 8, 6, translations.shape[-1])
+                      ).transpose(2, 0, 1)
     if arm is None:
         groups = [ArmGroup(side, [0, 1], [angles[:, slot:slot + 2], angles[:, slot + 2:slot + 4]])
                   for side, slot in ((front, 0), (back, 4))]
