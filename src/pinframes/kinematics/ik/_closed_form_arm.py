@@ -24,7 +24,7 @@ from ...values.se3 import Transform, compose, inverse, samples_last
 from .._plan import PreparedPath
 from .._sampling import KERNEL_CHUNK, sample_joints
 from ..closed_form.arm_shapes import ArmShape, recognise_arm
-from ..closed_form.configurations import kuka_status, wrist_flips
+from ..closed_form.configurations import branch_flags, kuka_status, wrist_flips
 from ..closed_form.solutions import (
     LIMIT_SLACK,
     branch_angles,
@@ -187,21 +187,33 @@ def track_in_closed_form(
         positions = angles[np.arange(count), np.argmax(matching, axis=1)].T.copy()
         positions[:, ~matching.any(axis=1)] = np.nan
     else:
+        candidates = np.empty((2, 6, count))  # per wrist, joint by joint
+        first_chunk = 0  # the chunks solved already
         if branch is None:  # the branch nearest the start at the first sample
-            # (the first sample's four arms side by side: one pass, not four)
-            rotation, translation = chunks[0][0][..., :1], chunks[0][1][..., :1]
-            away = branch_angles(shape, np.repeat(rotation, 4, axis=-1),
-                                 np.repeat(translation, 4, axis=-1),
-                                 np.arange(0, 8, 2)).reshape(8, 6) - start
+            # (the first sample's four arms beside the first chunk on the start's own arm,
+            # in one pass: a call's fixed cost is that of a few hundred numpy operations)
+            guess = int(branch_flags(shape, start[None])[0]) & 6
+            rotation, translation = chunks[0]
+            size = translation.shape[-1]
+            together = branch_angles(
+                shape, np.concatenate([np.repeat(rotation[..., :1], 4, axis=-1), rotation],
+                                      axis=-1),
+                np.concatenate([np.repeat(translation[..., :1], 4, axis=-1), translation],
+                               axis=-1),
+                np.concatenate([np.arange(0, 8, 2), np.full(size, guess)]))
+            away = together[:4].reshape(8, 6) - start
             away -= period.T * np.rint(away / period.T)
             arm = int(np.argmin(np.where(np.isnan(away).any(axis=1), np.inf,
                                          np.abs(away).max(axis=1)))) & 6
+            if arm == guess:
+                candidates[..., :size] = together[4:].transpose(1, 2, 0)
+                first_chunk = 1
         else:
             arm = branch[1] & 6
-        candidates = np.empty((2, 6, count))  # per wrist, joint by joint
-        for begin, chunk in zip(range(0, count, KERNEL_CHUNK), chunks, strict=True):
+        for index in range(first_chunk, len(chunks)):
+            begin = index * KERNEL_CHUNK
             candidates[..., begin:begin + KERNEL_CHUNK] = branch_angles(
-                shape, *chunk, arm).transpose(1, 2, 0)
+                shape, *chunks[index], arm).transpose(1, 2, 0)
         flip = (np.full(count, bool(branch[1] & 1)) if branch is not None
                 else _wrist_passing_through(candidates, start, period))
         positions = np.where(flip, candidates[1], candidates[0])
