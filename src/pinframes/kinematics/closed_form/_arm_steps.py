@@ -1,6 +1,7 @@
 """The steps both closed forms share: joint 1 from the point the plane of axes 2 and 3 must
-pass through, and joints 2 and 3 (parallel) from the point they carry into place. Angles
-are radians about the unit axes of :class:`.arm_shapes.ArmShape`, samples first; vectors
+pass through, and joints 2 and 3 (parallel) from the point they carry into place, in its
+two coordinates across the parallel axes. Angles are radians about the unit axes of
+:class:`.arm_shapes.ArmShape`, one value per sample (one branch at a time); vectors
 ``(3, ...)`` as :mod:`._subproblems` holds them."""
 
 from __future__ import annotations

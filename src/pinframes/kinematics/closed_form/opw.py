@@ -4,8 +4,9 @@ motions at once.
 The wrist centre does not move with joints 4 to 6, so joints 1 to 3 place it: joint 1 turns
 the plane of the parallel axes 2 and 3 through it (front or back), joints 2 and 3 reach it
 in that plane (elbow up or down). Joints 4 to 6 then turn the tool's axes as the rest of the
-rotation asks, an axis-5 angle either side of the straight wrist (no flip or flip). Up to 8
-solutions, about a hundred array operations whatever the number of samples.
+rotation asks, an axis-5 angle either side of the straight wrist (no flip or flip; the flip
+is the same rotation about the wrist centre with joints 4 and 6 half a turn on). Up to 8
+solutions, about a hundred array operations per arm whatever the number of samples.
 """
 
 from __future__ import annotations
