@@ -33,7 +33,7 @@ from ._starts import track_from_the_best_start
 from ._tool_error import ToolMatch, WindowMatch
 
 __all__ = ["STILL", "TARGET_SOURCE", "PathToSolve", "problem_of", "raise_unreached", "targets_at",
-           "track_in_chunks"]
+           "targets_last", "track_in_chunks"]
 
 FloatArray = NDArray[np.float64]
 
@@ -97,7 +97,7 @@ class PathToSolve:
         at ``positions`` (N, n): ``(N, 3, 3)`` rotations and ``(N, 3)`` translations
         (metres)."""
         plan = self.plan
-        targets = _targets_last(self.target, times, plan.shifts.get(TARGET_SOURCE, 0))
+        targets = targets_last(self.target, times, plan.shifts.get(TARGET_SOURCE, 0))
         return tools_in_targets(plan.path, times, plan.shifts, self.joints.names, positions,
                                 targets)
 
@@ -270,7 +270,7 @@ def targets_at(target: Pose | None, moments: NDArray[np.int64], shift: int
             np.broadcast_to(target.translation, (count, 3)))
 
 
-def _targets_last(target: Pose | None, moments: NDArray[np.int64], shift: int
+def targets_last(target: Pose | None, moments: NDArray[np.int64], shift: int
                   ) -> Transform | None:
     """:func:`targets_at` with the samples last, ``(3, 3, N)`` and ``(3, N)``: a moving
     target as interpolated, uncopied."""
