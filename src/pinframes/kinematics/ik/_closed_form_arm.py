@@ -20,7 +20,7 @@ import pinocchio as pin
 from numpy.typing import NDArray
 
 from ...errors import JointError
-from ...values.se3 import Transform, compose, inverse, samples_last
+from ...values.se3 import Transform, compose, inverse
 from .._plan import PreparedPath
 from .._sampling import KERNEL_CHUNK, sample_joints
 from ..closed_form.arm_shapes import ArmShape, recognise_arm
@@ -33,7 +33,7 @@ from ..closed_form.solutions import (
     turn_periods,
 )
 from ._newton_tracking import Tracked
-from ._path_chunks import TARGET_SOURCE, PathToSolve, raise_unreached, targets_at
+from ._path_chunks import TARGET_SOURCE, PathToSolve, raise_unreached, targets_last
 from ._solved_joints import SolvedJoints
 
 __all__ = ["AT_START", "JUMP", "arm_order", "closed_form_arm", "flange_motions",
@@ -124,8 +124,8 @@ def arm_order(shape: ArmShape, names: tuple[str, ...]) -> list[int]:
 def flange_motions(path: PreparedPath, times: NDArray[np.int64], shifts: dict[str, int],
                    names: tuple[str, ...], targets: Transform | None) -> Transform:
     """Per time, the motion of the tool from where the solved joints at zero put it to its
-    target, in the tool's axes there: ``(3, 3, N)`` rotations and ``(3, N)`` translations
-    (samples last)."""
+    target (``targets`` samples last, see :func:`._path_chunks.targets_last`), in the tool's
+    axes there: ``(3, 3, N)`` rotations and ``(3, N)`` translations (samples last)."""
     count = times.shape[0]
     zeros = dict.fromkeys(names, 0.0)
     model = path.model
@@ -134,7 +134,7 @@ def flange_motions(path: PreparedPath, times: NDArray[np.int64], shifts: dict[st
     tool, reference = model.forward_kinematics(samples, [path.frame, path.relative_to])
     motion = compose(inverse(tool), reference)
     if targets is not None:
-        motion = compose(motion, samples_last(targets))
+        motion = compose(motion, targets)
     rotation, translation = motion
     return (np.broadcast_to(rotation.reshape(3, 3, -1), (3, 3, count)),
             np.broadcast_to(translation.reshape(3, -1), (3, count)))
@@ -363,7 +363,7 @@ def solve_in_closed_form(request: PathToSolve, shape: ArmShape, start: FloatArra
 
     def targets(part: slice) -> Transform | None:
         if part.start not in sampled:
-            sampled[part.start] = targets_at(request.target, times[part], shift)
+            sampled[part.start] = targets_last(request.target, times[part], shift)
         return sampled[part.start]
 
     positions, valid, branches = track_in_closed_form(shape, path, times, shifts,
@@ -406,7 +406,7 @@ def _pose_errors(path: PreparedPath, times: NDArray[np.int64], shifts: dict[str,
     if targets is None:
         wanted, place = np.eye(3), np.zeros(3)
     else:
-        wanted, place = samples_last(targets)
+        wanted, place = targets
     offset = translation.reshape(3, -1) - place.reshape(3, -1)
     cosine = sum(wanted[i, j] * rotation[i, j] for i in range(3) for j in range(3))
     across = [sum(wanted[(i + 1) % 3, k] * rotation[(i + 2) % 3, k]
