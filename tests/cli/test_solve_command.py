@@ -213,3 +213,105 @@ def test_solve_with_process_windows_keeps_the_tilt_within_them(cell, run_cli):
         assert np.linalg.norm(offset.translation) <= 1e-6
         x, y, z = offset.rotation[:, 2]
         assert abs(np.arctan2(-y, z)) <= 0.1 + 1e-6 and abs(np.arcsin(x)) <= 0.1 + 1e-6
+
+
+def joint_linear(rows: np.ndarray, between: int) -> np.ndarray:
+    """The CSV's rows (time, joints) interpolated linearly, ``between`` points inside each
+    interval besides its ends: (times, joints) rows."""
+    fine = np.unique(np.concatenate([np.linspace(start, end, between + 2)
+                                     for start, end in zip(rows[:-1, 0], rows[1:, 0],
+                                                           strict=True)]))
+    return np.column_stack([fine] + [np.interp(fine, rows[:, 0], column)
+                                     for column in rows[:, 1:].T])
+
+
+@pytest.mark.parametrize(("tolerance", "metres", "radians"), [
+    ((), 1e-4, np.radians(0.1)), (("--path-tolerance", "1e-3", "0.01"), 1e-3, 0.01),
+    (("--path-tolerance", "2e-5", "2e-4"), 2e-5, 2e-4)])
+def test_solve_path_tolerance_bounds_the_tool_between_samples(cell, run_cli, tmp_path,
+                                                              tolerance, metres, radians):
+    """Without times, the seam's two keyframes become as many samples as keep the
+    joint-linear flange within --path-tolerance of the seam (metres, radians; default 0.1 mm
+    and 0.1 degree): checked by Pinocchio 20 times per interval against the table turned by
+    hand; the looser tolerance needs fewer samples, the tighter more."""
+    scene, table, seam_in_table = cell
+    out = tmp_path / "joints.csv"
+    result = run_cli("solve", scene, "--frame", "robot/flange", "--target", "seam", *tolerance,
+                     "-o", out)
+    assert result.returncode == 0, result.stderr
+    rows = np.loadtxt(out, delimiter=",", skiprows=1)
+    assert f"{rows.shape[0]} samples, {rows.shape[0]} reached" in result.stderr
+    fine = joint_linear(rows, 20)
+    targets = seam_targets(table, seam_in_table, fine[:, 0])
+    position, angle = [], []
+    for placement, target in zip(flange_poses(fine[:, 1:]), targets, strict=True):
+        offset = target.actInv(placement)
+        position.append(np.linalg.norm(offset.translation))
+        angle.append(np.linalg.norm(pin.log3(offset.rotation)))
+    assert max(position) <= 1.01 * metres and max(angle) <= 1.01 * radians
+    counts = {1e-3: (2, 9), 1e-4: (9, 9), 2e-5: (10, 10 ** 4)}[metres]  # default: 9 samples
+    assert counts[0] <= rows.shape[0] <= counts[1] and (rows.shape[0] == 9) == (metres == 1e-4)
+
+
+def test_solve_jump_threshold_and_strict_name_the_first_jump(cell, run_cli):
+    """--jump-threshold 0.5 on three samples a second apart: both steps pass half the
+    median step and 0.1 rad, as numpy finds on the CSV; the summary counts them, --strict
+    fails naming the first time and its joint; with the default (10 times) none."""
+    scene, _, _ = cell
+    times = ("--times", "0", "1", "2")
+    loose = run_cli("solve", scene, "--frame", "robot/flange", "--target", "seam", *times)
+    assert loose.returncode == 0, loose.stderr
+    assert "jumps" not in loose.stderr
+    result = run_cli("solve", scene, "--frame", "robot/flange", "--target", "seam", *times,
+                     "--jump-threshold", "0.5")
+    assert result.returncode == 0, result.stderr
+    rows = np.array([[float(cell) for cell in line.split(",")]
+                     for line in result.stdout.splitlines()[1:]])
+    steps = np.abs(np.diff(rows[:, 1:], axis=0))
+    largest = steps.max(axis=1)
+    jumps = np.flatnonzero(largest > max(0.5 * np.median(largest), 0.1)) + 1
+    assert jumps.tolist() == [1, 2]
+    assert "2 jumps (the first at 1 s)" in result.stderr
+    strict = run_cli("solve", scene, "--frame", "robot/flange", "--target", "seam", *times,
+                     "--jump-threshold", "0.5", "--strict")
+    assert strict.returncode == 1
+    joint = f"robot/joint_{int(np.argmax(steps[0])) + 1}"
+    assert "at 1 s" in strict.stderr and f"joint {joint!r}" in strict.stderr
+
+
+def test_solve_flat_tolerance_sets_how_flat(run_cli, tmp_path):
+    """--flat-tolerance in radians: at 1e-9 the seam's face is within 1e-8 rad of up at every
+    sample (Pinocchio on the positioner's URDF), where the default (0.5 degree) leaves it
+    further at one of them; a negative one is an error naming it."""
+    from ik_paths import TILT_TURN, pipe_scene
+    positioner = tmp_path / "positioner.urdf"
+    positioner.write_text(TILT_TURN)
+    scene = tmp_path / "pipe.yaml"
+    scene.write_text(pipe_scene(positioner))
+    model = pin.buildModelFromUrdf(str(positioner))
+    data = model.createData()
+    plate = model.getFrameId("faceplate")
+    half = np.pi / 8  # the seam's face turns by twice this about the faceplate's y in 1 s
+
+    def largest_angle_from_up(*flat_tolerance: str) -> float:
+        result = run_cli("solve", scene, "--frame", "ur/tool0", "--target", "torch_target",
+                         "--free-axis", "z", "--add-joints", "pos/tilt_x", "pos/turn",
+                         "--flat", "seam", "--times", "0", "0.5", "1", *flat_tolerance)
+        assert result.returncode == 0, result.stderr
+        assert "3 samples, 3 reached" in result.stderr
+        rows = np.array([[float(cell) for cell in line.split(",")]
+                         for line in result.stdout.splitlines()[1:]])
+        angles = []
+        for time, tilt, turn in rows[:, [0, 7, 8]]:
+            pin.framesForwardKinematics(model, data, np.array([tilt, turn]))
+            start = pin.Quaternion(0.5, 0.5, 0.5, 0.5)  # w x y z
+            seam = start.slerp(time, pin.Quaternion(np.cos(half), 0.0, np.sin(half), 0.0))
+            face = data.oMf[plate].rotation @ seam.matrix()[:, 2]
+            angles.append(np.arctan2(np.linalg.norm(face[:2]), face[2]))
+        return max(angles)
+
+    assert largest_angle_from_up() > 1e-8
+    assert largest_angle_from_up("--flat-tolerance", "1e-9") <= 1e-8
+    wrong = run_cli("solve", scene, "--frame", "ur/tool0", "--target", "torch_target",
+                    "--flat", "seam", "--flat-tolerance", "-1")
+    assert wrong.returncode == 1 and "flat_tolerance" in wrong.stderr

@@ -6,13 +6,14 @@ configurations."""
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
 import pinocchio as pin
 import pytest
 
-from ik_paths import arm, frame_poses
+from ik_paths import arm, as_pose, errors, frame_poses, swinging
 from pinframes import FrameTree, Pose
 from pinframes.errors import ArgumentTypeError, InvalidDataError
 
@@ -107,3 +108,40 @@ def test_a_bad_path_tolerance_names_the_field(ur5_seam, bad):
     _, tree, target, _, home = ur5_seam
     with pytest.raises((InvalidDataError, ArgumentTypeError), match="path_tolerance"):
         tree.solve_joints("tool0", target, seed=home[:6], path_tolerance=bad)
+
+
+def test_the_deviation_reported_is_pinocchio_s_at_midpoints_and_quarter_points():
+    """A moving, turning target at given times: each interval's deviation is the one
+    Pinocchio measures at its midpoint, the joints linear between the solution's samples
+    and the target interpolated as the pose is (linear, slerp); where the midpoint strays
+    past a quarter of the default tolerance (0.1 mm, 0.1 degree), the largest of the
+    midpoint and the quarter points."""
+    ur5 = arm("UR5")
+    model = ur5.model()
+    times = np.array([0.0, 0.01, 0.02, 0.4, 0.8, 0.81, 1.2, 1.6, 1.61])  # s: short, long
+    trajectory = swinging(np.asarray(ur5.home), np.asarray(ur5.swing), times)
+    keyframes = frame_poses(model, ur5.tool, trajectory)
+    solution = ur5.tree().solve_joints(ur5.tool, as_pose(keyframes, times), times=times,
+                                       seed=trajectory[0])
+    assert solution.all_reached
+
+    def strays(share: float) -> tuple[np.ndarray, np.ndarray]:
+        """Per interval, Pinocchio's position and orientation error at ``share`` of it."""
+        between = (1 - share) * solution.positions[:-1] + share * solution.positions[1:]
+        wanted = [pin.SE3(start.rotation @ pin.exp3(share * pin.log3(
+                              start.rotation.T @ end.rotation)),
+                          (1 - share) * start.translation + share * end.translation)
+                  for start, end in itertools.pairwise(keyframes)]
+        return errors(frame_poses(model, ur5.tool, between), wanted)
+
+    position, orientation = strays(0.5)
+    near = (position > 0.25e-4) | (orientation > 0.25 * math.radians(0.1))
+    assert near.any() and not near.all()  # both rules are exercised
+    for share in (0.25, 0.75):
+        apart, turned = strays(share)
+        position[near] = np.maximum(position[near], apart[near])
+        orientation[near] = np.maximum(orientation[near], turned[near])
+    np.testing.assert_allclose(solution.path_deviation, np.append(0.0, position),
+                               rtol=1e-9, atol=1e-15)
+    np.testing.assert_allclose(solution.path_angle_deviation, np.append(0.0, orientation),
+                               rtol=1e-9, atol=1e-15)

@@ -168,3 +168,79 @@ def test_iiwa_seeded_near_its_joint_7_limit_reaches_every_sample():
                                         seed=trajectory[0])
     assert on_target(model, iiwa.tool, solution.positions, targets).all()
     assert within_limits(model, solution.positions)
+
+
+def iiwa_near_its_joint_7_limit(seed: int) -> tuple[Arm, np.ndarray]:
+    """The LBR iiwa 14 and a trajectory (201 samples at 50 Hz) swinging about a random home
+    within its limits, joint 7 swinging up to within 0.05 rad of one of its limits (drawn
+    by ``seed``)."""
+    iiwa = Arm("LBR iiwa 14", EXTRA / "kuka_experimental" / "lbr_iiwa_14_r820.urdf", "tool0",
+               7, (0.0,) * 7, (0.4, 0.3, 0.3, 0.5, 0.4, 0.8, 0.6))
+    model = iiwa.model()
+    lower, upper = model.lowerPositionLimit, model.upperPositionLimit
+    swing = np.asarray(iiwa.swing)
+    generator = np.random.default_rng(seed)
+    home = generator.uniform(lower + swing, upper - swing)
+    side, gap = generator.integers(2), generator.uniform(0.0, 0.05)
+    home[6] = upper[6] - swing[6] - gap if side else lower[6] + swing[6] + gap
+    return iiwa, swinging(home, swing, np.arange(201) / 50.0)
+
+
+@pytest.mark.parametrize(("seed", "jumps"), [(1778, 0), (2503, 0), (2581, 1), (2975, 1)])
+def test_iiwa_reaches_the_samples_its_self_motion_lost_on_a_limit(seed, jumps):
+    """Seeded with the trajectory's first configuration, the smallest motion took the iiwa
+    along another self-motion than the trajectory's, onto a stretch that joint limits then
+    closed: 64, 82, 85 and 85 samples were lost with joints on their limits. Solved again
+    from the last solution moved along its self-motion, every sample is on its target
+    (Pinocchio) within the limits; where that takes the other stretch, the step is a jump
+    that ``jumps`` reports as numpy finds it."""
+    iiwa, trajectory = iiwa_near_its_joint_7_limit(seed)
+    model = iiwa.model()
+    times = np.arange(201) / 50.0
+    targets = frame_poses(model, iiwa.tool, trajectory)
+    solution = iiwa.tree().solve_joints(iiwa.tool, as_pose(targets, times), times=times,
+                                        seed=trajectory[0])
+    assert on_target(model, iiwa.tool, solution.positions, targets).all()
+    assert within_limits(model, solution.positions)
+    assert solution.jumps is not None and solution.jumps.shape[0] == jumps
+    np.testing.assert_array_equal(solution.jumps, numpy_jumps(solution.positions))
+
+
+def m430_path(seed: int, narrow: bool) -> np.ndarray:
+    """An M-430iA/2P trajectory (101 samples at 10 Hz) as ``far_paths_through_the_wrist``'s,
+    its home drawn by ``seed``; ``narrow``: joint 5 within 0.01 rad of 0 there and swinging
+    by 0.05 rad only."""
+    robot = fanuc("m430ia2p")
+    model = robot.model()
+    lower = np.maximum(model.lowerPositionLimit, -np.pi)
+    upper = np.minimum(model.upperPositionLimit, np.pi)
+    swing = np.minimum(robot.swing, (upper - lower) / 4)
+    generator = np.random.default_rng(seed)
+    home = generator.uniform(lower + swing, upper - swing)
+    home[4] = generator.uniform(-0.01, 0.01) if narrow else generator.uniform(-0.05, 0.05)
+    if narrow:
+        swing[4] = 0.05
+    return swinging(home, swing, np.arange(101) / 10.0)
+
+
+@pytest.mark.xfail(strict=True, reason="issue 44: the seeded M-430iA/2P leaves its branch where "
+                   "the path crosses a singular configuration")
+@pytest.mark.parametrize(("seed", "narrow", "lost"), [(249, False, 28), (179, True, 19)])
+def test_m430_seeded_through_a_singular_crossing_keeps_its_branch(seed, narrow, lost):
+    """Reproduces the seeded M-430iA/2P losses of issue 44 (not fixed yet): the path
+    crosses a singular configuration away from the wrist's (the Jacobian's smallest
+    singular value 1e-4 at samples 57 and 59, joint 5 at -0.32 and -0.05 rad there); the
+    solver takes the other branch there, which runs joint 1 onto its limit and loses the
+    ``lost`` last samples. Without a seed every sample is reached."""
+    robot = fanuc("m430ia2p")
+    model = robot.model()
+    times = np.arange(101) / 10.0
+    trajectory = m430_path(seed, narrow)
+    targets = frame_poses(model, robot.tool, trajectory)
+    target = as_pose(targets, times)
+    unseeded = robot.tree().solve_joints(robot.tool, target, times=times)
+    assert on_target(model, robot.tool, unseeded.positions, targets).all()
+    solution = robot.tree().solve_joints(robot.tool, target, times=times, seed=trajectory[0])
+    missed = ~on_target(model, robot.tool, solution.positions, targets)
+    assert missed.sum() in (0, lost)  # the loss as measured, or none once fixed
+    assert not missed.any()

@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 import sys
 import warnings
+from typing import Any
 
 import numpy as np
 
@@ -76,6 +77,20 @@ def add_parser(subparsers: Subparsers, parents: list[argparse.ArgumentParser]) -
                         help="metres (default: 1e-6)")
     parser.add_argument("--orientation-tolerance", type=float, default=1e-6, metavar="RAD",
                         help="radians (default: 1e-6)")
+    parser.add_argument("--path-tolerance", nargs=2, type=float, metavar=("M", "RAD"),
+                        help="without --times/--step: how far the tool may stray from its "
+                        "target between two samples while the joints move linearly from the "
+                        "one to the other, metres and radians; samples are added where it "
+                        "strays further (default: 1e-4 0.001745, 0.1 mm and 0.1 degree)")
+    parser.add_argument("--jump-threshold", type=float, metavar="FACTOR",
+                        help="a sample whose largest joint change from the one before is "
+                        "more than FACTOR times the path's median step (and 0.1 rad or m) "
+                        "is a jump: the summary counts them, --strict fails at the first "
+                        "(default: 10)")
+    parser.add_argument("--flat-tolerance", type=float, metavar="RAD",
+                        help="with --flat: radians the frame's z may stray from up where the "
+                        "joints could turn it up; a sample beyond it is not reached "
+                        "(default: 0.008727, 0.5 degree)")
     parser.add_argument("--seed", nargs="+", metavar="NAME=VALUE", type=_seed_value,
                         help="joint values (radians or metres) the first sample starts from, "
                         "by joint name as 'pinframes info' lists them, e.g. "
@@ -111,7 +126,7 @@ def run(args: argparse.Namespace) -> int:
         seed=_seed(tree, args.seed), free_axis=args.free_axis, flat=args.flat, up=args.up,
         tilt=args.tilt, add_joints=args.add_joints, position_tolerance=args.position_tolerance,
         orientation_tolerance=args.orientation_tolerance, strict=args.strict,
-        configuration=args.configuration)
+        configuration=args.configuration, **_path_options(args))
     if args.output is not None:
         write_joint_trajectory(solution, args.output)
     else:  # timestamps when the solution has a reference time, else seconds
@@ -123,6 +138,15 @@ def run(args: argparse.Namespace) -> int:
                                         solution.urdf_joint_names or solution.joint_names), None)
     print(f"pinframes: {summary(tree, solution)}", file=sys.stderr)
     return 0
+
+
+def _path_options(args: argparse.Namespace) -> dict[str, Any]:
+    """``--path-tolerance``, ``--jump-threshold``, ``--flat-tolerance`` as ``solve_joints``'
+    keywords, those given only (the others keep its defaults)."""
+    given = {"path_tolerance": None if args.path_tolerance is None else tuple(
+        args.path_tolerance), "jump_threshold": args.jump_threshold,
+        "flat_tolerance": args.flat_tolerance}
+    return {name: value for name, value in given.items() if value is not None}
 
 
 def _joints_or_group(tree: FrameTree, joints: list[str] | None) -> list[str] | str | None:
@@ -164,7 +188,7 @@ def _seed(tree: FrameTree, given: list[tuple[str, float]] | None) -> dict[str, f
 
 def summary(tree: FrameTree, solution: JointSolution) -> str:
     """One line: samples, reached, the largest errors, how far the joint-interpolated tool
-    strays between samples, the flat frame's largest angle from up (with --flat), the
+    strays between samples, the jumps, the flat frame's largest angle from up (with --flat), the
     largest tilt (with process windows), the smallest distance
     to a position limit, the fastest joint against its velocity limit."""
     count, reached = len(solution), int(solution.reached.sum())
@@ -184,6 +208,10 @@ def summary(tree: FrameTree, solution: JointSolution) -> str:
         assert solution.path_angle_deviation is not None  # set with path_deviation
         line += (f"; between samples within {solution.path_deviation.max():.2g} m, "
                  f"{solution.path_angle_deviation.max():.2g} rad")
+    if solution.jumps is not None and solution.jumps.shape[0]:
+        assert solution.seconds is not None  # a solution has a time per sample
+        line += (f"; {solution.jumps.shape[0]} jumps (the first at "
+                 f"{solution.seconds[solution.jumps[0]]:.6g} s)")
     if solution.flat_error is not None and count:
         line += f"; --flat frame at most {solution.flat_error.max():.2g} rad from up"
     if solution.tilt is not None and count:

@@ -32,16 +32,19 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ...errors import ArgumentTypeError
-from ._subproblems import column, dot, rotated
+from ._subproblems import column, cross, dot, rotated, wrapped
 from .arm_shapes import ArmShape
 
 __all__ = ["BRANCH_NAMES", "abb_cfx", "abb_quadrants", "branch_flags", "kuka_status", "kuka_turn",
-           "requested_branch"]
+           "requested_branch", "wrist_flips"]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 
 _WORDS = (("front", "back"), ("up", "down"), ("noflip", "flip"))
+
+ON_AXIS = 1e-12
+"""Metres within which the wrist point lies on an axis (which then leaves it in place)."""
 
 BRANCH_NAMES = tuple(f"{shoulder},{elbow},{wrist}" for shoulder in _WORDS[0]
                      for elbow in _WORDS[1] for wrist in _WORDS[2])
@@ -50,19 +53,30 @@ BRANCH_NAMES = tuple(f"{shoulder},{elbow},{wrist}" for shoulder in _WORDS[0]
 
 def branch_flags(shape: ArmShape, positions: FloatArray) -> IntArray:
     """The branch index ``4 back + 2 down + flip`` (...) of joint values ``positions``
-    (..., 6) in the shape's joint order (NaN rows give 0)."""
-    angles = np.nan_to_num(positions * shape.scales)
+    (..., 6) in the shape's joint order (NaN values count as 0)."""
+    def angle(joint: int) -> FloatArray:
+        return np.nan_to_num(positions[..., joint] * shape.scales[joint])
+
     axes, points = shape.axes, shape.points
-    extra = angles.ndim - 1
-    wrist = column(shape.wrist_point, extra)
+    extra = positions.ndim - 1
+    wrist = column(shape.wrist_point - points[0], extra)
     for joint in (4, 3, 2, 1):  # the wrist point through joints 5 to 2 (6 keeps it)
-        point = column(points[joint], extra)
-        wrist = rotated(axes[joint], angles[..., joint], wrist - point) + point
-    back = dot(shape.forward, wrist - column(points[0], extra)) < 0.0
+        off_axis = cross(axes[joint], shape.wrist_point - points[joint])
+        if float(off_axis @ off_axis) <= ON_AXIS * ON_AXIS:
+            continue  # the axis passes through the wrist point: it stays
+        point = column(points[joint] - points[0], extra)
+        wrist = rotated(axes[joint], angle(joint), wrist - point) + point
+    back = dot(shape.forward, wrist) < 0.0
     stretched, up_sign = shape.elbow
-    down = up_sign * np.sin(angles[..., 2] - stretched) <= 0.0
-    flip = np.sin(angles[..., 4] - shape.wrist_straight) <= 0.0
-    return (4 * back + 2 * down + flip).astype(np.int64)
+    # (the sign of a sine from the angle wrapped into [-pi, pi]: numpy's sine takes 13 ns)
+    down = up_sign * wrapped(angle(2) - stretched) <= 0.0
+    return 4 * back.astype(np.int64) + 2 * down + wrist_flips(shape, positions[..., 4])
+
+
+def wrist_flips(shape: ArmShape, fifth: FloatArray) -> IntArray:
+    """1 where joint 5's values ``fifth`` (...) flip the wrist, else 0 (NaN counts as 0)."""
+    return (wrapped(np.nan_to_num(fifth * shape.scales[4]) - shape.wrist_straight)
+            <= 0.0).astype(np.int64)
 
 
 def requested_branch(configuration: Any, field: str = "configuration",

@@ -12,14 +12,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ...values.timed import Timed
-from ._arm_steps import SINGULAR
+from ._arm_steps import SINGULAR, Arm, wrapped
 from .arm_shapes import ArmShape, OpwParameters
 from .configurations import BRANCH_NAMES, abb_cfx, abb_quadrants, kuka_status, kuka_turn
 from .opw import opw_solutions
 from .ur_type import ur_solutions
 
 __all__ = ["LIMIT_SLACK", "STRAIGHT_WRIST", "IkSolutions", "branch_angles", "every_solution",
-           "free_wrist_joint", "turn_periods"]
+           "free_wrist_joint", "straight_wrists", "turn_periods"]
 
 FloatArray = NDArray[np.float64]
 
@@ -106,11 +106,12 @@ class IkSolutions(Timed):
 
 
 def branch_angles(shape: ArmShape, rotations: FloatArray, translations: FloatArray,
-                  arm: int | None = None, free: FloatArray | None = None) -> FloatArray:
+                  arm: Arm = None, free: FloatArray | None = None) -> FloatArray:
     """The joint values (T, 8, 6) of the eight branches (in the shape's joint order, each
     within half a turn of 0) that move the tool from its zero configuration by
     ``rotations`` (3, 3, T) and ``translations`` (3, T); NaN out of reach. With ``arm`` (a
-    branch index), the two wrists of its shoulder and elbow only (T, 2, 6). Where the wrist
+    branch index, or one per sample), the two wrists of its shoulder and elbow only
+    (T, 2, 6). Where the wrist
     is singular its free joint (:func:`free_wrist_joint`) takes ``free`` (T,), else 0."""
     solve = opw_solutions if shape.family == "opw" else ur_solutions
     angles = solve(shape, rotations, translations, arm,
@@ -121,6 +122,14 @@ def branch_angles(shape: ArmShape, rotations: FloatArray, translations: FloatArr
 STRAIGHT_WRIST = SINGULAR
 """The sine of joint 5's angle from the straight wrist below which the wrist is straight and
 the closed form takes its free joint (:func:`free_wrist_joint`) as given."""
+
+
+def straight_wrists(shape: ArmShape, fifth: FloatArray) -> NDArray[np.bool_]:
+    """Where joint 5's values ``fifth`` (...) leave the wrist straight (:data:`STRAIGHT_WRIST`:
+    the angle from the straight wrist that near a multiple of pi; numpy's sine takes 13 ns a
+    number)."""
+    return np.abs(wrapped(2.0 * (fifth * shape.scales[4] - shape.wrist_straight))
+                  ) < 2.0 * STRAIGHT_WRIST
 
 
 def free_wrist_joint(shape: ArmShape) -> int:
@@ -148,18 +157,29 @@ def every_solution(shape: ArmShape, rotations: FloatArray, translations: FloatAr
     counts = np.where(bounded & whole_turns,
                       np.maximum(1, np.ceil(np.where(bounded, span, 0.0) / period - 1e-9)),
                       1).astype(int)
-    middle = np.where(bounded, 0.5 * (np.where(bounded, lower, 0.0)
-                                      + np.where(bounded, upper, 0.0)), 0.0)
-    nearest_middle = base - period * np.rint((base - middle) / period)
-    lowest = base + period * np.ceil((np.where(bounded, lower, 0.0) - base) / period)
-    first = np.where(counts > 1, lowest, nearest_middle)
     turns = np.indices(tuple(counts)).reshape(6, -1).T  # (M, 6): which value within the range
-    positions = first[:, :, None, :] + turns * period  # (T, 8, M, 6)
-    count = positions.shape[0]
+    count = base.shape[0]
+    positions = np.empty((count, 8, turns.shape[0], 6))
+    valid = np.ones((count, 8, turns.shape[0]), dtype=bool)
+    for joint in range(6):  # a joint at a time: numpy reduces a last axis of 6 slowly
+        angle, turn = base[..., joint], period[joint]
+        if counts[joint] > 1:  # the lowest value within the range
+            first = angle + turn * np.ceil((lower[joint] - angle) / turn)
+        else:  # the one nearest the middle of the range (of a continuous joint: 0)
+            middle = 0.5 * (lower[joint] + upper[joint]) if bounded[joint] else 0.0
+            first = angle - turn * np.rint((angle - middle) / turn)
+        for value in range(counts[joint]):
+            moved = first + value * turn
+            rows = turns[:, joint] == value
+            positions[:, :, rows, joint] = moved[:, :, None]
+            if bounded[joint]:
+                valid[:, :, rows] &= ((moved >= lower[joint] - LIMIT_SLACK)
+                                      & (moved <= upper[joint] + LIMIT_SLACK))[:, :, None]
+            else:  # (NaN out of reach)
+                valid[:, :, rows] &= ~np.isnan(moved)[:, :, None]
     positions = positions.reshape(count, -1, 6)
-    valid = np.all((positions >= lower - LIMIT_SLACK) & (positions <= upper + LIMIT_SLACK),
-                   axis=-1)
-    np.copyto(positions, np.nan, where=~valid[..., None])
+    valid = valid.reshape(count, -1)
+    positions[~valid] = np.nan
     several = counts > 1
     suffixes = [""] if not several.any() else [
         "/" + "".join(str(turn) for turn in row[several]) for row in turns]

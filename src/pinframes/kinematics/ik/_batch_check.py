@@ -9,7 +9,17 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ...values.se3 import Transform, compose, inverse, samples_last, to_stacks
+from ...values.se3 import (
+    Transform,
+    compose,
+    inverse,
+    rotated_vector,
+    rotation_product,
+    rotations_first,
+    samples_last,
+    to_stacks,
+    vectors_first,
+)
 from .._plan import PreparedPath
 from .._sampling import sample_joints
 from ._newton_tracking import Tracked, TrackingProblem, solve_again
@@ -24,18 +34,33 @@ def tools_in_targets(
     path: PreparedPath, times: NDArray[np.int64], shifts: dict[str, int],
     joint_names: tuple[str, ...], positions: FloatArray, targets: Transform | None,
 ) -> Transform:
-    """The tool of ``path`` in its targets with the solved joints at ``positions`` (N, n) at
-    ``times``: ``(N, 3, 3)`` rotations and ``(N, 3)`` translations (metres)."""
+    """The tool of ``path`` in its ``targets`` (samples last: ``(3, 3[, N])`` rotations,
+    ``(3[, N])`` translations, metres) with the solved joints at ``positions`` (N, n) at
+    ``times``: ``(N, 3, 3)`` rotations and ``(N, 3)`` translations (metres), read-only in
+    spirit: views of samples-last arrays, whose rows the error kernels read contiguously."""
     model = path.model
     assert model is not None
     count = times.shape[0]
     held = {name: positions[:, column] for column, name in enumerate(joint_names)}
     samples = sample_joints(path.samplers, times, shifts, held=held)
     tool, reference = model.forward_kinematics(samples, [path.frame, path.relative_to])
-    tool_in_target = compose(inverse(reference), tool)
-    if targets is not None:
-        tool_in_target = compose(inverse(samples_last(targets)), tool_in_target)
-    return to_stacks(tool_in_target, count)
+    rotation, translation = compose(inverse(reference), tool)
+    if targets is not None:  # the target's inverse applied at once: one rotated vector
+        target_rotation, target_translation = targets
+        transposed = np.swapaxes(target_rotation, 0, 1)
+        rotation = rotation_product(transposed, rotation)
+        translation = rotated_vector(transposed, _difference(translation, target_translation))
+    if rotation.ndim == 2 or translation.ndim == 1:
+        return to_stacks((rotation, translation), count)
+    return rotations_first(rotation), vectors_first(translation)
+
+
+def _difference(left: FloatArray, right: FloatArray) -> FloatArray:
+    """``left - right`` for static ``(3,)`` or batched ``(3, N)`` vectors."""
+    if left.ndim == right.ndim:
+        return left - right
+    return (left[:, None] if left.ndim == 1 else left) - (
+        right[:, None] if right.ndim == 1 else right)
 
 
 def check_unmeasured(path: PreparedPath, times: NDArray[np.int64], shifts: dict[str, int],
@@ -46,7 +71,8 @@ def check_unmeasured(path: PreparedPath, times: NDArray[np.int64], shifts: dict[
     unmeasured = np.flatnonzero(~tracked.measured)
     if not unmeasured.shape[0]:
         return
-    subset = None if targets is None else (targets[0][unmeasured], targets[1][unmeasured])
+    subset = None if targets is None else samples_last(
+        (targets[0][unmeasured], targets[1][unmeasured]))
     position, orientation = problem.error.errors(*tools_in_targets(
         path, times[unmeasured], shifts, problem.joints.names,
         tracked.positions[unmeasured], subset))
@@ -66,7 +92,8 @@ def tilts_at(
 ) -> FloatArray:
     """The tilts (N, 2) of the tool of ``path`` about its targets' x and y, radians, with the
     solved joints at ``positions`` (N, n)."""
-    rotations, _ = tools_in_targets(path, times, shifts, joint_names, positions, targets)
+    rotations, _ = tools_in_targets(path, times, shifts, joint_names, positions,
+                                    None if targets is None else samples_last(targets))
     return tilts_of(rotations)
 
 

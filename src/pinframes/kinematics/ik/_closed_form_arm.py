@@ -20,21 +20,20 @@ import pinocchio as pin
 from numpy.typing import NDArray
 
 from ...errors import JointError
-from ...values.se3 import Transform, compose, inverse, samples_last
+from ...values.se3 import Transform, compose, inverse
 from .._plan import PreparedPath
 from .._sampling import KERNEL_CHUNK, sample_joints
 from ..closed_form.arm_shapes import ArmShape, recognise_arm
-from ..closed_form.configurations import kuka_status
+from ..closed_form.configurations import branch_flags, kuka_status, wrist_flips
 from ..closed_form.solutions import (
     LIMIT_SLACK,
-    STRAIGHT_WRIST,
     branch_angles,
     free_wrist_joint,
+    straight_wrists,
     turn_periods,
 )
-from ._batch_check import tools_in_targets
 from ._newton_tracking import Tracked
-from ._path_chunks import TARGET_SOURCE, PathToSolve, raise_unreached, targets_at
+from ._path_chunks import TARGET_SOURCE, PathToSolve, raise_unreached, targets_last
 from ._solved_joints import SolvedJoints
 
 __all__ = ["AT_START", "JUMP", "arm_order", "closed_form_arm", "flange_motions",
@@ -125,8 +124,8 @@ def arm_order(shape: ArmShape, names: tuple[str, ...]) -> list[int]:
 def flange_motions(path: PreparedPath, times: NDArray[np.int64], shifts: dict[str, int],
                    names: tuple[str, ...], targets: Transform | None) -> Transform:
     """Per time, the motion of the tool from where the solved joints at zero put it to its
-    target, in the tool's axes there: ``(3, 3, N)`` rotations and ``(3, N)`` translations
-    (samples last)."""
+    target (``targets`` samples last, see :func:`._path_chunks.targets_last`), in the tool's
+    axes there: ``(3, 3, N)`` rotations and ``(3, N)`` translations (samples last)."""
     count = times.shape[0]
     zeros = dict.fromkeys(names, 0.0)
     model = path.model
@@ -135,7 +134,7 @@ def flange_motions(path: PreparedPath, times: NDArray[np.int64], shifts: dict[st
     tool, reference = model.forward_kinematics(samples, [path.frame, path.relative_to])
     motion = compose(inverse(tool), reference)
     if targets is not None:
-        motion = compose(motion, samples_last(targets))
+        motion = compose(motion, targets)
     rotation, translation = motion
     return (np.broadcast_to(rotation.reshape(3, 3, -1), (3, 3, count)),
             np.broadcast_to(translation.reshape(3, -1), (3, count)))
@@ -149,23 +148,35 @@ def track_in_closed_form(
     solution within the limits (T,), and each sample's branch index when the shoulder and
     elbow were kept (None when a KUKA Status or a singular crossing chose them); ``branch`` as
     :func:`..closed_form.configurations.requested_branch` gives it, or None (the start's).
-    ``targets(part)`` gives the targets of the samples ``part`` (None: the frame itself)."""
+    ``targets(part)`` gives the targets of the samples ``part`` (None: the frame itself).
+
+    The passes along the path hold one row per joint (6, T): a step, a wrap or a largest
+    step is then a pass over contiguous rows (over the last axis of (T, 6) it ran several
+    times slower)."""
     order = arm_order(shape, solved.names)
-    lower, upper = solved.limits.lower[order], solved.limits.upper[order]
+    lower, upper = solved.limits.lower[order, None], solved.limits.upper[order, None]
     start = start[order]
-    period = turn_periods(shape)
+    period = turn_periods(shape)[:, None]
     count = times.shape[0]
     chunks = [flange_motions(path, times[begin:begin + KERNEL_CHUNK], shifts, solved.names,
                              targets(slice(begin, begin + KERNEL_CHUNK)))
               for begin in range(0, count, KERNEL_CHUNK)]
-    rotations = np.concatenate([chunk[0] for chunk in chunks], axis=-1)
-    translations = np.concatenate([chunk[1] for chunk in chunks], axis=-1)
+
+    joined: list[Transform] = []  # the chunks joined, once samples beyond the first ask
 
     def solved_at(rows: Any, arm: int | None, free: FloatArray | None = None) -> FloatArray:
-        parts = [branch_angles(shape, rotations[..., rows][..., begin:begin + KERNEL_CHUNK],
-                               translations[..., rows][..., begin:begin + KERNEL_CHUNK], arm,
+        if isinstance(rows, slice) and rows.stop is not None and rows.stop <= KERNEL_CHUNK:
+            source = chunks[0]
+        else:
+            if not joined:
+                joined.append((np.concatenate([chunk[0] for chunk in chunks], axis=-1),
+                               np.concatenate([chunk[1] for chunk in chunks], axis=-1)))
+            source = joined[0]
+        moved = source[0][..., rows], source[1][..., rows]
+        parts = [branch_angles(shape, moved[0][..., begin:begin + KERNEL_CHUNK],
+                               moved[1][..., begin:begin + KERNEL_CHUNK], arm,
                                None if free is None else free[begin:begin + KERNEL_CHUNK])
-                 for begin in range(0, rotations[..., rows].shape[-1], KERNEL_CHUNK)]
+                 for begin in range(0, moved[1].shape[-1], KERNEL_CHUNK)]
         return np.concatenate(parts)
 
     kept: int | None = None
@@ -173,74 +184,91 @@ def track_in_closed_form(
     if branch is not None and branch[0] == "kuka_status":
         angles = solved_at(slice(None), None)
         matching = kuka_status(shape, angles) == branch[1]
-        positions = angles[np.arange(count), np.argmax(matching, axis=1)]
-        positions[~matching.any(axis=1)] = np.nan
+        positions = angles[np.arange(count), np.argmax(matching, axis=1)].T.copy()
+        positions[:, ~matching.any(axis=1)] = np.nan
     else:
+        candidates = np.empty((2, 6, count))  # per wrist, joint by joint
+        first_chunk = 0  # the chunks solved already
         if branch is None:  # the branch nearest the start at the first sample
-            away = solved_at(slice(0, 1), None)[0] - start
-            away -= period * np.rint(away / period)
+            # (the first sample's four arms beside the first chunk on the start's own arm,
+            # in one pass: a call's fixed cost is that of a few hundred numpy operations)
+            guess = int(branch_flags(shape, start[None])[0]) & 6
+            rotation, translation = chunks[0]
+            size = translation.shape[-1]
+            together = branch_angles(
+                shape, np.concatenate([np.repeat(rotation[..., :1], 4, axis=-1), rotation],
+                                      axis=-1),
+                np.concatenate([np.repeat(translation[..., :1], 4, axis=-1), translation],
+                               axis=-1),
+                np.concatenate([np.arange(0, 8, 2), np.full(size, guess)]))
+            away = together[:4].reshape(8, 6) - start
+            away -= period.T * np.rint(away / period.T)
             arm = int(np.argmin(np.where(np.isnan(away).any(axis=1), np.inf,
                                          np.abs(away).max(axis=1)))) & 6
+            if arm == guess:
+                candidates[..., :size] = together[4:].transpose(1, 2, 0)
+                first_chunk = 1
         else:
             arm = branch[1] & 6
-        candidates = solved_at(slice(None), arm)
-        wrist = (np.full(count, branch[1] & 1) if branch is not None
-                 else _wrist_passing_through(candidates, start, period))
-        positions = candidates[np.arange(count), wrist]
-        positions = _free_wrist_held(shape, positions, start, lambda rows, free: solved_at(
-            rows, arm, free)[np.arange(free.shape[0]), wrist[rows]])
+        for index in range(first_chunk, len(chunks)):
+            begin = index * KERNEL_CHUNK
+            candidates[..., begin:begin + KERNEL_CHUNK] = branch_angles(
+                shape, *chunks[index], arm).transpose(1, 2, 0)
+        flip = (np.full(count, bool(branch[1] & 1)) if branch is not None
+                else _wrist_passing_through(candidates, start, period))
+        positions = np.where(flip, candidates[1], candidates[0])
+        _hold_free_wrist(shape, positions, start, lambda rows, free: solved_at(
+            rows, arm, free)[np.arange(free.shape[0]), flip[rows].astype(np.intp)])
         kept = arm
         steps = _wrapped_steps(positions, period)
         if branch is None and _jumps(steps):
-            free = positions[:, free_wrist_joint(shape)]
-            positions = _nearest_all_along(solved_at(slice(None), None, free), start, period)
+            free = positions[free_wrist_joint(shape)]
+            positions = _nearest_all_along(solved_at(slice(None), None, free), start,
+                                           period[:, 0]).T.copy()
             kept = None
             steps = None
     positions = _unwrapped_within(positions, start, period, lower, upper, steps)
     # a sample the start already reaches keeps it as it is (not its rounded closed form)
-    positions[np.abs(positions - start).max(axis=1) <= AT_START] = start
-    valid = ~np.isnan(positions).any(axis=1) & np.all(
-        (positions >= lower - LIMIT_SLACK) & (positions <= upper + LIMIT_SLACK), axis=1)
-    result = np.empty_like(positions)
-    result[:, order] = positions
-    branches = None if kept is None else kept + (np.sin(
-        positions[:, 4] * shape.scales[4] - shape.wrist_straight) <= 0.0).astype(np.int64)
+    columns = start[:, None]
+    positions[:, np.abs(positions - columns).max(axis=0) <= AT_START] = columns
+    valid = np.all((positions >= lower - LIMIT_SLACK) & (positions <= upper + LIMIT_SLACK),
+                   axis=0)  # (False where NaN)
+    result = np.empty((count, 6))
+    result[:, order] = positions.T
+    branches = None if kept is None else kept + wrist_flips(shape, positions[4])
     return result, valid, branches
 
 
-def _free_wrist_held(shape: ArmShape, positions: FloatArray, start: FloatArray,
-                     again: Any) -> FloatArray:
-    """``positions`` (T, 6) with the samples at a straight wrist solved ``again(rows, free)``
-    with the wrist's free joint held where the sample before left it (the first: the
-    start)."""
-    straight = np.abs(np.sin(positions[:, 4] * shape.scales[4] - shape.wrist_straight)
-                      ) < STRAIGHT_WRIST
+def _hold_free_wrist(shape: ArmShape, positions: FloatArray, start: FloatArray,
+                     again: Any) -> None:
+    """The samples of ``positions`` (6, T) at a straight wrist solved ``again(rows, free)``
+    ((rows, 6)) with the wrist's free joint held where the sample before left it (the
+    first: the start), in place."""
+    straight = straight_wrists(shape, positions[4])
     if not straight.any():
-        return positions
+        return
     joint = free_wrist_joint(shape)
-    index = np.arange(positions.shape[0])
+    index = np.arange(positions.shape[1])
     before = np.maximum.accumulate(np.where(straight, -1, index))
-    held = np.where(before >= 0, positions[np.maximum(before, 0), joint], start[joint])
+    held = np.where(before >= 0, positions[joint, np.maximum(before, 0)], start[joint])
     rows = np.flatnonzero(straight)
-    positions = positions.copy()
-    positions[rows] = again(rows, held[rows])
-    return positions
+    positions[:, rows] = again(rows, held[rows]).T
 
 
 def _wrapped_steps(positions: FloatArray, period: FloatArray) -> FloatArray:
-    """The steps (T - 1, 6) between the samples of ``positions`` (T, 6), each joint's the
-    shorter way round."""
-    steps = np.diff(positions, axis=0)
+    """The steps (6, T - 1) between the samples of ``positions`` (6, T), each joint's the
+    shorter way round (``period`` (6, 1))."""
+    steps = positions[:, 1:] - positions[:, :-1]
     steps -= period * np.rint(steps / period)
     return steps
 
 
 def _jumps(steps: FloatArray) -> bool:
-    """Whether one of the path's ``steps`` (T - 1, 6) is far longer than its usual step (a
+    """Whether one of the path's ``steps`` (6, T - 1) is far longer than its usual step (a
     singular configuration crossed: the closed form's branch changes name there)."""
-    if not steps.shape[0]:
+    if not steps.shape[1]:
         return False
-    longest = np.nan_to_num(np.abs(steps).max(axis=1))
+    longest = np.nan_to_num(np.abs(steps).max(axis=0))
     return bool((longest > JUMP + 4.0 * np.median(longest)).any())
 
 
@@ -263,54 +291,60 @@ def _nearest_all_along(angles: FloatArray, start: FloatArray, period: FloatArray
 
 
 def _wrist_passing_through(candidates: FloatArray, start: FloatArray, period: FloatArray
-                           ) -> NDArray[np.intp]:
-    """Which of the two wrists (T, 2, 6) per sample (0 or 1): the start's nearest at the
-    first, then
-    the other where it moves the joints less than staying (the two wrists are one turn of
-    joints 4 and 6 by half a turn and joint 5 mirrored, so the comparison does not depend
-    on which is held)."""
-    wrists, start, period = candidates[..., 3:], start[3:], period[3:]  # 1 to 3 are one
+                           ) -> NDArray[np.bool_]:
+    """Which of the two wrists (2, 6, T) per sample (True: the second): the start's nearest
+    at the first, then the other where it moves the joints less than staying (the two
+    wrists are one turn of joints 4 and 6 by half a turn and joint 5 mirrored, so the
+    comparison does not depend on which is held)."""
+    wrists, start, period = candidates[:, 3:], start[3:, None], period[3:]  # 1 to 3 are one
 
     def distance(first: FloatArray, second: FloatArray) -> FloatArray:
         steps = second - first
         steps -= period * np.rint(steps / period)
-        return np.abs(steps).sum(axis=-1)
+        return np.abs(steps).sum(axis=0)
 
-    stay = distance(wrists[:-1, 0], wrists[1:, 0])
-    switch = distance(wrists[:-1, 0], wrists[1:, 1])
-    toggles = np.concatenate([[int(distance(start, wrists[0, 1])
-                                   < distance(start, wrists[0, 0]))],
-                              (switch < stay).astype(int)])
-    return np.cumsum(toggles) % 2
+    stay = distance(wrists[0, :, :-1], wrists[0, :, 1:])
+    switch = distance(wrists[0, :, :-1], wrists[1, :, 1:])
+    toggles = np.empty(stay.shape[0] + 1, dtype=np.int64)
+    toggles[0] = distance(start, wrists[1, :, :1])[0] < distance(start, wrists[0, :, :1])[0]
+    toggles[1:] = switch < stay
+    return np.cumsum(toggles) % 2 == 1
 
 
 def _unwrapped_within(positions: FloatArray, start: FloatArray, period: FloatArray,
                       lower: FloatArray, upper: FloatArray, steps: FloatArray | None
                       ) -> FloatArray:
-    """``positions`` (T, 6) unwrapped along the path and moved by whole turns to begin
+    """``positions`` (6, T) unwrapped along the path and moved by whole turns to begin
     nearest ``start``, or where a move by a few turns keeps a joint within its limits all
-    along, that one (NaN rows are kept and skipped); ``steps`` their
-    :func:`_wrapped_steps`, when known."""
-    known = ~np.isnan(positions).any(axis=1)
+    along, that one (NaN columns are kept and skipped); ``steps`` their
+    :func:`_wrapped_steps`, when known; ``period``, ``lower``, ``upper`` (6, 1)."""
+    known = ~np.isnan(positions).any(axis=0)
     if not known.any():
         return positions
-    values = positions[known]
-    if steps is None or not known.all():
+    everywhere = bool(known.all())
+    values = positions if everywhere else positions[:, known]
+    if steps is None or not everywhere:
         steps = _wrapped_steps(values, period)
-    values = values[0] + np.concatenate([np.zeros((1, 6)), np.cumsum(steps, axis=0)])
+    unwrapped = np.empty_like(values)
+    unwrapped[:, 0] = values[:, 0]
+    np.cumsum(steps, axis=1, out=unwrapped[:, 1:])
+    unwrapped[:, 1:] += values[:, :1]
     for joint in range(6):
-        near = np.rint((start[joint] - values[0, joint]) / period[joint])
+        row, turn = unwrapped[joint], float(period[joint, 0])
+        near = np.rint((start[joint] - row[0]) / turn)
+        low, high = float(row.min()), float(row.max())
         for turns in sorted(range(-2, 3), key=abs):
-            moved = values[:, joint] + (near + turns) * period[joint]
-            if moved.min() >= lower[joint] - LIMIT_SLACK and (
-                    moved.max() <= upper[joint] + LIMIT_SLACK):
+            shift = (near + turns) * turn
+            if low + shift >= lower[joint, 0] - LIMIT_SLACK and (
+                    high + shift <= upper[joint, 0] + LIMIT_SLACK):
                 near += turns
                 break
-        values[:, joint] += near * period[joint]
+        row += near * turn
+    if everywhere:
+        return unwrapped
     result = positions.copy()
-    result[known] = values
+    result[:, known] = unwrapped
     return result
-
 
 
 def solve_in_closed_form(request: PathToSolve, shape: ArmShape, start: FloatArray,
@@ -329,7 +363,7 @@ def solve_in_closed_form(request: PathToSolve, shape: ArmShape, start: FloatArra
 
     def targets(part: slice) -> Transform | None:
         if part.start not in sampled:
-            sampled[part.start] = targets_at(request.target, times[part], shift)
+            sampled[part.start] = targets_last(request.target, times[part], shift)
         return sampled[part.start]
 
     positions, valid, branches = track_in_closed_form(shape, path, times, shifts,
@@ -342,9 +376,8 @@ def solve_in_closed_form(request: PathToSolve, shape: ArmShape, start: FloatArra
     orientation_error = np.empty(times.shape[0])
     for begin in range(0, times.shape[0], KERNEL_CHUNK):
         part = slice(begin, begin + KERNEL_CHUNK)
-        position_error[part], orientation_error[part] = request.error.errors(
-            *tools_in_targets(path, times[part], shifts, request.joints.names,
-                               positions[part], targets(part)))
+        position_error[part], orientation_error[part] = _pose_errors(
+            path, times[part], shifts, request.joints.names, positions[part], targets(part))
     reached = valid & (position_error <= request.position_tolerance) & (
         orientation_error <= request.orientation_tolerance)
     tracked = Tracked(positions, position_error, orientation_error, reached,
@@ -354,6 +387,34 @@ def solve_in_closed_form(request: PathToSolve, shape: ArmShape, start: FloatArra
         raise_unreached(request, index, float(position_error[index]),
                         float(orientation_error[index]), frame)
     return tracked, branches
+
+
+def _pose_errors(path: PreparedPath, times: NDArray[np.int64], shifts: dict[str, int],
+                 names: tuple[str, ...], positions: FloatArray, targets: Transform | None
+                 ) -> tuple[FloatArray, FloatArray]:
+    """Position (m) and orientation (rad) errors (N,) of the tool in its targets with the
+    solved joints at ``positions`` (N, n), by the compiled path's forward kinematics:
+    what :class:`._tool_error.PoseMatch` measures, without forming the tool in each target
+    (``|p - p_target|``, and the angle from ``trace(R_target^T R) = 1 + 2 cos`` and
+    ``sum_k target_k x r_k = 2 sin axis``, the columns' cross products)."""
+    model = path.model
+    assert model is not None
+    held = {name: positions[:, column] for column, name in enumerate(names)}
+    samples = sample_joints(path.samplers, times, shifts, held=held)
+    tool, reference = model.forward_kinematics(samples, [path.frame, path.relative_to])
+    rotation, translation = compose(inverse(reference), tool)  # samples last
+    if targets is None:
+        wanted, place = np.eye(3), np.zeros(3)
+    else:
+        wanted, place = targets
+    offset = translation.reshape(3, -1) - place.reshape(3, -1)
+    cosine = sum(wanted[i, j] * rotation[i, j] for i in range(3) for j in range(3))
+    across = [sum(wanted[(i + 1) % 3, k] * rotation[(i + 2) % 3, k]
+                  - wanted[(i + 2) % 3, k] * rotation[(i + 1) % 3, k] for k in range(3))
+              for i in range(3)]
+    return (np.sqrt(offset[0] ** 2 + offset[1] ** 2 + offset[2] ** 2),
+            np.arctan2(0.5 * np.sqrt(across[0] ** 2 + across[1] ** 2 + across[2] ** 2),
+                       0.5 * (cosine - 1.0)))
 
 
 def _held_where_missing(positions: FloatArray, valid: NDArray[np.bool_], start: FloatArray

@@ -43,7 +43,8 @@ sample that is not reached after :data:`MAX_ITERATIONS`, or whose damping grows 
 :data:`MAX_DAMPING`, keeps the best configuration found (the closest within the limits); the
 next sample starts from the last solution that reached its target, then from that closest
 configuration: the solver finds its way back, onto the branch it left, when the target comes
-back into reach.
+back into reach. With more joints than rows, a sample missed with a joint on its limit is
+first solved again along the last solution's self-motion (:mod:`._self_motion_escape`).
 
 A reached sample is then offered to the secondary objective (:mod:`._null_space`: keeping
 the joints out of the bands along their limits), exactly in the null space of the task and
@@ -66,8 +67,10 @@ from numpy.typing import NDArray
 
 from ._bounded_step import AMPLIFICATION, LeastSquares, bounded_step
 from ._null_space import NullSpaceObjective, null_space_motion
+from ._self_motion_escape import escape_along_self_motion
 from ._solved_joints import SolvedJoints
 from ._tool_error import PoseMatch, ToolMatch
+from ._tracking_history import LONGEST_PREDICTION, StepBack, TrackingHistory
 
 __all__ = ["BRIDGE_ANGLE", "BRIDGE_LENGTH", "LONGEST_PREDICTION", "LONGEST_STEP",
            "MAX_DAMPING", "MAX_ITERATIONS", "Tracked", "TrackingHistory", "TrackingProblem",
@@ -88,21 +91,12 @@ Carried = tuple[FloatArray, FloatArray, float, float]
 (n,: the prediction is the last solution less it), a lower bound of the last solution's
 margin inside the limits and the sum of the step's joint changes (radians or metres)."""
 
-StepBack = tuple[FloatArray, float]
-"""The step from a solution back to the one before (n,) and the sum of its joint changes
-(radians or metres): the correction of the Newton step that took the solver from the one
-to the other (see :class:`TrackingHistory`)."""
-
 MAX_ITERATIONS = 100
 """Newton iterations at most per sample (a tracked sample takes one or two)."""
 
 LONGEST_STEP = 0.5
 """Largest change of one joint in one iteration, radians or metres: far from the target, a
 Newton step is only a direction."""
-
-LONGEST_PREDICTION = 2.0
-"""The largest ratio of a time step to the one before by which the last step is carried on:
-after a longer gap the sample starts from the last solution (and is bridged)."""
 
 BRIDGE_LENGTH = 0.05
 """Metres of the tool's travel per intermediate target of a bridge."""
@@ -224,63 +218,6 @@ class Tracked:
                        self.orientation_error[rows], self.reached[rows], self.measured[rows])
 
 
-class TrackingHistory:
-    """What the next sample starts from: the seed, the last two solutions when both reached
-    their targets, and the last solution that did. The step between the last two is the
-    solver's own correction when one Newton step from the one gave the other (the same
-    numbers as their difference but rounding, with the sum of its joint changes: a
-    subtraction and a sum less per sample), else their difference.
-
-    Parameters
-    ----------
-    seed : ndarray, shape (n,)
-        Where the first sample starts.
-
-    Attributes
-    ----------
-    last : ndarray, shape (n,)
-        The latest solution (the seed before the first).
-    last_on_target : ndarray, shape (n,)
-        The latest solution that reached its target (the seed before the first).
-    after_a_miss : bool
-        Whether the latest sample did not reach its target.
-    """
-
-    def __init__(self, seed: FloatArray) -> None:
-        self.last = self.last_on_target = seed
-        self.after_a_miss = False
-        self._last_reached = False  # the seed is no solution
-        self._last_margin = 0.0  # a lower bound of how far ``last`` lies inside the limits
-        self._previous: FloatArray | None = None  # before ``last``, when both reached
-        self._back: StepBack | None = None  # from ``last`` to ``_previous``, when given
-
-    def start(self, ratio: float) -> tuple[FloatArray, FloatArray | None, float, float]:
-        """The last solution; the last step reversed (the solution before less the last:
-        the sign in which the solver's corrections come) times ``ratio`` (the ratio of the
-        time steps) when both reached their targets and ``ratio`` is at most
-        :data:`LONGEST_PREDICTION`, else None; a lower bound of how far the last solution
-        lies inside the limits (0: not known); and the sum of that step's joint changes
-        (NaN: not known)."""
-        if self._previous is None or not ratio <= LONGEST_PREDICTION:
-            return self.last, None, self._last_margin, math.nan
-        back, changes = (self._previous - self.last, math.nan) if self._back is None else (
-            self._back)
-        if ratio != 1.0:
-            back, changes = back * ratio, changes * ratio
-        return self.last, back, self._last_margin, changes
-
-    def add(self, theta: FloatArray, reached: bool, margin: float,
-            back: StepBack | None = None) -> None:
-        """Record the solution of the sample just solved, with a lower bound of how far it
-        lies inside the limits (0: not known) and, when the solver knows it, the step from
-        it back to the last solution (the same numbers as ``last - theta`` but rounding)."""
-        self._previous = self.last if reached and self._last_reached else None
-        self.last, self._last_reached, self.after_a_miss = theta, reached, not reached
-        self._last_margin, self._back = margin, back
-        if reached:
-            self.last_on_target = theta
-
-
 def track_targets(problem: TrackingProblem, history: TrackingHistory,
                   stop_when_unreached: bool = False) -> Tracked:
     """Solve every sample of ``problem`` in order, from and into ``history``.
@@ -292,6 +229,7 @@ def track_targets(problem: TrackingProblem, history: TrackingHistory,
     """
     sample_solver = _SampleSolver(problem)
     solve, predicted = sample_solver.solve, sample_solver.predicted
+    escape = sample_solver.redundant
     solutions: list[Solved] = []
     ratios = problem.step_ratios.tolist()
     stills = [False] * len(ratios) if problem.still is None else problem.still.tolist()
@@ -311,8 +249,12 @@ def track_targets(problem: TrackingProblem, history: TrackingHistory,
                 closer = solve(index, history.last, 0.0, True, True)
                 if closer[3] or _cost(problem, closer) < _cost(problem, solved):
                     solved = closer
+        escaped = None if solved[3] or not escape else sample_solver.escaped(
+            index, history.last_on_target, solved[0])
+        if escaped is not None:
+            solved = escaped
         solutions.append(solved)
-        history.add(solved[0], solved[3], solved[4], sample_solver.back)
+        history.add(solved[0], solved[3], solved[4], sample_solver.back, escaped is not None)
         if stop_when_unreached and not solved[3]:
             break
     thetas, position_error, orientation_error, reached, _ = zip(*solutions, strict=True)
@@ -421,6 +363,19 @@ class _SampleSolver:
         if serve and solved[3] and solved[4] <= self.objective_margin:  # inf: always
             return self._served(q, target, solved, bridge)
         return solved
+
+    def escaped(self, index: int, last: FloatArray, missed: FloatArray) -> Solved | None:
+        """Sample ``index``, missed at ``missed`` with a joint on a limit, reached along
+        another self-motion than ``last``'s (:mod:`._self_motion_escape`); None when it is
+        not, or ``missed`` lies inside the limits."""
+        if self.limits.margin(missed.tolist()) > 0.0:
+            return None
+        q = self.configurations[index]
+        self.joints.set_configuration(q, last)
+        self._asked_rows, self._asked_at = None, q
+        return escape_along_self_motion(
+            lambda start: self.solve(index, start, 0.0, True, True), self.limits,
+            self._task_rows(), last)
 
     def _bridge(self, q: FloatArray, target: pin.SE3 | None, theta: FloatArray
                 ) -> FloatArray:

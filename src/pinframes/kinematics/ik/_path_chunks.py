@@ -20,7 +20,7 @@ from numpy.typing import NDArray
 from ...errors import TargetNotReachedError
 from ...values.pose import Pose
 from ...values.rotations import quaternion_from_matrix
-from ...values.se3 import Transform
+from ...values.se3 import Transform, samples_last
 from .._plan import QueryPlan
 from .._sampling import KERNEL_CHUNK, sample_configurations
 from ._batch_check import check_unmeasured, tilts_at, tools_in_targets
@@ -32,7 +32,7 @@ from ._starts import track_from_the_best_start
 from ._tool_error import ToolMatch, WindowMatch
 
 __all__ = ["STILL", "TARGET_SOURCE", "PathToSolve", "problem_of", "raise_unreached", "targets_at",
-           "track_in_chunks"]
+           "targets_last", "track_in_chunks"]
 
 FloatArray = NDArray[np.float64]
 
@@ -96,7 +96,7 @@ class PathToSolve:
         at ``positions`` (N, n): ``(N, 3, 3)`` rotations and ``(N, 3)`` translations
         (metres)."""
         plan = self.plan
-        targets = targets_at(self.target, times, plan.shifts.get(TARGET_SOURCE, 0))
+        targets = targets_last(self.target, times, plan.shifts.get(TARGET_SOURCE, 0))
         return tools_in_targets(plan.path, times, plan.shifts, self.joints.names, positions,
                                 targets)
 
@@ -264,6 +264,16 @@ def targets_at(target: Pose | None, moments: NDArray[np.int64], shift: int
     count = moments.shape[0]
     return (np.broadcast_to(target.rotation, (count, 3, 3)),
             np.broadcast_to(target.translation, (count, 3)))
+
+
+def targets_last(target: Pose | None, moments: NDArray[np.int64], shift: int
+                  ) -> Transform | None:
+    """:func:`targets_at` with the samples last, ``(3, 3, N)`` and ``(3, N)``: a moving
+    target as interpolated, uncopied."""
+    if target is not None and target.is_time_dependent:
+        return target.keyframes.transform_at(moments - shift)
+    targets = targets_at(target, moments, shift)
+    return None if targets is None else samples_last(targets)
 
 
 def _standing_still(configurations: FloatArray, targets: FloatArray | None

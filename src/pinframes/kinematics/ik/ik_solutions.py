@@ -19,7 +19,7 @@ from .._joint_argument import named_joints
 from .._sampling import KERNEL_CHUNK
 from ..closed_form.solutions import IkSolutions, every_solution
 from ._closed_form_arm import arm_order, closed_form_arm, flange_motions
-from ._path_chunks import TARGET_SOURCE, targets_at
+from ._path_chunks import TARGET_SOURCE, targets_last
 from .solve_joints import _reference, planned_solve
 
 __all__ = ["evaluate_ik_solutions"]
@@ -44,7 +44,7 @@ def evaluate_ik_solutions(tree: TreeDescription, frame: str, target: str | Pose,
     for begin in range(0, moments.shape[0], KERNEL_CHUNK):
         chunk = moments[begin:begin + KERNEL_CHUNK]
         motions = flange_motions(path, chunk, plan.shifts, solved.names,
-                                 targets_at(target_pose, chunk, shift))
+                                 targets_last(target_pose, chunk, shift))
         positions, branches, chunk_valid = every_solution(shape, *motions, lower, upper,
                                                        whole_turns)
         if columns is None or valid is None:

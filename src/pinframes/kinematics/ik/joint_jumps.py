@@ -30,21 +30,30 @@ path stands."""
 
 
 def _steps(positions: FloatArray) -> FloatArray:
-    """Per sample after the first, the largest change of one joint from the sample before."""
-    return np.abs(np.diff(positions, axis=0)).max(axis=1, initial=0.0)
+    """Per sample after the first, the largest change of one joint from the sample before
+    (joint by joint: a maximum across a short last axis is several times slower)."""
+    steps = np.zeros(max(positions.shape[0] - 1, 0))
+    for joint in range(positions.shape[1]):
+        column = positions[:, joint]
+        np.maximum(steps, np.abs(column[1:] - column[:-1]), out=steps)
+    return steps
+
+
+def _bar(steps: FloatArray, factor: float) -> float:
+    """The jump bar of a path whose :func:`_steps` are ``steps``."""
+    usual = float(np.median(steps)) if steps.shape[0] else 0.0
+    return max(factor * usual, SMALLEST_JUMP)
 
 
 def jump_bar(positions: FloatArray, factor: float) -> float:
     """The step (radians or metres) past which a sample of ``positions`` (T, n) jumps."""
-    steps = _steps(positions)
-    usual = float(np.median(steps)) if steps.shape[0] else 0.0
-    return max(factor * usual, SMALLEST_JUMP)
+    return _bar(_steps(positions), factor)
 
 
 def jumps_of(positions: FloatArray, factor: float) -> NDArray[np.intp]:
     """The samples of ``positions`` (T, n) whose step from the one before jumps."""
     steps = _steps(positions)
-    return np.flatnonzero(steps > jump_bar(positions, factor)) + 1
+    return np.flatnonzero(steps > _bar(steps, factor)) + 1
 
 
 def require_no_jumps(solution: JointSolution, factor: float, frame: str) -> None:
