@@ -27,10 +27,12 @@ LONGEST_PREDICTION = 2.0
 after a longer gap the sample starts from the last solution (and is bridged)."""
 
 SMOOTH = 0.25
-"""The largest change of the step from one sample to the next, over the step (joint changes
-summed), for which the quadratic through the last three solutions is carried on: past it
-the samples do not resolve the path's bend, or the steps wander along a singular
-configuration's self-motion, and the line through the last two is."""
+"""The largest change of the step from one sample to the next, over the step (Euclidean
+norms, radians or metres), for which the quadratic through the last three solutions is
+carried on: past it the samples do not resolve the path's bend, or the steps wander along a
+singular configuration's self-motion, and the line through the last two is."""
+
+_SMOOTH_SQUARED = SMOOTH**2
 
 
 class TrackingHistory:
@@ -83,24 +85,27 @@ class TrackingHistory:
         before, before_ratio, self._ratio = self._before, self._ratio, ratio
         if self._previous is None or not ratio <= LONGEST_PREDICTION:
             return self.last, None, self._last_margin, math.nan
-        back, changes = (self._previous - self.last, math.nan) if self._back is None else (
-            self._back)
+        if self._back is None:  # (kept: the next sample's step before)
+            self._back = self._previous - self.last, math.nan
+        back, changes = self._back
         if before is not None and 0.0 < before_ratio <= LONGEST_PREDICTION:
             earlier, earlier_back = before
             back_before = earlier - self._previous if earlier_back is None else earlier_back[0]
             # the steps' change, in the last step's time
             change = (back - back_before if before_ratio == 1.0
                       else back - before_ratio * back_before)
-            size = changes if changes >= 0.0 else sum(map(abs, back.tolist()))
-            change_size = sum(map(abs, change.tolist()))
-            if change_size <= SMOOTH * size:
+            # |change| <= SMOOTH |back|; where the sum of back's joint changes is known,
+            # against that sum over sqrt(n) (at most |back|: one dot product less)
+            squared, joints = change.dot(change), back.shape[0]
+            if (squared * joints <= _SMOOTH_SQUARED * changes * changes if changes >= 0.0
+                    else squared <= _SMOOTH_SQUARED * back.dot(back)):
                 # q + r d1 + r (r + 1) r1 / (r1 + 1) (d1 - r1 d0), d = -back: the quadratic
                 # through the last three at times 0, -h, -h - h / r1, at r h
                 bend = ratio * (ratio + 1.0) * before_ratio / (before_ratio + 1.0)
-                carried = (back + change if ratio == 1.0 and bend == 1.0
-                           else ratio * back + bend * change)
-                # (an upper bound of its joint changes)
-                return self.last, carried, self._last_margin, ratio * size + bend * change_size
+                # (its joint changes sum to at most r changes + bend sqrt(n) |change|)
+                return self.last, (back + change if ratio == 1.0 and bend == 1.0
+                                   else ratio * back + bend * change), self._last_margin, (
+                    ratio * changes + bend * math.sqrt(squared * joints))
         if ratio != 1.0:
             back, changes = back * ratio, changes * ratio
         return self.last, back, self._last_margin, changes
