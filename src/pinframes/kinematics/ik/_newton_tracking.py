@@ -1,9 +1,10 @@
 """The solver loop of ``FrameTree.solve_joints``: damped Newton on Pinocchio, sample by sample.
 
 Each sample starts from the previous solution carried on by the step between the last two
-(scaled by the ratio of the time steps), when both reached their targets and the time step is
-at most :data:`LONGEST_PREDICTION` times the one before; else from the previous solution; the
-first sample starts from the seed (:class:`TrackingHistory`). The carried step keeps only its
+(scaled by the ratio of the time steps; on the quadratic through the last three where the
+steps change smoothly), when both reached their targets and the time step is at most
+:data:`LONGEST_PREDICTION` times the one before; else from the previous solution; the first
+sample starts from the seed (:class:`TrackingHistory`). The carried step keeps only its
 part that moves the tool (all of the step when the secondary objective
 ``carries_self_motion``, as a frame kept flat does), and every Newton step is the smallest:
 with more joints than rows (a 7-axis arm, a free tool axis, a positioner solved with the
